@@ -1,0 +1,154 @@
+//! `wgsl-variants validate`.
+
+use std::process::ExitCode;
+
+use serde::Serialize;
+use serde_json::value::RawValue;
+
+use wgsl_variants::validate::{
+    select_passes, validate_pass, variants_to_build, PassReport, ValidateOptions,
+};
+
+use super::output::{count, print_json, progress};
+use super::{load_materials, BuildArgs, Context, Failed};
+
+#[derive(Serialize)]
+pub struct FailureOut {
+    pub stage: wgsl_variants::validate::Stage,
+    pub message: String,
+    pub location: Option<String>,
+    pub keyword_sets: Vec<Vec<String>>,
+    pub diagnostic: String,
+}
+
+#[derive(Serialize)]
+pub struct PassOut {
+    pub shader: String,
+    #[serde(rename = "pass")]
+    pub pass_name: String,
+    pub full_space: Box<RawValue>,
+    pub built: u64,
+    pub distinct: u64,
+    pub valid: u64,
+    pub invalid: u64,
+    pub failures: Vec<FailureOut>,
+}
+
+#[derive(Serialize, Default)]
+pub struct Totals {
+    pub passes: usize,
+    pub built: u64,
+    pub distinct: u64,
+    pub valid: u64,
+    pub invalid: u64,
+}
+
+#[derive(Serialize)]
+struct ValidateOut {
+    ok: bool,
+    selection: &'static str,
+    passes: Vec<PassOut>,
+    totals: Totals,
+}
+
+/// Builds and validates the selected passes, with a progress bar on stderr.
+pub fn build_reports(
+    ctx: &Context,
+    all: bool,
+    build: &BuildArgs,
+) -> Result<Vec<PassReport>, Failed> {
+    let options = ValidateOptions {
+        all,
+        materials: load_materials(&build.materials)?,
+        budget: build.max_variants,
+        shader: build.shader.clone(),
+        pass: build.pass.clone(),
+    };
+    let passes = select_passes(&ctx.lib, options.shader.as_deref(), options.pass.as_deref())?;
+    let mut plans = Vec::new();
+    for pass in passes {
+        plans.push((pass, variants_to_build(&ctx.lib, pass, &options)?));
+    }
+    let total: u64 = plans.iter().map(|p| p.1.len() as u64).sum();
+    let bar = progress(total, "validating");
+    let reports = plans
+        .iter()
+        .map(|(pass, choices)| validate_pass(&ctx.lib, pass, choices, &|n| bar.inc(n)))
+        .collect();
+    bar.finish_and_clear();
+    Ok(reports)
+}
+
+/// JSON form of a pass report.
+pub fn pass_out(ctx: &Context, r: &PassReport) -> PassOut {
+    PassOut {
+        shader: r.shader.clone(),
+        pass_name: r.pass.clone(),
+        full_space: count(&r.full_space),
+        built: r.built,
+        distinct: r.distinct,
+        valid: r.valid,
+        invalid: r.invalid,
+        failures: r
+            .failures
+            .iter()
+            .map(|f| FailureOut {
+                stage: f.error.stage,
+                message: f.error.message.clone(),
+                location: f.error.location(ctx.lib.files()).map(|l| l.to_string()),
+                keyword_sets: f.keyword_sets.clone(),
+                diagnostic: f.error.diagnostic().render(ctx.lib.files(), false),
+            })
+            .collect(),
+    }
+}
+
+pub fn run(ctx: &Context, all: bool, build: &BuildArgs) -> Result<ExitCode, Failed> {
+    let reports = build_reports(ctx, all, build)?;
+    let mut totals = Totals {
+        passes: reports.len(),
+        ..Totals::default()
+    };
+    for r in &reports {
+        totals.built += r.built;
+        totals.distinct += r.distinct;
+        totals.valid += r.valid;
+        totals.invalid += r.invalid;
+    }
+    let ok = totals.invalid == 0;
+    if ctx.json {
+        let passes = reports.iter().map(|r| pass_out(ctx, r)).collect();
+        print_json(&ValidateOut {
+            ok,
+            selection: if all { "full_space" } else { "build_set" },
+            passes,
+            totals,
+        })?;
+    } else {
+        for r in &reports {
+            for f in &r.failures {
+                eprint!("{}", ctx.render(&f.error.diagnostic()));
+                let n = f.keyword_sets.len();
+                if n > 1 {
+                    eprintln!(
+                        "  (the same text is produced by {n} keyword sets; first: {:?})\n",
+                        f.keyword_sets.iter().take(3).collect::<Vec<_>>()
+                    );
+                }
+            }
+            println!(
+                "{}/{}: {} built ({} full space), {} distinct, {} valid, {} invalid",
+                r.shader, r.pass, r.built, r.full_space, r.distinct, r.valid, r.invalid
+            );
+        }
+        println!(
+            "total: {} passes, {} variants built, {} distinct, {} valid, {} invalid",
+            totals.passes, totals.built, totals.distinct, totals.valid, totals.invalid
+        );
+    }
+    Ok(if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

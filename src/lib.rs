@@ -1,0 +1,49 @@
+//! # wgsl-variants
+//!
+//! Unity-style shader **variants** for trees of WGSL modules: `#pragma multi_compile` and
+//! `#pragma shader_feature` keyword sets, `#if` with boolean expressions and valued defines,
+//! `#import` of modules — and **every** variant validated by naga, with errors that name the
+//! original `file:line:col` and the keyword set of the variant.
+//!
+//! The crate also bundles a deferred-shading library (`wgsl/`: G-buffer pass, LDR `exp2(-c)`
+//! encoding, reflection-probe blending), a CPU [`reference`] of its math, and a wgpu harness
+//! ([`gpu`], feature `gpu`) that proves the WGSL against the reference.
+//!
+//! ```
+//! use wgsl_variants::{Library, variants::Space};
+//!
+//! let lib = Library::bundled().unwrap();
+//! for pass in lib.passes() {
+//!     println!("{}/{}: {} variants", pass.shader, pass.name, Space::full(pass).count());
+//! }
+//! let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+//! let (module, _info) = lib.naga_module(&v).unwrap();
+//! # let _ = module;
+//! ```
+//!
+//! Layout: [`source`] reads files; [`preprocess`] parses directives and composes a variant;
+//! [`keywords`], [`shader`], [`variants`], [`lookup`] and [`materials`] model Unity's keyword
+//! semantics; [`library`] ties them together; [`validate`] runs naga; [`diagnostic`] renders
+//! errors.
+
+#![deny(missing_docs)]
+
+pub mod diagnostic;
+// GPU-MODULE-PLACEHOLDER
+pub mod keywords;
+pub mod library;
+pub mod lookup;
+pub mod materials;
+pub mod preprocess;
+// REFERENCE-MODULE-PLACEHOLDER
+pub mod shader;
+pub mod source;
+pub mod validate;
+pub mod variants;
+
+pub use diagnostic::{Diagnostic, Location, SourceFiles, Span};
+pub use library::{Library, LoadError, LoadOptions, Variant};
+pub use lookup::LookupError;
+pub use shader::{Pass, Shader};
+pub use validate::{ValidateOptions, VariantError};
+pub use variants::{Choice, Space};

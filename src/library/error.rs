@@ -1,0 +1,149 @@
+//! Errors of loading and linking a library.
+
+use std::fmt;
+
+use crate::diagnostic::{Diagnostic, SourceFiles, Span};
+
+/// A problem linking modules together (imports) or assembling shaders.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LinkError {
+    /// `#import` of a module that does not exist.
+    #[error("cannot import `{path}`: {reason}")]
+    MissingImport {
+        /// The path as written.
+        path: String,
+        /// Why (no such file, a directory, …).
+        reason: String,
+        /// Where.
+        span: Span,
+    },
+    /// `#import` of a symlink that leads outside the library root.
+    #[error("cannot import `{path}`: it is a symbolic link that leaves the library root")]
+    LeavesRoot {
+        /// The path as written.
+        path: String,
+        /// Where.
+        span: Span,
+    },
+    /// Modules that import each other in a cycle.
+    #[error("import cycle: {}", cycle.iter().map(|c| c.0.as_str()).collect::<Vec<_>>().join(" -> "))]
+    Cycle {
+        /// The modules of the cycle, each with the `#import` that continues it; the first module
+        /// is repeated at the end.
+        cycle: Vec<(String, Span)>,
+    },
+    /// An import chain deeper than the limit.
+    #[error("import chain deeper than the limit of {limit}")]
+    TooDeep {
+        /// The limit.
+        limit: usize,
+        /// The import where the limit was passed.
+        span: Span,
+    },
+    /// Two files declare a shader of the same name.
+    #[error("two files declare shader `{name}`")]
+    DuplicateShader {
+        /// The name.
+        name: String,
+        /// The second declaration.
+        span: Span,
+        /// The first declaration.
+        first: Span,
+    },
+    /// A shader with two passes of the same name.
+    #[error("shader `{shader}` has two passes named `{name}`")]
+    DuplicatePass {
+        /// The shader.
+        shader: String,
+        /// The pass name.
+        name: String,
+        /// The second declaration.
+        span: Span,
+        /// The first.
+        first: Span,
+    },
+    /// The library is larger than the source-size limit.
+    #[error("the library's sources total {bytes} bytes, past the limit of {limit}")]
+    TooLarge {
+        /// Total bytes.
+        bytes: usize,
+        /// The limit.
+        limit: usize,
+    },
+}
+
+impl LinkError {
+    /// A renderable report.
+    pub fn diagnostic(&self) -> Diagnostic {
+        let d = Diagnostic::new(self.to_string());
+        match self {
+            LinkError::MissingImport { span, .. } => d
+                .at(*span, "imported here")
+                .note("paths are relative to the library root, `/`-separated, without `.wgsl`"),
+            LinkError::LeavesRoot { span, .. } | LinkError::TooDeep { span, .. } => {
+                d.at(*span, "imported here")
+            }
+            LinkError::Cycle { cycle } => {
+                let mut d = d;
+                for (i, (module, span)) in
+                    cycle.iter().enumerate().take(cycle.len().saturating_sub(1))
+                {
+                    let next = &cycle[i + 1].0;
+                    d = if i == 0 {
+                        d.at(*span, format!("`{module}` imports `{next}`"))
+                    } else {
+                        d.also(*span, format!("`{module}` imports `{next}`"))
+                    };
+                }
+                d
+            }
+            LinkError::DuplicateShader { span, first, .. }
+            | LinkError::DuplicatePass { span, first, .. } => d
+                .at(*span, "declared again here")
+                .also(*first, "first declared here"),
+            LinkError::TooLarge { .. } => d,
+        }
+    }
+}
+
+/// Loading a library failed. Holds every problem found and the sources, so each can be
+/// rendered with a snippet of the original file.
+pub struct LoadError {
+    /// The files that were read.
+    pub files: SourceFiles,
+    /// One report per problem, in file order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl LoadError {
+    /// Renders every diagnostic (ANSI colours when `color`).
+    pub fn render(&self, color: bool) -> String {
+        self.diagnostics
+            .iter()
+            .map(|d| d.render(&self.files, color))
+            .collect()
+    }
+
+    /// `path:line:col` of each diagnostic that has a location.
+    pub fn locations(&self) -> Vec<String> {
+        self.diagnostics
+            .iter()
+            .filter_map(|d| d.location(&self.files))
+            .map(|l| l.to_string())
+            .collect()
+    }
+}
+
+impl fmt::Debug for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(false))
+    }
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(false))
+    }
+}
+
+impl std::error::Error for LoadError {}

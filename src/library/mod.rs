@@ -1,0 +1,249 @@
+//! A loaded library: its modules, shaders and passes, and composing variants.
+
+mod error;
+mod load;
+
+use std::path::Path;
+
+use crate::diagnostic::SourceFiles;
+use crate::lookup::{suggest, LookupError};
+use crate::materials::{self, Material, MaterialsError};
+use crate::preprocess::compose::{compose, ModuleGraph};
+use crate::preprocess::tree::ParsedModule;
+use crate::preprocess::Composed;
+use crate::shader::{Pass, Shader};
+use crate::source::{self, Origin, RawFile};
+use crate::variants::{Choice, Space};
+
+pub use error::{LinkError, LoadError};
+pub use load::LoadOptions;
+
+/// A library of WGSL modules and the shaders built from them.
+///
+/// ```
+/// use wgsl_variants::Library;
+///
+/// let lib = Library::bundled().unwrap();
+/// let pass = lib.pass("standard", "Deferred").unwrap();
+/// assert_eq!(wgsl_variants::variants::Space::full(pass).count(), 3072u32.into());
+/// let variant = lib.variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"]).unwrap();
+/// let wgsl = lib.wgsl(&variant);
+/// assert!(wgsl.contains("normal_map"));
+/// ```
+pub struct Library {
+    files: SourceFiles,
+    modules: Vec<ParsedModule>,
+    paths: Vec<String>,
+    resolved: Vec<Vec<usize>>,
+    shaders: Vec<Shader>,
+    origin: Origin,
+}
+
+/// One variant: a pass and the option chosen in each of its keyword sets.
+#[derive(Clone, Debug)]
+pub struct Variant<'l> {
+    /// The pass.
+    pub pass: &'l Pass,
+    /// The keyword set, one option per set.
+    pub choice: Choice,
+}
+
+impl Variant<'_> {
+    /// The keywords that are on.
+    pub fn keywords(&self) -> Vec<&str> {
+        self.choice.keywords(self.pass)
+    }
+
+    /// `shader/pass {KEYWORDS}`, the way diagnostics name a variant.
+    pub fn label(&self) -> String {
+        format!(
+            "{}/{} {}",
+            self.pass.shader,
+            self.pass.name,
+            self.choice.label(self.pass)
+        )
+    }
+}
+
+impl Library {
+    /// The library bundled with this crate (`wgsl/`, embedded at build time).
+    pub fn bundled() -> Result<Library, LoadError> {
+        Library::load(
+            source::bundled_files(),
+            &[],
+            Origin::Bundled,
+            &LoadOptions::default(),
+        )
+    }
+
+    /// Loads every `.wgsl` file under `root`.
+    pub fn from_dir(root: impl AsRef<Path>) -> Result<Library, LoadError> {
+        Library::from_dir_with(root, &LoadOptions::default())
+    }
+
+    /// Loads every `.wgsl` file under `root` with explicit limits.
+    pub fn from_dir_with(
+        root: impl AsRef<Path>,
+        options: &LoadOptions,
+    ) -> Result<Library, LoadError> {
+        let root = root.as_ref();
+        let (raw, escaping) =
+            source::read_dir_tree(root, options.max_files).map_err(|e| LoadError {
+                files: SourceFiles::new(),
+                diagnostics: vec![crate::diagnostic::Diagnostic::new(e.to_string())],
+            })?;
+        Library::load(raw, &escaping, Origin::Dir(root.to_path_buf()), options)
+    }
+
+    /// Builds a library from in-memory `(path, text)` pairs; paths are library-relative with
+    /// `/` separators and end in `.wgsl`.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::from_sources([
+    ///     ("lib/color.wgsl", "fn tint() -> f32 { return 0.5; }"),
+    ///     ("main.wgsl", "#shader main\n#pass P\n#pragma multi_compile _ RED\n#import lib/color\n#endpass"),
+    /// ]).unwrap();
+    /// assert_eq!(lib.shaders()[0].name, "main");
+    /// ```
+    pub fn from_sources<P: Into<String>, T: Into<String>>(
+        sources: impl IntoIterator<Item = (P, T)>,
+    ) -> Result<Library, LoadError> {
+        Library::from_sources_with(sources, &LoadOptions::default())
+    }
+
+    /// [`Library::from_sources`] with explicit limits.
+    pub fn from_sources_with<P: Into<String>, T: Into<String>>(
+        sources: impl IntoIterator<Item = (P, T)>,
+        options: &LoadOptions,
+    ) -> Result<Library, LoadError> {
+        let mut raw: Vec<RawFile> = sources
+            .into_iter()
+            .map(|(p, t)| RawFile {
+                path: p.into(),
+                bytes: t.into().into_bytes(),
+            })
+            .collect();
+        raw.sort_by(|a, b| a.path.cmp(&b.path));
+        Library::load(raw, &[], Origin::Memory, options)
+    }
+
+    /// Builds a library from raw bytes (which need not be UTF-8), e.g. read by the caller.
+    pub fn from_raw(mut raw: Vec<RawFile>, options: &LoadOptions) -> Result<Library, LoadError> {
+        raw.sort_by(|a, b| a.path.cmp(&b.path));
+        Library::load(raw, &[], Origin::Memory, options)
+    }
+
+    fn load(
+        raw: Vec<RawFile>,
+        escaping: &[String],
+        origin: Origin,
+        options: &LoadOptions,
+    ) -> Result<Library, LoadError> {
+        let l = load::load(raw, escaping, options)?;
+        Ok(Library {
+            files: l.files,
+            modules: l.modules,
+            paths: l.paths,
+            resolved: l.resolved,
+            shaders: l.shaders,
+            origin,
+        })
+    }
+
+    /// Where the library was loaded from.
+    pub fn origin(&self) -> &Origin {
+        &self.origin
+    }
+
+    /// The source files, for rendering diagnostics.
+    pub fn files(&self) -> &SourceFiles {
+        &self.files
+    }
+
+    /// Module paths (relative, without `.wgsl`), in load order.
+    pub fn module_paths(&self) -> &[String] {
+        &self.paths
+    }
+
+    /// Every shader, sorted by file path.
+    pub fn shaders(&self) -> &[Shader] {
+        &self.shaders
+    }
+
+    /// The shader with this name.
+    pub fn shader(&self, name: &str) -> Result<&Shader, LookupError> {
+        self.shaders
+            .iter()
+            .find(|s| s.name == name)
+            .ok_or_else(|| LookupError::UnknownShader {
+                name: name.to_string(),
+                suggestion: suggest(name, self.shaders.iter().map(|s| s.name.as_str())),
+            })
+    }
+
+    /// A pass of a shader.
+    pub fn pass(&self, shader: &str, pass: &str) -> Result<&Pass, LookupError> {
+        let s = self.shader(shader)?;
+        s.pass(pass).ok_or_else(|| LookupError::UnknownPass {
+            shader: shader.to_string(),
+            name: pass.to_string(),
+            available: s.passes.iter().map(|p| p.name.clone()).collect(),
+        })
+    }
+
+    /// Every pass of every shader, in order.
+    pub fn passes(&self) -> impl Iterator<Item = &Pass> {
+        self.shaders.iter().flat_map(|s| s.passes.iter())
+    }
+
+    /// The variant of `shader/pass` with exactly `keywords` on (strict; see [`Pass::resolve`]).
+    pub fn variant<S: AsRef<str>>(
+        &self,
+        shader: &str,
+        pass: &str,
+        keywords: &[S],
+    ) -> Result<Variant<'_>, LookupError> {
+        let pass = self.pass(shader, pass)?;
+        Ok(Variant {
+            pass,
+            choice: pass.resolve(keywords)?,
+        })
+    }
+
+    /// The build set of a pass: the full space minus `skip_variants`, and, when `materials`
+    /// are given, only the `shader_feature` combinations they use.
+    pub fn build_set<'p>(
+        &self,
+        pass: &'p Pass,
+        materials: Option<&[Material]>,
+    ) -> Result<Space<'p>, MaterialsError> {
+        let features = match materials {
+            None => None,
+            Some(m) => {
+                materials::check(m, &self.shaders)?;
+                Some(materials::feature_combinations(pass, m)?)
+            }
+        };
+        Ok(Space::build_set(pass, features))
+    }
+
+    /// Composes a variant: the final WGSL text and its map back to the original files.
+    pub fn compose(&self, variant: &Variant<'_>) -> Composed {
+        let graph = ModuleGraph {
+            modules: &self.modules,
+            resolved: &self.resolved,
+            files: &self.files,
+        };
+        compose(
+            &graph,
+            variant.pass.module,
+            &variant.pass.body,
+            variant.choice.defines(variant.pass),
+        )
+    }
+
+    /// The final WGSL text of a variant.
+    pub fn wgsl(&self, variant: &Variant<'_>) -> String {
+        self.compose(variant).text
+    }
+}

@@ -1,0 +1,214 @@
+//! Finding a variant from a keyword set, like Unity's strict variant matching.
+//!
+//! A keyword set resolves to exactly one variant or fails with an error that names the nearest
+//! variants of the build set. The closest-variant fallback (Unity's behaviour without strict
+//! matching) is only used when asked for.
+
+use crate::shader::Pass;
+use crate::variants::{Choice, Space};
+
+/// Why a keyword set does not name a variant.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LookupError {
+    /// No shader of that name.
+    #[error("no shader named `{name}`{}", hint(suggestion))]
+    UnknownShader {
+        /// The name asked for.
+        name: String,
+        /// The closest existing name.
+        suggestion: Option<String>,
+    },
+    /// The shader has no pass of that name.
+    #[error("shader `{shader}` has no pass `{name}` (passes: {})", available.join(", "))]
+    UnknownPass {
+        /// The shader.
+        shader: String,
+        /// The name asked for.
+        name: String,
+        /// The passes it has.
+        available: Vec<String>,
+    },
+    /// A keyword the pass does not declare.
+    #[error(
+        "pass `{shader}/{pass}` declares no keyword `{keyword}`{}",
+        hint(suggestion)
+    )]
+    UnknownKeyword {
+        /// The shader.
+        shader: String,
+        /// The pass.
+        pass: String,
+        /// The keyword asked for.
+        keyword: String,
+        /// The closest declared keyword.
+        suggestion: Option<String>,
+    },
+    /// Two keywords of the same set.
+    #[error("`{first}` and `{second}` are options of the same set (`{set}`): only one can be on")]
+    Conflicting {
+        /// The first keyword.
+        first: String,
+        /// The second keyword.
+        second: String,
+        /// The set, as written.
+        set: String,
+    },
+    /// A set with no "none" option and none of its keywords given.
+    #[error("no keyword of the set `{set}` is given, and the set has no \"none\" option")]
+    Missing {
+        /// The set, as written.
+        set: String,
+    },
+    /// The keyword set names a variant that is not built.
+    #[error("variant {keywords} of `{shader}/{pass}` is not in the build set ({reason}); nearest: {}", nearest.join(" or "))]
+    NotBuilt {
+        /// The shader.
+        shader: String,
+        /// The pass.
+        pass: String,
+        /// The keyword set asked for.
+        keywords: String,
+        /// Why it was not built.
+        reason: String,
+        /// The nearest built variants.
+        nearest: Vec<String>,
+    },
+}
+
+fn hint(suggestion: &Option<String>) -> String {
+    suggestion
+        .as_ref()
+        .map(|s| format!("; did you mean `{s}`?"))
+        .unwrap_or_default()
+}
+
+/// The closest of `candidates` to `name` by edit distance, if reasonably close.
+pub fn suggest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
+    let limit = (name.len() / 3).max(2);
+    candidates
+        .into_iter()
+        .map(|c| (strsim::levenshtein(name, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .min()
+        .map(|(_, c)| c.to_string())
+}
+
+impl Pass {
+    /// The variant with exactly these keywords on, in the full space.
+    ///
+    /// Every keyword must be declared by the pass, at most one per set; a set none of whose
+    /// keywords is given takes its "none" option.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
+    /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
+    /// ```
+    pub fn resolve<S: AsRef<str>>(&self, keywords: &[S]) -> Result<Choice, LookupError> {
+        let mut options: Vec<Option<u16>> = vec![None; self.sets.len()];
+        for keyword in keywords {
+            let keyword = keyword.as_ref();
+            let (set, option) =
+                self.keyword(keyword)
+                    .ok_or_else(|| LookupError::UnknownKeyword {
+                        shader: self.shader.clone(),
+                        pass: self.name.clone(),
+                        keyword: keyword.to_string(),
+                        suggestion: suggest(keyword, self.keywords()),
+                    })?;
+            if let Some(previous) = options[set] {
+                let first = self.sets[set].options[previous as usize]
+                    .clone()
+                    .unwrap_or_default();
+                if first != keyword {
+                    return Err(LookupError::Conflicting {
+                        first,
+                        second: keyword.to_string(),
+                        set: self.sets[set].to_string(),
+                    });
+                }
+            }
+            options[set] = Some(option as u16);
+        }
+        let mut choice = Vec::with_capacity(options.len());
+        for (set, option) in options.into_iter().enumerate() {
+            match option.or(self.sets[set].none_index().map(|i| i as u16)) {
+                Some(o) => choice.push(o),
+                None => {
+                    return Err(LookupError::Missing {
+                        set: self.sets[set].to_string(),
+                    })
+                }
+            }
+        }
+        Ok(Choice(choice.into_boxed_slice()))
+    }
+}
+
+/// Strict lookup of `keywords` in `space`: exactly that variant, or an error naming the nearest
+/// (at most three) variants of the space. `budget` bounds the search for neighbours.
+pub fn lookup_strict<S: AsRef<str>>(
+    space: &Space<'_>,
+    keywords: &[S],
+    budget: u64,
+) -> Result<Choice, LookupError> {
+    let pass = space.pass();
+    let choice = pass.resolve(keywords)?;
+    if space.contains(&choice) {
+        return Ok(choice);
+    }
+    let reason = match choice
+        .keywords(pass)
+        .into_iter()
+        .find(|k| pass.skip_variants.iter().any(|s| s == k))
+    {
+        Some(k) => format!("`{k}` is in skip_variants"),
+        None => "no material uses this shader_feature combination".to_string(),
+    };
+    let nearest = nearest(space, &choice, 3, budget)
+        .iter()
+        .map(|c| c.label(pass))
+        .collect();
+    Err(LookupError::NotBuilt {
+        shader: pass.shader.clone(),
+        pass: pass.name.clone(),
+        keywords: choice.label(pass),
+        reason,
+        nearest,
+    })
+}
+
+/// The built variant closest to `keywords` (fewest sets that differ; ties go to the first in
+/// enumeration order) — Unity's behaviour without strict variant matching. Use only when a
+/// fallback is wanted.
+pub fn lookup_closest<S: AsRef<str>>(
+    space: &Space<'_>,
+    keywords: &[S],
+    budget: u64,
+) -> Result<Choice, LookupError> {
+    let choice = space.pass().resolve(keywords)?;
+    if space.contains(&choice) {
+        return Ok(choice);
+    }
+    nearest(space, &choice, 1, budget)
+        .into_iter()
+        .next()
+        .ok_or_else(|| LookupError::NotBuilt {
+            shader: space.pass().shader.clone(),
+            pass: space.pass().name.clone(),
+            keywords: choice.label(space.pass()),
+            reason: "the build set is empty".into(),
+            nearest: Vec::new(),
+        })
+}
+
+fn nearest(space: &Space<'_>, choice: &Choice, n: usize, budget: u64) -> Vec<Choice> {
+    let Ok(all) = space.enumerate(budget) else {
+        return Vec::new();
+    };
+    let mut scored: Vec<(usize, Choice)> =
+        all.into_iter().map(|c| (c.distance(choice), c)).collect();
+    scored.sort();
+    scored.into_iter().take(n).map(|(_, c)| c).collect()
+}

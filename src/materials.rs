@@ -1,0 +1,224 @@
+//! Materials: which `shader_feature` keywords the content actually uses.
+//!
+//! A materials file lists materials, each naming a shader and the keywords it enables — the
+//! keyword state Unity keeps per material. Given materials, a pass's build set keeps only the
+//! `shader_feature` combinations some material of its shader uses. JSON and TOML are accepted:
+//!
+//! ```toml
+//! [[material]]
+//! name = "Bricks"
+//! shader = "standard"
+//! keywords = ["_NORMAL_MAP", "_METALLIC_MAP"]
+//! ```
+//!
+//! ```json
+//! { "materials": [ { "name": "Bricks", "shader": "standard", "keywords": ["_NORMAL_MAP"] } ] }
+//! ```
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::lookup::suggest;
+use crate::shader::{Pass, Shader};
+
+/// One material: a shader and the keywords it has on.
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Material name, for messages.
+    pub name: String,
+    /// The shader it uses.
+    pub shader: String,
+    /// Keywords that are on.
+    #[serde(default)]
+    pub keywords: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialsFile {
+    #[serde(alias = "material")]
+    materials: Vec<Material>,
+}
+
+/// A problem with a materials file.
+#[derive(Debug, thiserror::Error)]
+pub enum MaterialsError {
+    /// The file could not be read.
+    #[error("cannot read materials file `{path}`: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The OS error.
+        message: String,
+    },
+    /// The file is not valid JSON/TOML of the expected shape.
+    #[error("{path}:{line}:{column}: {message}")]
+    Syntax {
+        /// The file.
+        path: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A material names a shader the library does not have.
+    #[error(
+        "material `{material}` uses shader `{shader}`, which the library does not have{}",
+        hint(suggestion)
+    )]
+    UnknownShader {
+        /// The material.
+        material: String,
+        /// The shader it names.
+        shader: String,
+        /// The closest shader name.
+        suggestion: Option<String>,
+    },
+    /// A keyword no pass of the shader declares.
+    #[error(
+        "material `{material}` enables `{keyword}`, which no pass of shader `{shader}` declares{}",
+        hint(suggestion)
+    )]
+    UnknownKeyword {
+        /// The material.
+        material: String,
+        /// The shader.
+        shader: String,
+        /// The keyword.
+        keyword: String,
+        /// The closest declared keyword.
+        suggestion: Option<String>,
+    },
+    /// Two keywords of one set.
+    #[error("material `{material}` enables both `{first}` and `{second}`, options of one set of `{shader}/{pass}`")]
+    Conflicting {
+        /// The material.
+        material: String,
+        /// The shader.
+        shader: String,
+        /// The pass.
+        pass: String,
+        /// First keyword.
+        first: String,
+        /// Second keyword.
+        second: String,
+    },
+}
+
+fn hint(s: &Option<String>) -> String {
+    s.as_ref()
+        .map(|s| format!("; did you mean `{s}`?"))
+        .unwrap_or_default()
+}
+
+/// Reads a materials file (`.toml`, otherwise JSON).
+pub fn load(path: &Path) -> Result<Vec<Material>, MaterialsError> {
+    let display = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| MaterialsError::Io {
+        path: display.clone(),
+        message: e.to_string(),
+    })?;
+    parse(
+        &text,
+        path.extension().is_some_and(|e| e == "toml"),
+        &display,
+    )
+}
+
+/// Parses materials from text; `toml` selects the format. `path` is used in messages.
+pub fn parse(text: &str, toml: bool, path: &str) -> Result<Vec<Material>, MaterialsError> {
+    let syntax = |line: usize, column: usize, message: String| MaterialsError::Syntax {
+        path: path.to_string(),
+        line,
+        column,
+        message,
+    };
+    let file: MaterialsFile = if toml {
+        toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| line_col(text, s.start));
+            syntax(line, column, e.message().to_string())
+        })?
+    } else {
+        serde_json::from_str(text).map_err(|e| syntax(e.line(), e.column(), e.to_string()))?
+    };
+    Ok(file.materials)
+}
+
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// Checks materials against the library's shaders: every shader exists and every keyword is
+/// declared by some pass of it.
+pub fn check(materials: &[Material], shaders: &[Shader]) -> Result<(), MaterialsError> {
+    for m in materials {
+        let Some(shader) = shaders.iter().find(|s| s.name == m.shader) else {
+            return Err(MaterialsError::UnknownShader {
+                material: m.name.clone(),
+                shader: m.shader.clone(),
+                suggestion: suggest(&m.shader, shaders.iter().map(|s| s.name.as_str())),
+            });
+        };
+        for k in &m.keywords {
+            if !shader.passes.iter().any(|p| p.keyword(k).is_some()) {
+                let all = shader.passes.iter().flat_map(|p| p.keywords());
+                return Err(MaterialsError::UnknownKeyword {
+                    material: m.name.clone(),
+                    shader: m.shader.clone(),
+                    keyword: k.clone(),
+                    suggestion: suggest(k, all),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The `shader_feature` combinations the materials of `pass`'s shader use: for each material,
+/// one option per shader_feature set (the material's keyword of that set, else the set's
+/// "none" option, else its first option, as Unity does).
+pub fn feature_combinations(
+    pass: &Pass,
+    materials: &[Material],
+) -> Result<BTreeSet<Vec<u16>>, MaterialsError> {
+    let sf: Vec<usize> = pass.shader_feature_sets().collect();
+    let mut combos = BTreeSet::new();
+    for m in materials.iter().filter(|m| m.shader == pass.shader) {
+        let mut options: Vec<Option<u16>> = vec![None; pass.sets.len()];
+        for k in &m.keywords {
+            let Some((set, option)) = pass.keyword(k) else {
+                continue;
+            };
+            if let Some(prev) = options[set] {
+                if prev as usize != option {
+                    return Err(MaterialsError::Conflicting {
+                        material: m.name.clone(),
+                        shader: pass.shader.clone(),
+                        pass: pass.name.clone(),
+                        first: pass.sets[set].options[prev as usize]
+                            .clone()
+                            .unwrap_or_default(),
+                        second: k.clone(),
+                    });
+                }
+            }
+            options[set] = Some(option as u16);
+        }
+        combos.insert(
+            sf.iter()
+                .map(|&s| {
+                    options[s].unwrap_or_else(|| pass.sets[s].none_index().unwrap_or(0) as u16)
+                })
+                .collect(),
+        );
+    }
+    Ok(combos)
+}

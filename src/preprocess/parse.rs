@@ -1,0 +1,639 @@
+//! Parsing a module's directives into a [`ParsedModule`].
+
+use std::ops::Range;
+
+use crate::diagnostic::{FileId, Span};
+
+use super::error::ParseError;
+use super::expr::{self, Expr};
+use super::lines::{self, Line};
+use super::tree::{
+    Conditional, ImportRef, Node, ParsedModule, PassDecl, Pragma, SetKind, ShaderDecl,
+};
+
+/// Nesting limits applied while parsing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParseLimits {
+    /// Deepest `#if` nesting.
+    pub if_depth: usize,
+    /// Deepest expression nesting (parentheses and unary operators).
+    pub expr_depth: usize,
+}
+
+impl Default for ParseLimits {
+    fn default() -> Self {
+        ParseLimits {
+            if_depth: 256,
+            expr_depth: 256,
+        }
+    }
+}
+
+/// Parses `text` (the contents of `file`). Returns every error found, not only the first.
+pub fn parse_module(
+    file: FileId,
+    text: &str,
+    limits: ParseLimits,
+) -> Result<ParsedModule, Vec<ParseError>> {
+    let scanned = lines::scan(text);
+    let mut p = ModuleParser {
+        file,
+        text,
+        limits,
+        errors: Vec::new(),
+        frames: Vec::new(),
+        root: Vec::new(),
+        imports: Vec::new(),
+        shader: None,
+        pass: None,
+        seen_code: false,
+    };
+    for (index, line) in scanned.iter().enumerate() {
+        p.line(index as u32, line);
+    }
+    p.finish_frames(Span::new(file, text.len()..text.len()));
+    if let Some(pass) = p.pass.take() {
+        p.errors.push(ParseError::Unterminated {
+            directive: "pass",
+            span: pass.span,
+        });
+    }
+    if !p.errors.is_empty() {
+        return Err(p.errors);
+    }
+    let lines = scanned
+        .iter()
+        .map(|l| l.range.start as u32..l.range.end as u32)
+        .collect();
+    Ok(ParsedModule {
+        file,
+        lines,
+        body: p.root,
+        imports: p.imports,
+        shader: p.shader,
+    })
+}
+
+struct Frame {
+    directive: &'static str,
+    span: Span,
+    branches: Vec<(Expr, Vec<Node>)>,
+    cond: Option<Expr>,
+    else_span: Option<Span>,
+    nodes: Vec<Node>,
+}
+
+struct ModuleParser<'a> {
+    file: FileId,
+    text: &'a str,
+    limits: ParseLimits,
+    errors: Vec<ParseError>,
+    frames: Vec<Frame>,
+    root: Vec<Node>,
+    imports: Vec<ImportRef>,
+    shader: Option<ShaderDecl>,
+    pass: Option<PassDecl>,
+    /// Whether a WGSL or module directive line has been seen (a `#shader` must come first).
+    seen_code: bool,
+}
+
+fn is_name(s: &str) -> bool {
+    let mut chars = s.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+impl<'a> ModuleParser<'a> {
+    fn span(&self, range: Range<usize>) -> Span {
+        Span::new(self.file, range)
+    }
+
+    /// Where new nodes go: the innermost open `#if`, else the pass body, else the module body.
+    fn container(&mut self) -> &mut Vec<Node> {
+        if let Some(frame) = self.frames.last_mut() {
+            &mut frame.nodes
+        } else if let Some(pass) = self.pass.as_mut() {
+            &mut pass.body
+        } else {
+            &mut self.root
+        }
+    }
+
+    fn line(&mut self, index: u32, line: &Line) {
+        match &line.directive {
+            None => self.text_line(index, line),
+            Some(range) => self.directive(range.clone()),
+        }
+    }
+
+    fn text_line(&mut self, index: u32, line: &Line) {
+        let content = self.text[line.range.clone()].trim();
+        let is_comment = content.is_empty()
+            || content.starts_with("//")
+            || content.starts_with("/*")
+            || content.starts_with('*');
+        if self.shader.is_some() && self.pass.is_none() {
+            if !is_comment {
+                let start = line.range.start
+                    + (self.text[line.range.clone()].len()
+                        - self.text[line.range.clone()].trim_start().len());
+                self.errors.push(ParseError::Misplaced {
+                    directive: "shader",
+                    message: "files hold only comments outside `#pass … #endpass` blocks; move this WGSL into a module and `#import` it",
+                    span: self.span(start..line.range.end.max(start + 1)),
+                });
+            }
+            return;
+        }
+        if !is_comment {
+            self.seen_code = true;
+        }
+        let nodes = self.container();
+        if let Some(Node::Text(run)) = nodes.last_mut() {
+            if run.end == index {
+                run.end = index + 1;
+                return;
+            }
+        }
+        nodes.push(Node::Text(index..index + 1));
+    }
+
+    fn directive(&mut self, range: Range<usize>) {
+        let text: &'a str = self.text;
+        let body = &text[range.clone()];
+        let name_len = body
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(body.len());
+        let name = &body[..name_len];
+        let name_span = self.span(range.start - 1..range.start + name_len);
+        let args_start =
+            range.start + name_len + (body[name_len..].len() - body[name_len..].trim_start().len());
+        let args = text[args_start..range.end].trim_end();
+        let args_span = if args.is_empty() {
+            name_span
+        } else {
+            self.span(args_start..args_start + args.len())
+        };
+        let result = match name {
+            "if" | "elif" => self.expr(args, args_start, name_span).map(|e| {
+                if name == "if" {
+                    self.open("if", name_span, e)
+                } else {
+                    self.elif(name_span, e)
+                }
+            }),
+            "ifdef" | "ifndef" => self
+                .single_name(
+                    if name == "ifdef" { "ifdef" } else { "ifndef" },
+                    args,
+                    args_span,
+                )
+                .map(|n| {
+                    let defined = Expr::Defined(n.into());
+                    let cond = if name == "ifdef" {
+                        defined
+                    } else {
+                        Expr::Not(Box::new(defined))
+                    };
+                    self.open(
+                        if name == "ifdef" { "ifdef" } else { "ifndef" },
+                        name_span,
+                        cond,
+                    )
+                }),
+            "else" => self
+                .no_args("else", args, args_span)
+                .map(|_| self.else_(name_span)),
+            "endif" => self
+                .no_args("endif", args, args_span)
+                .map(|_| self.endif(name_span)),
+            "define" => self.define(args, args_span),
+            "undef" => self.single_name("undef", args, args_span).map(|n| {
+                self.seen_code = true;
+                self.container().push(Node::Undef { name: n.into() });
+            }),
+            "import" => self.import(args, args_span),
+            "shader" => self.shader(args, name_span, args_span),
+            "pass" => self.pass(args, name_span, args_span),
+            "endpass" => self
+                .no_args("endpass", args, args_span)
+                .map(|_| self.endpass(name_span)),
+            "tag" => self.tag(args, name_span, args_span),
+            "pragma" => self.pragma(args, args_start, name_span),
+            _ => Err(ParseError::UnknownDirective {
+                name: name.to_string(),
+                span: if name.is_empty() {
+                    self.span(range.start - 1..range.start)
+                } else {
+                    name_span
+                },
+            }),
+        };
+        if let Err(e) = result {
+            self.errors.push(e);
+        }
+    }
+
+    fn expr(&self, args: &str, start: usize, name_span: Span) -> Result<Expr, ParseError> {
+        if args.is_empty() {
+            return Err(ParseError::Expression {
+                message: "expected an expression".into(),
+                span: name_span,
+            });
+        }
+        expr::parse(args, start, self.file, self.limits.expr_depth)
+    }
+
+    fn no_args(&self, directive: &'static str, args: &str, span: Span) -> Result<(), ParseError> {
+        if args.is_empty() {
+            Ok(())
+        } else {
+            Err(ParseError::Malformed {
+                directive,
+                message: "takes no arguments".into(),
+                span,
+            })
+        }
+    }
+
+    fn single_name(
+        &self,
+        directive: &'static str,
+        args: &'a str,
+        span: Span,
+    ) -> Result<&'a str, ParseError> {
+        if is_name(args) {
+            Ok(args)
+        } else {
+            let message = if args.is_empty() {
+                "expected a name".to_string()
+            } else {
+                format!("expected one name, found `{args}`")
+            };
+            Err(ParseError::Malformed {
+                directive,
+                message,
+                span,
+            })
+        }
+    }
+
+    fn open(&mut self, directive: &'static str, span: Span, cond: Expr) {
+        self.seen_code = true;
+        if self.frames.len() >= self.limits.if_depth {
+            self.errors.push(ParseError::TooDeep {
+                what: "`#if`",
+                limit: self.limits.if_depth,
+                span,
+            });
+        }
+        self.frames.push(Frame {
+            directive,
+            span,
+            branches: Vec::new(),
+            cond: Some(cond),
+            else_span: None,
+            nodes: Vec::new(),
+        });
+    }
+
+    fn elif(&mut self, span: Span, cond: Expr) {
+        let Some(frame) = self.frames.last_mut() else {
+            return self.errors.push(ParseError::Unmatched {
+                directive: "elif",
+                span,
+            });
+        };
+        if let Some(else_span) = frame.else_span {
+            return self.errors.push(ParseError::AfterElse {
+                directive: "elif",
+                span,
+                else_span,
+            });
+        }
+        let nodes = std::mem::take(&mut frame.nodes);
+        if let Some(prev) = frame.cond.replace(cond) {
+            frame.branches.push((prev, nodes));
+        }
+    }
+
+    fn else_(&mut self, span: Span) {
+        let Some(frame) = self.frames.last_mut() else {
+            return self.errors.push(ParseError::Unmatched {
+                directive: "else",
+                span,
+            });
+        };
+        if let Some(else_span) = frame.else_span {
+            return self.errors.push(ParseError::AfterElse {
+                directive: "else",
+                span,
+                else_span,
+            });
+        }
+        frame.else_span = Some(span);
+        let nodes = std::mem::take(&mut frame.nodes);
+        if let Some(prev) = frame.cond.take() {
+            frame.branches.push((prev, nodes));
+        }
+    }
+
+    fn endif(&mut self, span: Span) {
+        let Some(mut frame) = self.frames.pop() else {
+            return self.errors.push(ParseError::Unmatched {
+                directive: "endif",
+                span,
+            });
+        };
+        let otherwise = if let Some(cond) = frame.cond.take() {
+            frame
+                .branches
+                .push((cond, std::mem::take(&mut frame.nodes)));
+            Vec::new()
+        } else {
+            frame.nodes
+        };
+        let node = Node::If(Box::new(Conditional {
+            branches: frame.branches,
+            otherwise,
+        }));
+        self.container().push(node);
+    }
+
+    /// Reports every `#if` still open at `end` (end of file or `#endpass`) and closes them.
+    fn finish_frames(&mut self, end: Span) {
+        let _ = end;
+        while let Some(frame) = self.frames.pop() {
+            self.errors.push(ParseError::Unterminated {
+                directive: frame.directive,
+                span: frame.span,
+            });
+        }
+    }
+
+    fn define(&mut self, args: &str, span: Span) -> Result<(), ParseError> {
+        let mut parts = args.split_whitespace();
+        let name = parts.next().unwrap_or("");
+        if !is_name(name) || name == "defined" {
+            let message = if name.is_empty() {
+                "expected a name".to_string()
+            } else {
+                format!("`{name}` is not a valid name")
+            };
+            return Err(ParseError::Malformed {
+                directive: "define",
+                message,
+                span,
+            });
+        }
+        let value = match parts.next() {
+            None => 1,
+            Some(v) => {
+                let (neg, digits) = v.strip_prefix('-').map_or((false, v), |d| (true, d));
+                let parsed =
+                    expr::parse_int(digits).map(|x| if neg { x.wrapping_neg() } else { x });
+                match (parsed, parts.next()) {
+                    (Some(x), None) => x,
+                    _ => {
+                        return Err(ParseError::Malformed {
+                            directive: "define",
+                            message: format!(
+                                "the value of `{name}` must be one integer literal, found `{}`",
+                                args[name.len()..].trim()
+                            ),
+                            span,
+                        })
+                    }
+                }
+            }
+        };
+        self.seen_code = true;
+        self.container().push(Node::Define {
+            name: name.into(),
+            value,
+        });
+        Ok(())
+    }
+
+    fn import(&mut self, args: &str, span: Span) -> Result<(), ParseError> {
+        let path = args.strip_suffix(".wgsl").unwrap_or(args);
+        let malformed = |message: String| ParseError::Malformed {
+            directive: "import",
+            message,
+            span,
+        };
+        if path.is_empty() {
+            return Err(malformed(
+                "expected a module path, e.g. `#import deferred/gbuffer`".into(),
+            ));
+        }
+        if path.contains(char::is_whitespace) || path.contains('\\') || path.contains('"') {
+            return Err(malformed(format!("`{args}` is not a module path: write `/`-separated names relative to the library root, unquoted")));
+        }
+        if path.starts_with('/')
+            || path
+                .split('/')
+                .any(|c| c == ".." || c == "." || c.is_empty())
+        {
+            return Err(malformed(format!("`{args}` leaves the library root: paths are relative to the root, without `.`, `..` or a leading `/`")));
+        }
+        self.seen_code = true;
+        let index = self.imports.len();
+        self.imports.push(ImportRef {
+            path: path.to_string(),
+            span,
+        });
+        self.container().push(Node::Import(index));
+        Ok(())
+    }
+
+    fn shader(&mut self, args: &str, name_span: Span, args_span: Span) -> Result<(), ParseError> {
+        if self.shader.is_some() || self.seen_code {
+            return Err(ParseError::Misplaced {
+                directive: "shader",
+                message: "must be the first directive of its file, and only once",
+                span: name_span,
+            });
+        }
+        if args.is_empty()
+            || !args
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "_-/.".contains(c))
+        {
+            return Err(ParseError::Malformed {
+                directive: "shader",
+                message: "expected a name of letters, digits, `_`, `-`, `.` and `/`".into(),
+                span: args_span,
+            });
+        }
+        self.shader = Some(ShaderDecl {
+            name: args.to_string(),
+            span: args_span,
+            passes: Vec::new(),
+        });
+        Ok(())
+    }
+
+    fn pass(&mut self, args: &str, name_span: Span, args_span: Span) -> Result<(), ParseError> {
+        if self.shader.is_none() {
+            return Err(ParseError::Misplaced {
+                directive: "pass",
+                message: "is only allowed in a shader file (one that starts with `#shader NAME`)",
+                span: name_span,
+            });
+        }
+        if let Some(open) = &self.pass {
+            return Err(ParseError::Unterminated {
+                directive: "pass",
+                span: open.span,
+            });
+        }
+        if !self.frames.is_empty() {
+            return Err(ParseError::Misplaced {
+                directive: "pass",
+                message: "cannot be conditional: close the `#if` first",
+                span: name_span,
+            });
+        }
+        if !is_name(args) {
+            return Err(ParseError::Malformed {
+                directive: "pass",
+                message: "expected a pass name (letters, digits, `_`)".into(),
+                span: args_span,
+            });
+        }
+        self.pass = Some(PassDecl {
+            name: args.to_string(),
+            span: args_span,
+            tags: Vec::new(),
+            pragmas: Vec::new(),
+            body: Vec::new(),
+        });
+        Ok(())
+    }
+
+    fn endpass(&mut self, span: Span) {
+        if self.pass.is_none() {
+            return self.errors.push(ParseError::Unmatched {
+                directive: "endpass",
+                span,
+            });
+        }
+        self.finish_frames(span);
+        if let (Some(pass), Some(shader)) = (self.pass.take(), self.shader.as_mut()) {
+            shader.passes.push(pass);
+        }
+    }
+
+    /// Pass-level directives must sit at the top level of a pass body.
+    fn pass_level(
+        &mut self,
+        directive: &'static str,
+        span: Span,
+    ) -> Result<&mut PassDecl, ParseError> {
+        if !self.frames.is_empty() {
+            return Err(ParseError::Misplaced {
+                directive,
+                message: "cannot be conditional: move it out of the `#if`",
+                span,
+            });
+        }
+        let message = if self.shader.is_some() {
+            "belongs inside a `#pass … #endpass` block"
+        } else {
+            "belongs in a `#pass` block of a shader file, not in an imported module"
+        };
+        self.pass.as_mut().ok_or(ParseError::Misplaced {
+            directive,
+            message,
+            span,
+        })
+    }
+
+    fn tag(&mut self, args: &str, name_span: Span, args_span: Span) -> Result<(), ParseError> {
+        let words: Vec<&str> = args.split_whitespace().collect();
+        let pass = self.pass_level("tag", name_span)?;
+        match words.as_slice() {
+            [key, value] => {
+                pass.tags.push((key.to_string(), value.to_string()));
+                Ok(())
+            }
+            _ => Err(ParseError::Malformed {
+                directive: "tag",
+                message: "expected `#tag KEY VALUE`, e.g. `#tag LightMode Deferred`".into(),
+                span: args_span,
+            }),
+        }
+    }
+
+    fn pragma(&mut self, args: &str, args_start: usize, name_span: Span) -> Result<(), ParseError> {
+        let file = self.file;
+        let mut words = Vec::new();
+        let mut offset = 0;
+        for word in args.split_whitespace() {
+            let at = args[offset..].find(word).map_or(offset, |i| offset + i);
+            words.push((
+                word,
+                Span::new(file, args_start + at..args_start + at + word.len()),
+            ));
+            offset = at + word.len();
+        }
+        let Some(&(kind, kind_span)) = words.first() else {
+            return Err(ParseError::Malformed {
+                directive: "pragma",
+                message: "expected a pragma name".into(),
+                span: name_span,
+            });
+        };
+        let whole = Span::new(file, name_span.start as usize..args_start + args.len());
+        let names: Vec<(Box<str>, Span)> = words[1..]
+            .iter()
+            .map(|(w, s)| (Box::from(*w), *s))
+            .collect();
+        let pass = self.pass_level("pragma", name_span)?;
+        let (set_kind, local) = match kind {
+            "multi_compile" => (SetKind::MultiCompile, false),
+            "multi_compile_local" => (SetKind::MultiCompile, true),
+            "shader_feature" => (SetKind::ShaderFeature, false),
+            "shader_feature_local" => (SetKind::ShaderFeature, true),
+            "skip_variants" => {
+                pass.pragmas.push(Pragma::SkipVariants(names));
+                return Ok(());
+            }
+            "exclude_renderers" => {
+                pass.pragmas.push(Pragma::ExcludeRenderers(names.into_iter().map(|n| n.0).collect()));
+                return Ok(());
+            }
+            other => {
+                return Err(ParseError::Malformed {
+                    directive: "pragma",
+                    message: format!("unknown pragma `{other}`; supported: multi_compile, multi_compile_local, shader_feature, shader_feature_local, skip_variants, exclude_renderers"),
+                    span: kind_span,
+                })
+            }
+        };
+        if names.is_empty() {
+            return Err(ParseError::Malformed {
+                directive: "pragma",
+                message: format!("`{kind}` needs at least one keyword"),
+                span: kind_span,
+            });
+        }
+        if let Some((bad, span)) = names.iter().find(|(n, _)| !is_name(n)) {
+            return Err(ParseError::Malformed {
+                directive: "pragma",
+                message: format!("`{bad}` is not a keyword name (letters, digits, `_`)"),
+                span: *span,
+            });
+        }
+        pass.pragmas.push(Pragma::Keywords {
+            kind: set_kind,
+            local,
+            names,
+            span: whole,
+        });
+        Ok(())
+    }
+}

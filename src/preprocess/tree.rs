@@ -1,0 +1,122 @@
+//! The parsed form of a module: WGSL line runs and directives as a tree.
+//!
+//! Modules are parsed once when a library loads; composing a variant only walks this tree,
+//! so the per-variant cost is a tree walk plus copying text.
+
+use std::ops::Range;
+
+use crate::diagnostic::{FileId, Span};
+
+use super::expr::Expr;
+
+/// A node of a module body.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Node {
+    /// A run of consecutive WGSL lines, as indices into [`ParsedModule::lines`].
+    Text(Range<u32>),
+    /// `#if` … `#endif`.
+    If(Box<Conditional>),
+    /// `#define NAME VALUE`.
+    Define {
+        /// The name.
+        name: Box<str>,
+        /// The value (1 when none is written).
+        value: i64,
+    },
+    /// `#undef NAME`.
+    Undef {
+        /// The name.
+        name: Box<str>,
+    },
+    /// `#import path`: index into [`ParsedModule::imports`].
+    Import(usize),
+}
+
+/// The branches of one `#if`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Conditional {
+    /// `#if` and `#elif` conditions, each with its body, in order.
+    pub branches: Vec<(Expr, Vec<Node>)>,
+    /// The `#else` body (empty without `#else`).
+    pub otherwise: Vec<Node>,
+}
+
+/// One `#import` of a module.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ImportRef {
+    /// Path as written, without extension.
+    pub path: String,
+    /// Where the path is written.
+    pub span: Span,
+}
+
+/// Which Unity keyword pragma declared a set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SetKind {
+    /// `#pragma multi_compile`: every option is built.
+    MultiCompile,
+    /// `#pragma shader_feature`: only options some material uses are built.
+    ShaderFeature,
+}
+
+/// A `#pragma` of a pass, as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Pragma {
+    /// `multi_compile[_local]` or `shader_feature[_local]`.
+    Keywords {
+        /// The pragma kind.
+        kind: SetKind,
+        /// Whether the `_local` form was used.
+        local: bool,
+        /// The names, with where each is written.
+        names: Vec<(Box<str>, Span)>,
+        /// The whole directive.
+        span: Span,
+    },
+    /// `skip_variants`.
+    SkipVariants(Vec<(Box<str>, Span)>),
+    /// `exclude_renderers`.
+    ExcludeRenderers(Vec<Box<str>>),
+}
+
+/// A `#pass … #endpass` block.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PassDecl {
+    /// Pass name.
+    pub name: String,
+    /// Where the name is written.
+    pub span: Span,
+    /// `#tag` pairs in order.
+    pub tags: Vec<(String, String)>,
+    /// Pragmas in order.
+    pub pragmas: Vec<Pragma>,
+    /// The body.
+    pub body: Vec<Node>,
+}
+
+/// A shader file's `#shader` declaration and passes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShaderDecl {
+    /// Shader name.
+    pub name: String,
+    /// Where the name is written.
+    pub span: Span,
+    /// Passes in file order.
+    pub passes: Vec<PassDecl>,
+}
+
+/// A parsed module file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParsedModule {
+    /// The file.
+    pub file: FileId,
+    /// Byte range of each line.
+    pub lines: Vec<Range<u32>>,
+    /// Body of a plain module (empty for a shader file).
+    pub body: Vec<Node>,
+    /// Every `#import` in the file, in order.
+    pub imports: Vec<ImportRef>,
+    /// The shader declared by this file, if it is a shader file.
+    pub shader: Option<ShaderDecl>,
+}

@@ -1,0 +1,165 @@
+//! Shaders and passes: the structure of Unity's `Shader { Pass { … } }`.
+
+use std::collections::HashMap;
+
+use crate::diagnostic::{FileId, Span};
+use crate::keywords::{KeywordError, KeywordSet};
+use crate::preprocess::tree::{Node, PassDecl, Pragma, SetKind};
+
+/// A shader: a named set of passes declared by one `#shader` file.
+#[derive(Clone, Debug)]
+pub struct Shader {
+    /// Shader name (`#shader NAME`).
+    pub name: String,
+    /// Passes in file order.
+    pub passes: Vec<Pass>,
+    /// The shader file.
+    pub file: FileId,
+}
+
+impl Shader {
+    /// The pass with this name.
+    pub fn pass(&self, name: &str) -> Option<&Pass> {
+        self.passes.iter().find(|p| p.name == name)
+    }
+}
+
+/// One pass: its tags, keyword sets, pragmas and body.
+#[derive(Clone, Debug)]
+pub struct Pass {
+    /// Name of the shader the pass belongs to.
+    pub shader: String,
+    /// Pass name (`#pass NAME`).
+    pub name: String,
+    /// `#tag KEY VALUE` pairs.
+    pub tags: Vec<(String, String)>,
+    /// Keyword sets in declaration order.
+    pub sets: Vec<KeywordSet>,
+    /// `#pragma skip_variants` keywords.
+    pub skip_variants: Vec<String>,
+    /// `#pragma exclude_renderers` names, kept as metadata.
+    pub exclude_renderers: Vec<String>,
+    /// Where the pass is declared.
+    pub span: Span,
+    pub(crate) body: Vec<Node>,
+    /// Module id of the shader file the pass's body belongs to.
+    pub(crate) module: usize,
+    /// keyword → (set index, option index)
+    index: HashMap<String, (usize, usize)>,
+}
+
+impl Pass {
+    /// Builds a pass from its parsed declaration, checking Unity's keyword rules.
+    pub(crate) fn new(
+        shader: &str,
+        module: usize,
+        decl: PassDecl,
+    ) -> Result<Pass, Vec<KeywordError>> {
+        let mut errors = Vec::new();
+        let mut sets: Vec<KeywordSet> = Vec::new();
+        let mut index: HashMap<String, (usize, usize)> = HashMap::new();
+        let mut first_span: HashMap<String, Span> = HashMap::new();
+        let mut skip = Vec::new();
+        let mut exclude = Vec::new();
+        for pragma in &decl.pragmas {
+            match pragma {
+                Pragma::Keywords {
+                    kind,
+                    local,
+                    names,
+                    span,
+                } => match KeywordSet::new(*kind, *local, names, *span) {
+                    Ok(set) => {
+                        let set_index = sets.len();
+                        for (option, name) in set.options.iter().enumerate() {
+                            let Some(name) = name else { continue };
+                            let name_span =
+                                names.iter().find(|n| &*n.0 == name).map_or(*span, |n| n.1);
+                            if let Some(first) = first_span.get(name) {
+                                errors.push(KeywordError::InTwoSets {
+                                    keyword: name.clone(),
+                                    pass: decl.name.clone(),
+                                    span: name_span,
+                                    first: *first,
+                                });
+                            } else {
+                                first_span.insert(name.clone(), name_span);
+                                index.insert(name.clone(), (set_index, option));
+                            }
+                        }
+                        sets.push(set);
+                    }
+                    Err(e) => errors.push(e),
+                },
+                Pragma::SkipVariants(names) => skip.extend(names.iter().cloned()),
+                Pragma::ExcludeRenderers(names) => {
+                    exclude.extend(names.iter().map(|n| n.to_string()))
+                }
+            }
+        }
+        for (name, span) in &skip {
+            if !index.contains_key(&**name) {
+                errors.push(KeywordError::UnknownSkip {
+                    keyword: name.to_string(),
+                    pass: decl.name.clone(),
+                    span: *span,
+                });
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        Ok(Pass {
+            shader: shader.to_string(),
+            name: decl.name,
+            tags: decl.tags,
+            sets,
+            skip_variants: skip.into_iter().map(|n| n.0.to_string()).collect(),
+            exclude_renderers: exclude,
+            span: decl.span,
+            body: decl.body,
+            module,
+            index,
+        })
+    }
+
+    /// The value of a tag, e.g. `tag("LightMode")`.
+    pub fn tag(&self, key: &str) -> Option<&str> {
+        self.tags.iter().find(|t| t.0 == key).map(|t| t.1.as_str())
+    }
+
+    /// Which set and option a keyword is, if the pass declares it.
+    pub fn keyword(&self, name: &str) -> Option<(usize, usize)> {
+        self.index.get(name).copied()
+    }
+
+    /// Every keyword the pass declares, in declaration order.
+    pub fn keywords(&self) -> impl Iterator<Item = &str> {
+        self.sets.iter().flat_map(KeywordSet::keywords)
+    }
+
+    /// Indices of the `multi_compile` sets.
+    pub fn multi_compile_sets(&self) -> impl Iterator<Item = usize> + '_ {
+        self.sets
+            .iter()
+            .enumerate()
+            .filter(|s| s.1.kind == SetKind::MultiCompile)
+            .map(|s| s.0)
+    }
+
+    /// Indices of the `shader_feature` sets.
+    pub fn shader_feature_sets(&self) -> impl Iterator<Item = usize> + '_ {
+        self.sets
+            .iter()
+            .enumerate()
+            .filter(|s| s.1.kind == SetKind::ShaderFeature)
+            .map(|s| s.0)
+    }
+
+    /// Whether an option is removed by `skip_variants`.
+    pub fn is_skipped_option(&self, set: usize, option: usize) -> bool {
+        self.sets[set].options[option]
+            .as_ref()
+            .is_some_and(|k| self.skip_variants.contains(k))
+    }
+}

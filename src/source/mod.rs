@@ -1,0 +1,81 @@
+//! Reading a library's module files: the bundled tree, a folder on disk, or in-memory texts.
+//!
+//! Loading turns bytes into text once (UTF-8 required; a BOM is dropped and CRLF becomes LF —
+//! neither moves a line or column) and records every file in [`SourceFiles`]. Paths are
+//! library-relative with `/` separators and are sorted, so loading is deterministic.
+
+mod bundled;
+mod dir;
+
+use crate::diagnostic::{Diagnostic, FileId, SourceFiles, Span};
+
+pub use dir::read_dir_tree;
+
+/// One raw file before decoding: library-relative path and bytes.
+#[derive(Clone, Debug)]
+pub struct RawFile {
+    /// Library-relative path with `/` separators, e.g. `deferred/gbuffer.wgsl`.
+    pub path: String,
+    /// File contents.
+    pub bytes: Vec<u8>,
+}
+
+/// Where a library's files come from.
+#[derive(Clone, Debug)]
+pub enum Origin {
+    /// The `wgsl/` tree bundled into this crate.
+    Bundled,
+    /// A folder on disk.
+    Dir(std::path::PathBuf),
+    /// Texts given through the API.
+    Memory,
+}
+
+/// The bundled library's raw files.
+pub fn bundled_files() -> Vec<RawFile> {
+    bundled::BUNDLED
+        .iter()
+        .map(|(path, bytes)| RawFile {
+            path: (*path).to_string(),
+            bytes: bytes.to_vec(),
+        })
+        .collect()
+}
+
+/// Decodes raw files into `files`. Returns the id of each decoded file in input order, and a
+/// diagnostic for each file that is not UTF-8 (pointing at the first bad byte).
+pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<Diagnostic>) {
+    let mut ids = Vec::with_capacity(raw.len());
+    let mut errors = Vec::new();
+    for file in raw {
+        let bytes = file
+            .bytes
+            .strip_prefix(b"\xEF\xBB\xBF")
+            .unwrap_or(&file.bytes);
+        match std::str::from_utf8(bytes) {
+            Ok(text) => ids.push(files.add(file.path, normalize_newlines(text))),
+            Err(e) => {
+                let good = e.valid_up_to();
+                // Keep the valid prefix so the snippet shows the line up to the bad byte.
+                let text = normalize_newlines(&String::from_utf8_lossy(bytes));
+                let prefix = normalize_newlines(std::str::from_utf8(&bytes[..good]).unwrap_or(""));
+                let at = prefix.len();
+                let id = files.add(file.path.clone(), text);
+                errors.push(
+                    Diagnostic::new(format!("`{}` is not valid UTF-8", file.path))
+                        .at(Span::new(id, at..at + 1), "invalid UTF-8 byte here")
+                        .note("WGSL sources must be UTF-8"),
+                );
+            }
+        }
+    }
+    (ids, errors)
+}
+
+fn normalize_newlines(text: &str) -> String {
+    if text.contains('\r') {
+        text.replace("\r\n", "\n")
+    } else {
+        text.to_string()
+    }
+}

@@ -1,0 +1,339 @@
+//! Validating variants with naga, in parallel, with errors mapped to the original modules.
+
+use std::collections::HashMap;
+
+use num_bigint::BigUint;
+use rayon::prelude::*;
+
+use crate::diagnostic::{Diagnostic, Location, SourceFiles, Span};
+use crate::library::{Library, Variant};
+use crate::materials::{Material, MaterialsError};
+use crate::preprocess::Composed;
+use crate::shader::Pass;
+use crate::variants::{BudgetError, Choice, Space};
+
+/// Which naga stage rejected a variant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stage {
+    /// The WGSL front end (syntax, name resolution, types).
+    Parse,
+    /// naga's IR validator.
+    Validate,
+}
+
+/// naga rejected a variant. Spans point into the original module files.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VariantError {
+    /// `shader/pass {KEYWORDS}`.
+    pub variant: String,
+    /// The failing stage.
+    pub stage: Stage,
+    /// naga's message, with its chain of causes.
+    pub message: String,
+    /// naga's labels, mapped back to original files.
+    pub labels: Vec<(Span, String)>,
+    /// naga's notes.
+    pub notes: Vec<String>,
+}
+
+impl VariantError {
+    /// A renderable report naming the variant's keyword set.
+    pub fn diagnostic(&self) -> Diagnostic {
+        let mut d = Diagnostic::new(self.message.clone());
+        for (i, (span, label)) in self.labels.iter().enumerate() {
+            d = if i == 0 {
+                d.at(*span, label.clone())
+            } else {
+                d.also(*span, label.clone())
+            };
+        }
+        for note in &self.notes {
+            d = d.note(note.clone());
+        }
+        d.note(format!("in variant {}", self.variant))
+    }
+
+    /// `path:line:col` of the first label.
+    pub fn location(&self, files: &SourceFiles) -> Option<Location> {
+        self.labels.first().map(|(s, _)| files.location(*s))
+    }
+}
+
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut message = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        message.push_str(": ");
+        message.push_str(&s.to_string());
+        source = s.source();
+    }
+    message
+}
+
+/// Parses and validates composed WGSL; `variant` names it in errors.
+pub fn validate_composed(
+    composed: &Composed,
+    variant: &str,
+) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+    validate_with(composed, variant, &mut new_validator())
+}
+
+fn new_validator() -> naga::valid::Validator {
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+}
+
+fn map_spans<'a>(
+    composed: &Composed,
+    spans: impl Iterator<Item = (naga::Span, &'a str)>,
+) -> Vec<(Span, String)> {
+    spans
+        .filter_map(|(span, label)| {
+            let range = span.to_range()?;
+            let original = composed
+                .map
+                .to_original(range.start, range.end, &composed.text)?;
+            Some((original, label.to_string()))
+        })
+        .collect()
+}
+
+fn validate_with(
+    composed: &Composed,
+    variant: &str,
+    validator: &mut naga::valid::Validator,
+) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+    let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| VariantError {
+        variant: variant.to_string(),
+        stage: Stage::Parse,
+        message: e.message().to_string(),
+        labels: map_spans(composed, e.labels()),
+        notes: e.notes().map(str::to_string).collect(),
+    })?;
+    let info = validator.validate(&module).map_err(|e| VariantError {
+        variant: variant.to_string(),
+        stage: Stage::Validate,
+        message: error_chain(e.as_inner()),
+        labels: map_spans(composed, e.spans().map(|(s, l)| (*s, l.as_str()))),
+        notes: Vec::new(),
+    })?;
+    Ok((module, info))
+}
+
+impl Library {
+    /// Composes, parses and validates one variant.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let v = lib.variant("standard", "Deferred", &["UNITY_HDR_ON"]).unwrap();
+    /// let (module, _info) = lib.naga_module(&v).unwrap();
+    /// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
+    /// ```
+    pub fn naga_module(
+        &self,
+        variant: &Variant<'_>,
+    ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+        validate_composed(&self.compose(variant), &variant.label())
+    }
+}
+
+/// What to validate.
+#[derive(Clone, Debug)]
+pub struct ValidateOptions {
+    /// The full space of every pass instead of the build set.
+    pub all: bool,
+    /// Materials restricting `shader_feature` combinations (ignored with `all`).
+    pub materials: Option<Vec<Material>>,
+    /// Most variants built per pass.
+    pub budget: u64,
+    /// Only this shader.
+    pub shader: Option<String>,
+    /// Only passes of this name.
+    pub pass: Option<String>,
+}
+
+impl Default for ValidateOptions {
+    fn default() -> Self {
+        ValidateOptions {
+            all: false,
+            materials: None,
+            budget: 1_000_000,
+            shader: None,
+            pass: None,
+        }
+    }
+}
+
+/// A distinct composed text that naga rejected, with every keyword set that produces it.
+#[derive(Clone, Debug)]
+pub struct Failure {
+    /// The error (naming the first such variant).
+    pub error: VariantError,
+    /// Every keyword set with this text, in enumeration order.
+    pub keyword_sets: Vec<Vec<String>>,
+}
+
+/// The result of validating one pass.
+#[derive(Clone, Debug)]
+pub struct PassReport {
+    /// Shader name.
+    pub shader: String,
+    /// Pass name.
+    pub pass: String,
+    /// Size of the full space.
+    pub full_space: BigUint,
+    /// Variants built.
+    pub built: u64,
+    /// Distinct composed texts among them (each validated once).
+    pub distinct: u64,
+    /// Built variants that passed.
+    pub valid: u64,
+    /// Built variants that failed.
+    pub invalid: u64,
+    /// The failures, one per distinct failing text.
+    pub failures: Vec<Failure>,
+}
+
+/// Why validation could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidateError {
+    /// A pass's space is past the budget.
+    #[error("{shader}/{pass}: {error}")]
+    Budget {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The budget error.
+        error: BudgetError,
+    },
+    /// The materials do not fit the library.
+    #[error(transparent)]
+    Materials(#[from] MaterialsError),
+    /// No pass matched the filters.
+    #[error("no pass matches {0}")]
+    NoMatch(String),
+}
+
+/// The passes selected by `shader`/`pass` filters.
+pub fn select_passes<'l>(
+    lib: &'l Library,
+    shader: Option<&str>,
+    pass: Option<&str>,
+) -> Result<Vec<&'l Pass>, ValidateError> {
+    if let Some(s) = shader {
+        lib.shader(s)
+            .map_err(|e| ValidateError::NoMatch(e.to_string()))?;
+    }
+    let passes: Vec<&Pass> = lib
+        .passes()
+        .filter(|p| shader.is_none_or(|s| p.shader == s) && pass.is_none_or(|n| p.name == n))
+        .collect();
+    if passes.is_empty() {
+        return Err(ValidateError::NoMatch(format!(
+            "shader {:?} pass {:?}",
+            shader.unwrap_or("*"),
+            pass.unwrap_or("*")
+        )));
+    }
+    Ok(passes)
+}
+
+/// The variants to build for a pass under `options`, in enumeration order.
+pub fn variants_to_build(
+    lib: &Library,
+    pass: &Pass,
+    options: &ValidateOptions,
+) -> Result<Vec<Choice>, ValidateError> {
+    let space = if options.all {
+        Space::full(pass)
+    } else {
+        lib.build_set(pass, options.materials.as_deref())?
+    };
+    space
+        .enumerate(options.budget)
+        .map_err(|error| ValidateError::Budget {
+            shader: pass.shader.clone(),
+            pass: pass.name.clone(),
+            error,
+        })
+}
+
+/// Validates one pass's variants; `progress(n)` is called as each distinct text is validated, with the number of variants that share it.
+pub fn validate_pass(
+    lib: &Library,
+    pass: &Pass,
+    choices: &[Choice],
+    progress: &(dyn Fn(u64) + Sync),
+) -> PassReport {
+    let composed: Vec<Composed> = choices
+        .par_iter()
+        .map(|c| {
+            lib.compose(&Variant {
+                pass,
+                choice: c.clone(),
+            })
+        })
+        .collect();
+    // Group identical texts: each distinct text is validated once. Groups are in order of
+    // first appearance, so results do not depend on thread count.
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut by_text: HashMap<&str, usize> = HashMap::new();
+    for (i, c) in composed.iter().enumerate() {
+        let g = *by_text.entry(c.text.as_str()).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(i);
+    }
+    let results: Vec<Option<VariantError>> = groups
+        .par_iter()
+        .map_init(new_validator, |validator, members| {
+            let first = members[0];
+            let label = Variant {
+                pass,
+                choice: choices[first].clone(),
+            }
+            .label();
+            let result = validate_with(&composed[first], &label, validator).err();
+            progress(members.len() as u64);
+            result
+        })
+        .collect();
+    let mut report = PassReport {
+        shader: pass.shader.clone(),
+        pass: pass.name.clone(),
+        full_space: Space::full(pass).count(),
+        built: choices.len() as u64,
+        distinct: groups.len() as u64,
+        valid: 0,
+        invalid: 0,
+        failures: Vec::new(),
+    };
+    for (members, result) in groups.iter().zip(results) {
+        match result {
+            None => report.valid += members.len() as u64,
+            Some(error) => {
+                report.invalid += members.len() as u64;
+                let keyword_sets = members
+                    .iter()
+                    .map(|&i| {
+                        choices[i]
+                            .keywords(pass)
+                            .into_iter()
+                            .map(str::to_string)
+                            .collect()
+                    })
+                    .collect();
+                report.failures.push(Failure {
+                    error,
+                    keyword_sets,
+                });
+            }
+        }
+    }
+    report
+}

@@ -1,0 +1,249 @@
+//! Variant spaces: counting exactly, enumerating within a budget, and membership.
+//!
+//! A variant of a pass is one option per keyword set ([`Choice`]). The *full space* is the
+//! product of the sets' sizes; `skip_variants` removes every variant with a skipped keyword
+//! on; the *build set* is every `multi_compile` combination × the `shader_feature`
+//! combinations that materials use (all of them when no materials are given), minus skipped
+//! variants. Counting never enumerates and never overflows (arbitrary precision).
+
+use std::collections::{BTreeSet, HashMap};
+
+use num_bigint::BigUint;
+use num_traits::{One, ToPrimitive};
+
+use crate::shader::Pass;
+
+/// One option index per keyword set of a pass, in set order: a variant's keyword set.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Choice(pub Box<[u16]>);
+
+impl Choice {
+    /// The keywords that are on, in set order (placeholders left out).
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// let choice = pass.resolve(&["_NORMAL_MAP", "UNITY_HDR_ON"]).unwrap();
+    /// assert_eq!(choice.keywords(pass), vec!["_NORMAL_MAP", "UNITY_HDR_ON"]);
+    /// ```
+    pub fn keywords<'p>(&self, pass: &'p Pass) -> Vec<&'p str> {
+        self.0
+            .iter()
+            .zip(&pass.sets)
+            .filter_map(|(&o, set)| set.options[o as usize].as_deref())
+            .collect()
+    }
+
+    /// The defines a variant starts with: each keyword that is on, with value 1.
+    pub fn defines(&self, pass: &Pass) -> HashMap<Box<str>, i64> {
+        self.keywords(pass)
+            .into_iter()
+            .map(|k| (Box::from(k), 1))
+            .collect()
+    }
+
+    /// Whether `skip_variants` removes this variant.
+    pub fn is_skipped(&self, pass: &Pass) -> bool {
+        self.0
+            .iter()
+            .enumerate()
+            .any(|(set, &o)| pass.is_skipped_option(set, o as usize))
+    }
+
+    /// The keyword set as people write it: `{_NORMAL_MAP, UNITY_HDR_ON}`, or `{}`.
+    pub fn label(&self, pass: &Pass) -> String {
+        format!("{{{}}}", self.keywords(pass).join(", "))
+    }
+
+    /// Number of sets in which two choices differ.
+    pub fn distance(&self, other: &Choice) -> usize {
+        self.0
+            .iter()
+            .zip(other.0.iter())
+            .filter(|(a, b)| a != b)
+            .count()
+    }
+}
+
+/// The enumeration would exceed the build budget.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{count} variants is past the build budget of {budget} (raise it with --max-variants)")]
+pub struct BudgetError {
+    /// Exact number of variants.
+    pub count: BigUint,
+    /// The budget.
+    pub budget: u64,
+}
+
+/// A set of variants of one pass: the options allowed per set, optionally restricted to the
+/// `shader_feature` combinations some material uses.
+#[derive(Clone, Debug)]
+pub struct Space<'p> {
+    pass: &'p Pass,
+    allowed: Vec<Vec<u16>>,
+    /// Options of the shader_feature sets (in set order), one entry per material combination.
+    features: Option<BTreeSet<Vec<u16>>>,
+}
+
+impl<'p> Space<'p> {
+    /// Every variant: the product of the sets' sizes.
+    pub fn full(pass: &'p Pass) -> Space<'p> {
+        let allowed = pass
+            .sets
+            .iter()
+            .map(|s| (0..s.len() as u16).collect())
+            .collect();
+        Space {
+            pass,
+            allowed,
+            features: None,
+        }
+    }
+
+    /// The full space minus variants with a `skip_variants` keyword on.
+    pub fn after_skip(pass: &'p Pass) -> Space<'p> {
+        let allowed = pass
+            .sets
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                (0..s.len() as u16)
+                    .filter(|&o| !pass.is_skipped_option(i, o as usize))
+                    .collect()
+            })
+            .collect();
+        Space {
+            pass,
+            allowed,
+            features: None,
+        }
+    }
+
+    /// The build set: [`Space::after_skip`], with the `shader_feature` sets restricted to
+    /// `features` (each entry: one option per shader_feature set, in set order) when given.
+    pub fn build_set(pass: &'p Pass, features: Option<BTreeSet<Vec<u16>>>) -> Space<'p> {
+        let mut space = Space::after_skip(pass);
+        if let Some(combos) = features {
+            let sf: Vec<usize> = pass.shader_feature_sets().collect();
+            let kept = combos
+                .into_iter()
+                .filter(|c| {
+                    c.iter()
+                        .zip(&sf)
+                        .all(|(&o, &set)| space.allowed[set].contains(&o))
+                })
+                .collect();
+            space.features = Some(kept);
+        }
+        space
+    }
+
+    /// The pass this space belongs to.
+    pub fn pass(&self) -> &'p Pass {
+        self.pass
+    }
+
+    /// Exact number of variants, without enumerating.
+    pub fn count(&self) -> BigUint {
+        match &self.features {
+            None => self
+                .allowed
+                .iter()
+                .map(|a| BigUint::from(a.len()))
+                .fold(BigUint::one(), |acc, n| acc * n),
+            Some(combos) => {
+                let mc: BigUint = self
+                    .pass
+                    .multi_compile_sets()
+                    .map(|s| BigUint::from(self.allowed[s].len()))
+                    .fold(BigUint::one(), |a, n| a * n);
+                mc * BigUint::from(combos.len())
+            }
+        }
+    }
+
+    /// Whether a choice is in this space.
+    pub fn contains(&self, choice: &Choice) -> bool {
+        if choice.0.len() != self.allowed.len()
+            || !choice
+                .0
+                .iter()
+                .zip(&self.allowed)
+                .all(|(o, a)| a.contains(o))
+        {
+            return false;
+        }
+        match &self.features {
+            None => true,
+            Some(combos) => {
+                let key: Vec<u16> = self
+                    .pass
+                    .shader_feature_sets()
+                    .map(|s| choice.0[s])
+                    .collect();
+                combos.contains(&key)
+            }
+        }
+    }
+
+    /// Every variant, in lexicographic order of set options, if there are at most `budget`.
+    /// Cost is proportional to the result, whatever the size of the full space.
+    pub fn enumerate(&self, budget: u64) -> Result<Vec<Choice>, BudgetError> {
+        let count = self.count();
+        let n = count
+            .to_u64()
+            .filter(|&n| n <= budget)
+            .ok_or(BudgetError { count, budget })?;
+        let mut out = Vec::with_capacity(n as usize);
+        if n == 0 {
+            return Ok(out);
+        }
+        // Free sets take every allowed option; with materials, shader_feature sets come from
+        // the material combinations instead.
+        let (free, fixed, combos): (Vec<usize>, Vec<usize>, Vec<Vec<u16>>) = match &self.features {
+            None => (
+                (0..self.allowed.len()).collect(),
+                Vec::new(),
+                vec![Vec::new()],
+            ),
+            Some(c) => (
+                self.pass.multi_compile_sets().collect(),
+                self.pass.shader_feature_sets().collect(),
+                c.iter().cloned().collect(),
+            ),
+        };
+        let mut choice = vec![0u16; self.allowed.len()];
+        for combo in &combos {
+            for (&set, &o) in fixed.iter().zip(combo) {
+                choice[set] = o;
+            }
+            let mut digits = vec![0usize; free.len()];
+            loop {
+                for (&set, &d) in free.iter().zip(&digits) {
+                    choice[set] = self.allowed[set][d];
+                }
+                out.push(Choice(choice.clone().into_boxed_slice()));
+                // Odometer increment, last set fastest.
+                let mut i = free.len();
+                loop {
+                    if i == 0 {
+                        break;
+                    }
+                    i -= 1;
+                    digits[i] += 1;
+                    if digits[i] < self.allowed[free[i]].len() {
+                        break;
+                    }
+                    digits[i] = 0;
+                }
+                if digits.iter().all(|&d| d == 0) {
+                    break;
+                }
+            }
+        }
+        if !fixed.is_empty() {
+            out.sort();
+        }
+        Ok(out)
+    }
+}
