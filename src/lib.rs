@@ -29,13 +29,14 @@
 #![deny(missing_docs)]
 
 pub mod diagnostic;
-// GPU-MODULE-PLACEHOLDER
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod keywords;
 pub mod library;
 pub mod lookup;
 pub mod materials;
 pub mod preprocess;
-// REFERENCE-MODULE-PLACEHOLDER
+pub mod reference;
 pub mod shader;
 pub mod source;
 pub mod validate;

@@ -41,11 +41,12 @@ pub fn run(
         .map(|k| k.trim())
         .filter(|k| !k.is_empty())
         .collect();
-    let choice = if closest {
-        lookup_closest(&space, &keywords, NEIGHBOUR_BUDGET)?
+    let found = if closest {
+        lookup_closest(&space, &keywords, NEIGHBOUR_BUDGET)
     } else {
-        lookup_strict(&space, &keywords, NEIGHBOUR_BUDGET)?
+        lookup_strict(&space, &keywords, NEIGHBOUR_BUDGET)
     };
+    let choice = found.map_err(|e| ctx.pass_failure(pass, format!("{e}")))?;
     let variant = Variant { pass, choice };
     let composed = ctx.lib.compose(&variant);
     if validate {

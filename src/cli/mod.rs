@@ -112,6 +112,15 @@ impl Context {
     fn render(&self, d: &wgsl_variants::Diagnostic) -> String {
         d.render(self.lib.files(), self.color)
     }
+
+    /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
+    fn pass_failure(&self, pass: &wgsl_variants::Pass, message: String) -> Failed {
+        let mut d = wgsl_variants::Diagnostic::new(message).at(pass.span, "pass declared here");
+        for set in &pass.sets {
+            d = d.note(format!("{set}"));
+        }
+        Failed(self.render(&d))
+    }
 }
 
 /// A command's failure: printed to stderr, exit code 1.

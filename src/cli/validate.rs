@@ -67,7 +67,11 @@ pub fn build_reports(
     let passes = select_passes(&ctx.lib, options.shader.as_deref(), options.pass.as_deref())?;
     let mut plans = Vec::new();
     for pass in passes {
-        plans.push((pass, variants_to_build(&ctx.lib, pass, &options)?));
+        let choices = variants_to_build(&ctx.lib, pass, &options).map_err(|e| match e {
+            wgsl_variants::validate::ValidateError::Budget { error, .. } => ctx.pass_failure(pass, format!("{}/{}: {error}", pass.shader, pass.name)),
+            other => Failed::from(other),
+        })?;
+        plans.push((pass, choices));
     }
     let total: u64 = plans.iter().map(|p| p.1.len() as u64).sum();
     let bar = progress(total, "validating");

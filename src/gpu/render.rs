@@ -1,0 +1,280 @@
+//! Full-screen draws into one or more colour targets, read back to the CPU.
+
+use std::collections::BTreeSet;
+
+use super::bindings::{used_bindings, Slot};
+use super::compile::{compile_scoped, wgsl_module};
+use super::context::GpuContext;
+use super::error::GpuError;
+use super::format::TargetFormat;
+use super::readback::{encode_texture_readback, finish_readbacks};
+use super::resources::{BoundResource, GpuResources};
+
+/// One colour target of a [`RenderJob`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ColorTarget {
+    /// Texture format of the target.
+    pub format: TargetFormat,
+    /// Clear colour (RGBA) applied before the draw.
+    pub clear: [f64; 4],
+    /// Blend state; `None` replaces the destination.
+    pub blend: Option<wgpu::BlendState>,
+}
+
+impl ColorTarget {
+    /// A target of `format` cleared to transparent black, without blending.
+    pub fn new(format: TargetFormat) -> Self {
+        Self {
+            format,
+            clear: [0.0; 4],
+            blend: None,
+        }
+    }
+
+    /// Sets the clear colour.
+    pub fn with_clear(mut self, clear: [f64; 4]) -> Self {
+        self.clear = clear;
+        self
+    }
+
+    /// Sets the blend state.
+    pub fn with_blend(mut self, blend: wgpu::BlendState) -> Self {
+        self.blend = Some(blend);
+        self
+    }
+}
+
+/// A full-screen draw without vertex buffers: the vertex shader derives positions from
+/// `@builtin(vertex_index)`; `vertex_count` vertices (e.g. 3 for a full-screen triangle, 6 for
+/// a quad) are drawn as a triangle list, one instance, no depth buffer, no culling.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderJob {
+    /// Label used for the pipeline and in errors (usually the variant name).
+    pub label: String,
+    /// Complete WGSL source containing both entry points.
+    pub wgsl: String,
+    /// Name of the `@vertex` entry point.
+    pub vertex_entry: String,
+    /// Name of the `@fragment` entry point.
+    pub fragment_entry: String,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Colour targets, in `@location` order.
+    pub targets: Vec<ColorTarget>,
+    /// Number of vertices to draw.
+    pub vertex_count: u32,
+    /// Resources for bind groups 0..N. Resources the shader does not use are skipped.
+    pub resources: Vec<BoundResource>,
+}
+
+impl RenderJob {
+    /// A job with the given shader and entry points, a 16x16 single `Rgba8Unorm` target,
+    /// a 3-vertex full-screen triangle and no resources.
+    pub fn new(label: &str, wgsl: &str, vertex_entry: &str, fragment_entry: &str) -> Self {
+        Self {
+            label: label.to_owned(),
+            wgsl: wgsl.to_owned(),
+            vertex_entry: vertex_entry.to_owned(),
+            fragment_entry: fragment_entry.to_owned(),
+            width: 16,
+            height: 16,
+            targets: vec![ColorTarget::new(TargetFormat::Rgba8Unorm)],
+            vertex_count: 3,
+            resources: Vec::new(),
+        }
+    }
+}
+
+/// Uploads `job.resources` and renders the job; see [`render_with`].
+pub fn render(ctx: &GpuContext, job: &RenderJob) -> Result<Vec<Vec<u8>>, GpuError> {
+    let resources = GpuResources::upload(ctx, &job.label, &job.resources)?;
+    render_with(ctx, job, &resources)
+}
+
+/// Renders `job` binding the already uploaded `resources` (`job.resources` is ignored), and
+/// returns the tightly packed bytes of each colour target, in target order.
+///
+/// Use this to render many variants against one set of resources without re-uploading them.
+/// Only the slots the vertex and fragment entry points statically use are bound (wgpu's
+/// automatic layout drops the others); a used slot without a resource is a
+/// [`GpuError::Validation`]. Shader-module and pipeline errors are
+/// [`GpuError::PipelineCompile`]. The wait is bounded by [`GpuContext::timeout`].
+pub fn render_with(
+    ctx: &GpuContext,
+    job: &RenderJob,
+    resources: &GpuResources,
+) -> Result<Vec<Vec<u8>>, GpuError> {
+    let label = job.label.as_str();
+    let invalid = |message: String| GpuError::Validation {
+        label: label.to_owned(),
+        message,
+    };
+    let limits = ctx.device.limits();
+    let max = limits.max_texture_dimension_2d;
+    if job.width == 0 || job.height == 0 || job.width > max || job.height > max {
+        return Err(invalid(format!(
+            "render size {}x{} is outside 1..={max}",
+            job.width, job.height
+        )));
+    }
+    if job.targets.is_empty() || job.targets.len() > limits.max_color_attachments as usize {
+        return Err(invalid(format!(
+            "{} colour targets; 1..={} are supported",
+            job.targets.len(),
+            limits.max_color_attachments
+        )));
+    }
+
+    let color_states: Vec<Option<wgpu::ColorTargetState>> = job
+        .targets
+        .iter()
+        .map(|t| {
+            Some(wgpu::ColorTargetState {
+                format: t.format.wgpu_format(),
+                blend: t.blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        })
+        .collect();
+    let pipeline = compile_scoped(ctx, label, || {
+        let module = wgsl_module(ctx, label, &job.wgsl);
+        ctx.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(&job.vertex_entry),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(&job.fragment_entry),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    targets: &color_states,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    })?;
+    let used = used_bindings(
+        label,
+        &job.wgsl,
+        &[job.vertex_entry.as_str(), job.fragment_entry.as_str()],
+    )?;
+    if let Some((group, binding)) = used.iter().find(|&&slot| !resources.contains(slot)) {
+        return Err(invalid(format!(
+            "shader uses @group({group}) @binding({binding}) but no resource was given for it"
+        )));
+    }
+
+    let pending = ctx.scoped(label, || {
+        let bind_groups = create_bind_groups(ctx, label, &pipeline, &used, resources);
+        let targets: Vec<wgpu::Texture> = job
+            .targets
+            .iter()
+            .map(|t| {
+                ctx.device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: job.width,
+                        height: job.height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: t.format.wgpu_format(),
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                    view_formats: &[],
+                })
+            })
+            .collect();
+        let views: Vec<wgpu::TextureView> = targets
+            .iter()
+            .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()))
+            .collect();
+        let attachments: Vec<Option<wgpu::RenderPassColorAttachment<'_>>> = views
+            .iter()
+            .zip(&job.targets)
+            .map(|(view, t)| {
+                let [r, g, b, a] = t.clear;
+                Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })
+            })
+            .collect();
+
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &attachments,
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipeline);
+            for (group, bind_group) in &bind_groups {
+                pass.set_bind_group(*group, bind_group, &[]);
+            }
+            pass.draw(0..job.vertex_count, 0..1);
+        }
+        let pending = targets
+            .iter()
+            .map(|t| encode_texture_readback(ctx, &mut encoder, t, label))
+            .collect::<Result<Vec<_>, _>>();
+        if pending.is_ok() {
+            ctx.queue.submit([encoder.finish()]);
+        }
+        pending
+    })??;
+    finish_readbacks(ctx, label, pending)
+}
+
+/// Creates one bind group per group index that has used slots, from the pipeline's
+/// automatically derived layouts.
+fn create_bind_groups(
+    ctx: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    used: &BTreeSet<Slot>,
+    resources: &GpuResources,
+) -> Vec<(u32, wgpu::BindGroup)> {
+    let groups: BTreeSet<u32> = used.iter().map(|&(g, _)| g).collect();
+    groups
+        .into_iter()
+        .map(|group| {
+            let entries: Vec<wgpu::BindGroupEntry<'_>> = used
+                .iter()
+                .filter(|&&(g, _)| g == group)
+                .filter_map(|&(g, binding)| {
+                    resources
+                        .binding_resource((g, binding))
+                        .map(|resource| wgpu::BindGroupEntry { binding, resource })
+                })
+                .collect();
+            let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &pipeline.get_bind_group_layout(group),
+                entries: &entries,
+            });
+            (group, bind_group)
+        })
+        .collect()
+}

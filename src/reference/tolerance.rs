@@ -1,0 +1,335 @@
+//! The one place where the tolerances for comparing GPU results with this reference are stated.
+//!
+//! Every GPU test compares through these functions; none states its own epsilon.
+//!
+//! | result | tolerance | why |
+//! |---|---|---|
+//! | unorm targets (8- and 10-bit, and the 2-bit alpha) | [`UNORM_LSB`] = 1 step, measured from either correct rounding | REFERENCE.md §2 / docs/shading.md §1: Vulkan may round a tie either way, and the GPU's `f32` value before quantization may differ from the CPU's by a few ULP, which can move it across a rounding boundary — by one step, never more |
+//! | `Rgba16Float` targets | [`F16_ULP`] = 1 f16 step from the round-to-nearest-even of the reference `f32` | docs/shading.md §1: the same argument; 1 f16 ULP is 2^13 f32 ULPs, far above any `f32` arithmetic difference |
+//! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
+//!
+//! ```
+//! use wgsl_variants::reference::tolerance::{unorm_within, f16_within, f32_within};
+//! assert!(unorm_within(128, 0.5, 8) && unorm_within(127, 0.5, 8));
+//! assert!(f16_within(0x3C01, 1.0));
+//! assert!(f32_within(1.0 + 4.0 * f32::EPSILON, 1.0));
+//! ```
+
+use glam::{Vec3, Vec4};
+
+use super::quantize::{f32_to_f16_bits, unorm_max};
+
+/// Allowed difference, in integer steps, between a unorm channel read back from the GPU and
+/// either correct rounding of the reference value (applies to 8-bit, 10-bit and 2-bit channels).
+pub const UNORM_LSB: u32 = 1;
+
+/// Allowed difference, in f16 steps (units in the last place), between an `Rgba16Float` channel
+/// read back from the GPU and the round-to-nearest-even of the reference `f32` value.
+pub const F16_ULP: u32 = 1;
+
+/// Allowed difference, in `f32` ULPs, between an `f32` written by a compute kernel and the
+/// reference; [`F32_ABS`] is the absolute floor used near zero.
+///
+/// Why 8: Vulkan (and so WGSL on lavapipe) evaluates `+ − ×` correctly rounded but lets the
+/// compiler contract `a·b + c` into a fused multiply-add (a difference of up to ½ ULP per
+/// operation), allows 2.5 ULP for division, 2 ULP for `inverseSqrt` (so `normalize` and
+/// `length` are a few ULP off) and 3 ULP for `exp2`/`log2` near the origin. The kernels this
+/// bound is meant for chain two or three such operations (`normalize` then a division, a box
+/// projection, a falloff), which stays within about 8 ULP. Any actual formula error shows up
+/// as a relative difference of 10⁻⁴ or more, i.e. thousands of ULPs, so 8 ULP keeps the tests
+/// sharp.
+///
+/// Not for long chains or large exponents: `exp2(x)` may be off by `3 + 2·|x|` ULP and
+/// `pow(x, p)` amplifies the relative error of `x` by `p` (the specular lobe has `p` up to 256).
+/// Compare those through a quantized target (1 LSB of 8 bits is 2^15 ULP of `f32`) or with
+/// [`f32_within_ulp`] and a bound derived for the case.
+pub const F32_ULP: u32 = 8;
+
+/// Absolute floor (2^-20 ≈ 9.5·10⁻⁷) for `f32` comparisons: a result within this distance of
+/// the reference is accepted whatever its ULP distance.
+///
+/// Near zero, ULPs become arbitrarily small while the error of a result obtained by
+/// cancellation (`1 − length(dist)/b` in a falloff, `(p − o) + d·fa` in a box projection,
+/// `−log2(s)` for `s` near 1, where Vulkan bounds `log2` only by 2^-21 absolute) is a few ULPs
+/// of the *operands*. The kernels' operands are of unit scale (colours, unit vectors,
+/// smoothness, unit-sized boxes), so the floor is [`F32_ULP`] ULPs of 1.0: 8 · 2^-23 = 2^-20.
+/// For operands of magnitude `s` > 1 (positions in a larger scene) pass `F32_ABS · s` as the
+/// floor to [`f32_within_ulp`].
+pub const F32_ABS: f32 = 1.0 / 1_048_576.0;
+
+/// Whether the unorm channel value `got` (an integer of `bits` bits) is acceptable for the
+/// reference value `expected`.
+///
+/// The correct roundings of `expected` are `round(saturate(expected) · (2^bits − 1))` with the
+/// tie going either way (NaN: 0); `got` is accepted when it is within [`UNORM_LSB`] of one of
+/// them. So at 8 bits, 0.5 (127.5, a tie) accepts 126 ..= 129 and 127.2/255 accepts
+/// 126 ..= 128. Values above `2^bits − 1` are never accepted.
+///
+/// # Panics
+/// When `bits` is not in `1..=16`.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::unorm_within;
+/// // A tie: 127 and 128 are both correct, and one step further either way is tolerated.
+/// for got in 126..=129 { assert!(unorm_within(got, 0.5, 8)); }
+/// assert!(!unorm_within(125, 0.5, 8) && !unorm_within(130, 0.5, 8));
+/// // Not a tie: 127.2 rounds to 127 only.
+/// assert!(unorm_within(128, 127.2 / 255.0, 8));
+/// assert!(!unorm_within(129, 127.2 / 255.0, 8));
+/// // Saturation and NaN.
+/// assert!(unorm_within(1023, 7.0, 10) && unorm_within(1022, 7.0, 10));
+/// assert!(unorm_within(1, f32::NAN, 10) && !unorm_within(2, f32::NAN, 10));
+/// assert!(!unorm_within(256, 1.0, 8));
+/// ```
+pub fn unorm_within(got: u32, expected: f32, bits: u32) -> bool {
+    let max = unorm_max(bits);
+    if got > max {
+        return false;
+    }
+    let x = if expected.is_nan() {
+        0.0
+    } else {
+        // Exact in f64 (24-bit significand times an integer below 2^16).
+        f64::from(expected.clamp(0.0, 1.0)) * f64::from(max)
+    };
+    let lowest = (x - 0.5).ceil() as i64; // ties down
+    let highest = (x + 0.5).floor() as i64; // ties up
+    let got = i64::from(got);
+    let lsb = i64::from(UNORM_LSB);
+    got >= lowest - lsb && got <= highest + lsb
+}
+
+/// [`unorm_within`] on four channels with their bit widths (`[8; 4]` for `Rgba8Unorm`,
+/// `[10, 10, 10, 2]` for `Rgb10a2Unorm`).
+///
+/// ```
+/// use glam::Vec4;
+/// use wgsl_variants::reference::tolerance::unorm4_within;
+/// assert!(unorm4_within([0, 511, 1023, 3], Vec4::new(0.0, 0.5, 1.0, 1.0), [10, 10, 10, 2]));
+/// ```
+pub fn unorm4_within(got: [u32; 4], expected: Vec4, bits: [u32; 4]) -> bool {
+    (0..4).all(|i| unorm_within(got[i], expected[i], bits[i]))
+}
+
+/// The f16 values in order: position of `h` on the number line (±0 both at 0), or `None` for NaN.
+fn f16_ordinal(h: u16) -> Option<i32> {
+    let mag = i32::from(h & 0x7fff);
+    if mag > 0x7c00 {
+        None
+    } else if h & 0x8000 != 0 {
+        Some(-mag)
+    } else {
+        Some(mag)
+    }
+}
+
+/// Whether the half float with bits `got_bits` is acceptable for the reference value `expected`:
+/// within [`F16_ULP`] f16 steps of `expected` rounded to nearest even.
+///
+/// NaN only matches NaN (any payload). +0 and −0 are the same value. Infinity is one step above
+/// 65504, so each accepts the other — this is what "1 ULP" means at the end of the range, and
+/// covers targets that convert by rounding toward zero.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f16_within;
+/// assert!(f16_within(0x3C00, 1.0));
+/// assert!(f16_within(0x3BFF, 1.0) && f16_within(0x3C01, 1.0));
+/// assert!(!f16_within(0x3C02, 1.0));
+/// assert!(f16_within(0x8000, 0.0) && f16_within(0x8001, 0.0));
+/// assert!(f16_within(0x7E00, f32::NAN) && !f16_within(0x7C00, f32::NAN));
+/// assert!(f16_within(0x7C00, 1e9) && !f16_within(0xFC00, 1e9));
+/// ```
+pub fn f16_within(got_bits: u16, expected: f32) -> bool {
+    let want = f16_ordinal(f32_to_f16_bits(expected));
+    match (f16_ordinal(got_bits), want) {
+        (None, None) => true,
+        (Some(g), Some(w)) => g.abs_diff(w) <= F16_ULP,
+        _ => false,
+    }
+}
+
+/// [`f16_within`] on the four channels of an `Rgba16Float` texel.
+///
+/// ```
+/// use glam::Vec4;
+/// use wgsl_variants::reference::tolerance::f16x4_within;
+/// assert!(f16x4_within([0x3C00, 0x4000, 0, 0x3C00], Vec4::new(1.0, 2.0, 0.0, 1.0)));
+/// ```
+pub fn f16x4_within(got: [u16; 4], expected: Vec4) -> bool {
+    (0..4).all(|i| f16_within(got[i], expected[i]))
+}
+
+/// Position of a non-NaN `f32` on the number line in ULP steps (±0 both at 0).
+fn f32_ordinal(x: f32) -> i64 {
+    let bits = x.to_bits();
+    let mag = i64::from(bits & 0x7fff_ffff);
+    if bits & 0x8000_0000 != 0 {
+        -mag
+    } else {
+        mag
+    }
+}
+
+/// Distance between two `f32` values in units in the last place (0 for +0 and −0; one step
+/// from the largest finite value to infinity), or `None` when either is NaN.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f32_ulp_distance;
+/// assert_eq!(f32_ulp_distance(1.0, 1.0 + f32::EPSILON), Some(1));
+/// assert_eq!(f32_ulp_distance(-0.0, 0.0), Some(0));
+/// assert_eq!(f32_ulp_distance(-f32::from_bits(1), f32::from_bits(1)), Some(2));
+/// assert_eq!(f32_ulp_distance(f32::NAN, 1.0), None);
+/// ```
+pub fn f32_ulp_distance(a: f32, b: f32) -> Option<u64> {
+    if a.is_nan() || b.is_nan() {
+        None
+    } else {
+        Some(f32_ordinal(a).abs_diff(f32_ordinal(b)))
+    }
+}
+
+/// Whether `got` is within `max_ulp` ULPs of `expected` or within `abs_floor` of it.
+/// NaN matches NaN; an infinity matches only the same infinity.
+///
+/// For results whose error bound differs from the default of [`f32_within`]; say why at the
+/// call site.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f32_within_ulp;
+/// assert!(f32_within_ulp(1.0 + 20.0 * f32::EPSILON, 1.0, 32, 0.0));
+/// assert!(!f32_within_ulp(1.0 + 20.0 * f32::EPSILON, 1.0, 16, 0.0));
+/// ```
+pub fn f32_within_ulp(got: f32, expected: f32, max_ulp: u32, abs_floor: f32) -> bool {
+    if got.is_nan() || expected.is_nan() {
+        return got.is_nan() && expected.is_nan();
+    }
+    if got.is_infinite() || expected.is_infinite() {
+        return got == expected;
+    }
+    (got - expected).abs() <= abs_floor
+        || f32_ulp_distance(got, expected).is_some_and(|d| d <= u64::from(max_ulp))
+}
+
+/// Whether the `f32` a compute kernel produced is acceptable for the reference value:
+/// within [`F32_ULP`] ULPs or [`F32_ABS`] absolute. NaN matches NaN; an infinity matches only
+/// the same infinity.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f32_within;
+/// assert!(f32_within(1.0 + 8.0 * f32::EPSILON, 1.0));
+/// assert!(!f32_within(1.0 + 9.0 * f32::EPSILON, 1.0));
+/// assert!(f32_within(9e-7, 0.0));            // the absolute floor
+/// assert!(!f32_within(1e-6, 0.0));
+/// assert!(f32_within(f32::NAN, f32::NAN));
+/// assert!(f32_within(f32::INFINITY, f32::INFINITY));
+/// assert!(!f32_within(f32::NEG_INFINITY, f32::INFINITY));
+/// assert!(!f32_within(f32::MAX, f32::INFINITY));
+/// ```
+pub fn f32_within(got: f32, expected: f32) -> bool {
+    f32_within_ulp(got, expected, F32_ULP, F32_ABS)
+}
+
+/// [`f32_within`] on each component.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::tolerance::vec3_within;
+/// assert!(vec3_within(Vec3::new(1.0, 0.0, -2.0), Vec3::new(1.0, 5e-7, -2.0)));
+/// ```
+pub fn vec3_within(got: Vec3, expected: Vec3) -> bool {
+    (0..3).all(|i| f32_within(got[i], expected[i]))
+}
+
+/// [`f32_within`] on each component.
+///
+/// ```
+/// use glam::Vec4;
+/// use wgsl_variants::reference::tolerance::vec4_within;
+/// assert!(!vec4_within(Vec4::ONE, Vec4::new(1.0, 1.0, 1.0, 1.001)));
+/// ```
+pub fn vec4_within(got: Vec4, expected: Vec4) -> bool {
+    (0..4).all(|i| f32_within(got[i], expected[i]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::quantize::{f16_bits_to_f32, unorm};
+
+    #[test]
+    fn unorm_tolerance_is_one_step_around_the_correct_roundings() {
+        for bits in [2u32, 8, 10] {
+            let max = unorm_max(bits);
+            for q in 0..=max {
+                // Exactly on a code: q ± 1 accepted, q ± 2 not.
+                let x = q as f32 / max as f32;
+                for got in 0..=max {
+                    let ok = got.abs_diff(q) <= UNORM_LSB;
+                    assert_eq!(
+                        unorm_within(got, x, bits),
+                        ok,
+                        "{bits} bits, code {q}, got {got}"
+                    );
+                }
+                // A tie between q and q + 1: q − 1 ..= q + 2 accepted.
+                if q < max {
+                    let tie = (f64::from(q) + 0.5) / f64::from(max);
+                    let tie32 = tie as f32;
+                    if f64::from(tie32) * f64::from(max) == f64::from(q) + 0.5 {
+                        for got in 0..=max {
+                            let ok = got + 1 >= q && got <= q + 2;
+                            assert_eq!(unorm_within(got, tie32, bits), ok, "tie {q}.5 got {got}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn unorm_quantize_is_always_within_tolerance() {
+        let mut x = -0.1f32;
+        while x < 1.1 {
+            for bits in [2u32, 8, 10] {
+                assert!(unorm_within(unorm(x, bits), x, bits));
+            }
+            x += 0.000_37;
+        }
+    }
+
+    #[test]
+    fn f16_tolerance_is_one_step() {
+        for h in 0u16..0x7c00 {
+            let x = f16_bits_to_f32(h);
+            assert!(f16_within(h, x));
+            assert!(f16_within(h + 1, x), "{h:#06x}");
+            if h > 0 {
+                assert!(f16_within(h - 1, x));
+            } else {
+                assert!(f16_within(0x8001, x));
+            }
+            if h < 0x7bff {
+                assert!(!f16_within(h + 2, x));
+            }
+        }
+        assert!(!f16_within(0x3c00, f32::NAN));
+        assert!(!f16_within(0x7e00, 1.0));
+    }
+
+    #[test]
+    fn f32_tolerance_edges() {
+        let one_ulp = |x: f32, n: i32| f32::from_bits((x.to_bits() as i32 + n) as u32);
+        for x in [1.0f32, 3.5, 1e6, -7.25, -1.5] {
+            assert!(f32_within(one_ulp(x, F32_ULP as i32), x));
+            assert!(f32_within(one_ulp(x, -(F32_ULP as i32)), x));
+            assert!(!f32_within(one_ulp(x, F32_ULP as i32 + 1), x));
+        }
+        assert!(f32_within(-F32_ABS, 0.0) && f32_within(F32_ABS, 0.0));
+        // Small values: the floor, not the ULP distance, decides.
+        assert!(f32_within(1e-3 + 9e-7, 1e-3) && !f32_within(1e-3 + 1e-6, 1e-3));
+        assert!(!f32_within(F32_ABS * 1.01, 0.0));
+        assert!(!f32_within(f32::NAN, 0.0) && !f32_within(0.0, f32::NAN));
+        assert!(!f32_within(f32::INFINITY, f32::NAN));
+        assert!(f32_within(f32::NEG_INFINITY, f32::NEG_INFINITY));
+    }
+}

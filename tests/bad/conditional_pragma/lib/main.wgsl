@@ -1,0 +1,6 @@
+#shader s
+#pass P
+#if X
+#pragma multi_compile _ A
+#endif
+#endpass

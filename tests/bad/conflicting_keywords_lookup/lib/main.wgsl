@@ -1,0 +1,4 @@
+#shader s
+#pass P
+#pragma multi_compile _ A B
+#endpass

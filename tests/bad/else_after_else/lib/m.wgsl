@@ -1,0 +1,5 @@
+#ifdef A
+#else
+fn f() {}
+#else
+#endif

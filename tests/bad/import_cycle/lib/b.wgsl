@@ -1,0 +1,2 @@
+fn b() {}
+#import a

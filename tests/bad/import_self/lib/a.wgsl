@@ -1,0 +1,2 @@
+fn a() {}
+#import a

@@ -1,0 +1,4 @@
+#shader s
+#pass P
+#import lighting/brdff
+#endpass

@@ -1,0 +1,1 @@
+#pragma multi_compile _ A

@@ -1,0 +1,5 @@
+#shader s
+#pass P
+#pragma multi_compile _ A
+#pragma skip_variants B
+#endpass

@@ -1,0 +1,6 @@
+#shader s
+#pass P
+#pragma multi_compile _ A
+#pragma multi_compile _ B
+#pragma skip_variants B
+#endpass

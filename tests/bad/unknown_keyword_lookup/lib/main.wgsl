@@ -1,0 +1,4 @@
+#shader s
+#pass P
+#pragma shader_feature _NORMAL_MAP
+#endpass

@@ -1,0 +1,4 @@
+#shader s
+#pass P
+#pragma target 3.0
+#endpass

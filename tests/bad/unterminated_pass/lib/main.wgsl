@@ -1,0 +1,3 @@
+#shader s
+#pass P
+fn f() {}

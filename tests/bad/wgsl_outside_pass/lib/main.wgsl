@@ -1,0 +1,4 @@
+#shader s
+fn f() {}
+#pass P
+#endpass

@@ -1,0 +1,22 @@
+#shader deferred_final
+// Unity's deferred final pass, LDR only (docs/shading.md §7): decodes the exp2(-c) that RT3
+// accumulated back to c = -log2(stored) (clamped by the target), a = 1.
+//   group 0: 0 rt3 (Rgb10a2Unorm, read with textureLoad)
+
+#pass Final
+#import internal/fullscreen
+#import deferred/ldr
+
+@group(0) @binding(0) var rt3: texture_2d<f32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
+    return fullscreen_position(vertex_index);
+}
+
+@fragment
+fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
+    let stored = textureLoad(rt3, fullscreen_pixel(frag_position), 0).rgb;
+    return vec4f(ldr_decode(stored), 1.0);
+}
+#endpass

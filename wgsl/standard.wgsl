@@ -1,0 +1,38 @@
+#shader standard
+// The seed's "My First Lighting Shader" (Catlike Coding, Rendering 13), metallic workflow:
+// a forward base pass (1536 variants) and a G-buffer pass for the deferred path (3072 variants).
+// The program is standard/my_lighting; the passes differ only in their keyword sets and in
+// which of FORWARD_BASE_PASS / DEFERRED_PASS they define.
+
+#pass ForwardBase
+#tag LightMode ForwardBase
+#pragma shader_feature _ _RENDERING_CUTOUT _RENDERING_FADE _RENDERING_TRANSPARENT
+#pragma shader_feature _METALLIC_MAP
+#pragma shader_feature _ _SMOOTHNESS_ALBEDO _SMOOTHNESS_METALLIC
+#pragma shader_feature _NORMAL_MAP
+#pragma shader_feature _OCCLUSION_MAP
+#pragma shader_feature _EMISSION_MAP
+#pragma shader_feature _DETAIL_MASK
+#pragma shader_feature _DETAIL_ALBEDO_MAP
+#pragma shader_feature _DETAIL_NORMAL_MAP
+#define FORWARD_BASE_PASS
+#import standard/my_lighting
+#endpass
+
+#pass Deferred
+#tag LightMode Deferred
+#pragma exclude_renderers nomrt
+#pragma shader_feature _RENDERING_CUTOUT
+#pragma shader_feature _METALLIC_MAP
+#pragma shader_feature _ _SMOOTHNESS_ALBEDO _SMOOTHNESS_METALLIC
+#pragma shader_feature _NORMAL_MAP
+#pragma shader_feature _OCCLUSION_MAP
+#pragma shader_feature _EMISSION_MAP
+#pragma shader_feature _DETAIL_MASK
+#pragma shader_feature _DETAIL_ALBEDO_MAP
+#pragma shader_feature _DETAIL_NORMAL_MAP
+#pragma multi_compile _ UNITY_HDR_ON
+#pragma multi_compile _ UNITY_ENABLE_REFLECTION_BUFFERS
+#define DEFERRED_PASS
+#import standard/my_lighting
+#endpass
