@@ -31,7 +31,9 @@ fn main() {
     println!("cargo:rerun-if-changed=wgsl");
     let mut files = Vec::new();
     collect(&root, &root, &mut files);
-    let mut code = String::from("/// The bundled library: (path relative to `wgsl/`, contents), sorted by path.\npub static BUNDLED: &[(&str, &[u8])] = &[\n");
+    let mut code = String::from(
+        "/// The bundled library: (path relative to `wgsl/`, contents), sorted by path.\npub static BUNDLED: &[(&str, &[u8])] = &[\n",
+    );
     for (rel, abs) in &files {
         println!("cargo:rerun-if-changed={}", abs.display());
         code.push_str(&format!(

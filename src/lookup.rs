@@ -138,7 +138,7 @@ impl Pass {
                 None => {
                     return Err(LookupError::Missing {
                         set: self.sets[set].to_string(),
-                    })
+                    });
                 }
             }
         }

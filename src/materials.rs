@@ -95,7 +95,9 @@ pub enum MaterialsError {
         suggestion: Option<String>,
     },
     /// Two keywords of one set.
-    #[error("material `{material}` enables both `{first}` and `{second}`, options of one set of `{shader}/{pass}`")]
+    #[error(
+        "material `{material}` enables both `{first}` and `{second}`, options of one set of `{shader}/{pass}`"
+    )]
     Conflicting {
         /// The material.
         material: String,
@@ -197,18 +199,18 @@ pub fn feature_combinations(
             let Some((set, option)) = pass.keyword(k) else {
                 continue;
             };
-            if let Some(prev) = options[set] {
-                if prev as usize != option {
-                    return Err(MaterialsError::Conflicting {
-                        material: m.name.clone(),
-                        shader: pass.shader.clone(),
-                        pass: pass.name.clone(),
-                        first: pass.sets[set].options[prev as usize]
-                            .clone()
-                            .unwrap_or_default(),
-                        second: k.clone(),
-                    });
-                }
+            if let Some(prev) = options[set]
+                && prev as usize != option
+            {
+                return Err(MaterialsError::Conflicting {
+                    material: m.name.clone(),
+                    shader: pass.shader.clone(),
+                    pass: pass.name.clone(),
+                    first: pass.sets[set].options[prev as usize]
+                        .clone()
+                        .unwrap_or_default(),
+                    second: k.clone(),
+                });
             }
             options[set] = Some(option as u16);
         }

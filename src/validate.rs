@@ -113,12 +113,17 @@ fn validate_with(
         labels: map_spans(composed, e.labels()),
         notes: e.notes().map(str::to_string).collect(),
     })?;
-    let info = validator.validate(&module).map_err(|e| VariantError {
-        variant: variant.to_string(),
-        stage: Stage::Validate,
-        message: error_chain(e.as_inner()),
-        labels: map_spans(composed, e.spans().map(|(s, l)| (*s, l.as_str()))),
-        notes: Vec::new(),
+    let info = validator.validate(&module).map_err(|e| {
+        let mut labels = map_spans(composed, e.spans().map(|(s, l)| (*s, l.as_str())));
+        // naga lists the enclosing function first; the narrowest span is where to look.
+        labels.sort_by_key(|(span, _)| span.end - span.start);
+        VariantError {
+            variant: variant.to_string(),
+            stage: Stage::Validate,
+            message: error_chain(e.as_inner()),
+            labels,
+            notes: Vec::new(),
+        }
     })?;
     Ok((module, info))
 }

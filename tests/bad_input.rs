@@ -7,7 +7,9 @@ use std::process::Command;
 
 use serde::Deserialize;
 use wgsl_variants::lookup::lookup_strict;
-use wgsl_variants::validate::{select_passes, validate_pass, variants_to_build, ValidateError, ValidateOptions};
+use wgsl_variants::validate::{
+    ValidateError, ValidateOptions, select_passes, validate_pass, variants_to_build,
+};
 use wgsl_variants::{Library, Space};
 
 #[derive(Deserialize)]
@@ -23,11 +25,12 @@ struct Expect {
 }
 
 fn cases() -> Vec<PathBuf> {
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad"))
-        .expect("tests/bad")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.join("expect.toml").exists())
-        .collect();
+    let mut dirs: Vec<PathBuf> =
+        std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad"))
+            .expect("tests/bad")
+            .map(|e| e.expect("entry").path())
+            .filter(|p| p.join("expect.toml").exists())
+            .collect();
     dirs.sort();
     dirs
 }
@@ -41,7 +44,10 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
             Err(err) => err,
         };
         let first = err.diagnostics.first().ok_or("no diagnostic")?;
-        let location = first.location(&err.files).map(|l| l.to_string()).unwrap_or_default();
+        let location = first
+            .location(&err.files)
+            .map(|l| l.to_string())
+            .unwrap_or_default();
         if location != e.location || !first.message.contains(&e.message) {
             return Err(format!("got {location}: {}", first.message));
         }
@@ -50,17 +56,30 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
     let lib = loaded.map_err(|err| format!("unexpected load error:\n{err}"))?;
     match e.stage.as_str() {
         "validate" => {
-            let options = ValidateOptions { all: true, ..ValidateOptions::default() };
+            let options = ValidateOptions {
+                all: true,
+                ..ValidateOptions::default()
+            };
             for pass in select_passes(&lib, None, None).map_err(|x| x.to_string())? {
                 let choices = variants_to_build(&lib, pass, &options).map_err(|x| x.to_string())?;
                 let report = validate_pass(&lib, pass, &choices, &|_| {});
                 for f in &report.failures {
-                    if f.keyword_sets.iter().any(|k| *k == e.keywords) {
-                        let location = f.error.location(lib.files()).map(|l| l.to_string()).unwrap_or_default();
+                    if f.keyword_sets.contains(&e.keywords) {
+                        let location = f
+                            .error
+                            .location(lib.files())
+                            .map(|l| l.to_string())
+                            .unwrap_or_default();
                         if location != e.location || !f.error.message.contains(&e.message) {
                             return Err(format!("got {location}: {}", f.error.message));
                         }
-                        if !f.error.diagnostic().notes.iter().any(|n| n.contains(&format!("{{{}}}", e.keywords.join(", ")))) {
+                        if !f
+                            .error
+                            .diagnostic()
+                            .notes
+                            .iter()
+                            .any(|n| n.contains(&format!("{{{}}}", e.keywords.join(", "))))
+                        {
                             return Err("the diagnostic does not name the keyword set".into());
                         }
                         return Ok(());
@@ -70,7 +89,12 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
             Err("no failure for the expected keyword set".into())
         }
         "lookup" => {
-            let pass = lib.pass(e.shader.as_deref().unwrap_or(""), e.pass.as_deref().unwrap_or("")).map_err(|x| x.to_string())?;
+            let pass = lib
+                .pass(
+                    e.shader.as_deref().unwrap_or(""),
+                    e.pass.as_deref().unwrap_or(""),
+                )
+                .map_err(|x| x.to_string())?;
             match lookup_strict(&Space::build_set(pass, None), &e.keywords, 1_000_000) {
                 Ok(_) => Err("lookup succeeded".into()),
                 Err(err) if err.to_string().contains(&e.message) => {
@@ -87,7 +111,11 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
         "budget" => {
             let pass = lib.passes().next().ok_or("no pass")?;
             match variants_to_build(&lib, pass, &ValidateOptions::default()) {
-                Err(ValidateError::Budget { error, .. }) if error.to_string().contains(&e.message) => Ok(()),
+                Err(ValidateError::Budget { error, .. })
+                    if error.to_string().contains(&e.message) =>
+                {
+                    Ok(())
+                }
                 Err(other) => Err(format!("got {other}")),
                 Ok(v) => Err(format!("built {} variants", v.len())),
             }
@@ -99,9 +127,18 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
 /// Runs the CLI on the case: it must fail with exit code 1 and print the location.
 fn check_cli(dir: &Path, e: &Expect) -> Result<(), String> {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_wgsl-variants"));
-    cmd.arg("--root").arg(dir.join("lib")).arg("--color").arg("never");
+    cmd.arg("--root")
+        .arg(dir.join("lib"))
+        .arg("--color")
+        .arg("never");
     if e.stage == "lookup" {
-        cmd.args(["emit", e.shader.as_deref().unwrap_or(""), e.pass.as_deref().unwrap_or(""), "--keywords", &e.keywords.join(",")]);
+        cmd.args([
+            "emit",
+            e.shader.as_deref().unwrap_or(""),
+            e.pass.as_deref().unwrap_or(""),
+            "--keywords",
+            &e.keywords.join(","),
+        ]);
     } else {
         cmd.args(["validate", "--all"]);
     }
@@ -114,7 +151,10 @@ fn check_cli(dir: &Path, e: &Expect) -> Result<(), String> {
         return Err(format!("panic:\n{stderr}"));
     }
     if !stderr.contains(&format!("┌─ {}", e.location)) || !stderr.contains(&e.message) {
-        return Err(format!("stderr lacks `{}` / the message:\n{stderr}", e.location));
+        return Err(format!(
+            "stderr lacks `{}` / the message:\n{stderr}",
+            e.location
+        ));
     }
     Ok(())
 }
@@ -125,15 +165,34 @@ fn every_bad_input_is_diagnosed_at_its_location() {
     assert!(cases.len() >= 25, "the corpus has {} cases", cases.len());
     let mut failures = Vec::new();
     for dir in &cases {
-        let name = dir.file_name().unwrap_or_default().to_string_lossy().into_owned();
+        let name = dir
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
         let text = std::fs::read_to_string(dir.join("expect.toml")).expect("expect.toml");
-        let expect: Expect = toml::from_str(&text).unwrap_or_else(|err| panic!("{name}/expect.toml: {err}"));
-        for (what, result) in [("api", check_api(dir, &expect)), ("cli", check_cli(dir, &expect))] {
+        let expect: Expect =
+            toml::from_str(&text).unwrap_or_else(|err| panic!("{name}/expect.toml: {err}"));
+        for (what, result) in [
+            ("api", check_api(dir, &expect)),
+            ("cli", check_cli(dir, &expect)),
+        ] {
             if let Err(why) = result {
-                failures.push(format!("{name} ({what}): expected {} `{}`\n  {why}", expect.location, expect.message));
+                failures.push(format!(
+                    "{name} ({what}): expected {} `{}`\n  {why}",
+                    expect.location, expect.message
+                ));
             }
         }
     }
-    println!("bad-input corpus: {} cases checked through the API and the CLI", cases.len());
-    assert!(failures.is_empty(), "{} case(s) failed:\n{}", failures.len(), failures.join("\n"));
+    println!(
+        "bad-input corpus: {} cases checked through the API and the CLI",
+        cases.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} case(s) failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -7,8 +7,8 @@
 use std::time::Instant;
 
 use wgsl_variants::gpu::{
-    read_texture, render, render_with, run_compute, BoundResource, ColorTarget, GpuContext,
-    GpuError, GpuResources, RenderJob, Resource, TargetFormat,
+    BoundResource, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, Resource,
+    TargetFormat, read_texture, render, render_with, run_compute,
 };
 
 /// Creates a context, or returns `None` (after a loud message) when no adapter exists and a
@@ -158,16 +158,18 @@ fn fs() -> @location(0) vec4<f32> {
     );
     // Additive blending over the clear colour (Rgba16Float is blendable without features).
     let mut job = RenderJob::new("blend", &wgsl, "vs", "fs");
-    job.targets = vec![ColorTarget::new(TargetFormat::Rgba16Float)
-        .with_clear([1.0, 2.0, 3.0, 4.0])
-        .with_blend(wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::One,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-            alpha: wgpu::BlendComponent::REPLACE,
-        })];
+    job.targets = vec![
+        ColorTarget::new(TargetFormat::Rgba16Float)
+            .with_clear([1.0, 2.0, 3.0, 4.0])
+            .with_blend(wgpu::BlendState {
+                color: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Add,
+                },
+                alpha: wgpu::BlendComponent::REPLACE,
+            }),
+    ];
     let out = render(&ctx, &job).expect("render");
     for px in TargetFormat::Rgba16Float.decode_image_f32(&out[0]) {
         assert_eq!(px, [1.25, 2.5, 3.75, 1.0]);
@@ -188,9 +190,9 @@ fn fs() -> @location(0) vec4<f32> {
     }
 
     // Float32 blending needs a feature the harness does not request: a pipeline error.
-    job.targets =
-        vec![ColorTarget::new(TargetFormat::Rgba32Float)
-            .with_blend(wgpu::BlendState::ALPHA_BLENDING)];
+    job.targets = vec![
+        ColorTarget::new(TargetFormat::Rgba32Float).with_blend(wgpu::BlendState::ALPHA_BLENDING),
+    ];
     assert!(matches!(
         render(&ctx, &job),
         Err(GpuError::PipelineCompile { .. })

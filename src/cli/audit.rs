@@ -9,7 +9,7 @@ use wgsl_variants::variants::Space;
 
 use super::output::{count, print_json};
 use super::validate::build_reports;
-use super::{load_materials, BuildArgs, Context, Failed};
+use super::{BuildArgs, Context, Failed, load_materials};
 
 #[derive(Serialize)]
 struct AuditPass {

@@ -5,12 +5,12 @@ use std::process::ExitCode;
 
 use serde::Serialize;
 
+use wgsl_variants::Variant;
 use wgsl_variants::lookup::{lookup_closest, lookup_strict};
 use wgsl_variants::validate::validate_composed;
-use wgsl_variants::Variant;
 
 use super::output::print_json;
-use super::{load_materials, Context, Failed};
+use super::{Context, Failed, load_materials};
 
 #[derive(Serialize)]
 struct EmitOut<'a> {
@@ -49,11 +49,9 @@ pub fn run(
     let choice = found.map_err(|e| ctx.pass_failure(pass, format!("{e}")))?;
     let variant = Variant { pass, choice };
     let composed = ctx.lib.compose(&variant);
-    if validate {
-        if let Err(e) = validate_composed(&composed, &variant.label()) {
-            eprint!("{}", ctx.render(&e.diagnostic()));
-            return Ok(ExitCode::from(1));
-        }
+    if validate && let Err(e) = validate_composed(&composed, &variant.label()) {
+        eprint!("{}", ctx.render(&e.diagnostic()));
+        return Ok(ExitCode::from(1));
     }
     if closest && variant.keywords() != keywords {
         eprintln!(

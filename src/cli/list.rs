@@ -9,7 +9,7 @@ use serde_json::value::RawValue;
 use wgsl_variants::variants::Space;
 
 use super::output::{count, print_json};
-use super::{load_materials, Context, Failed};
+use super::{Context, Failed, load_materials};
 
 #[derive(Serialize)]
 struct SetOut {

@@ -12,8 +12,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use wgsl_variants::materials::{self, Material};
 use wgsl_variants::Library;
+use wgsl_variants::materials::{self, Material};
 
 /// Unity-style shader variants for WGSL module trees, every variant validated by naga.
 #[derive(Parser, Debug)]
@@ -143,14 +143,13 @@ fn load_materials(path: &Option<PathBuf>) -> Result<Option<Vec<Material>>, Faile
 /// Parses arguments, runs the command, and returns the process exit code.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()
-        {
-            eprintln!("error: cannot set up {n} threads: {e}");
-            return ExitCode::from(1);
-        }
+    {
+        eprintln!("error: cannot set up {n} threads: {e}");
+        return ExitCode::from(1);
     }
     let color = match cli.color {
         Color::Auto => std::io::stderr().is_terminal(),

@@ -6,11 +6,11 @@ use serde::Serialize;
 use serde_json::value::RawValue;
 
 use wgsl_variants::validate::{
-    select_passes, validate_pass, variants_to_build, PassReport, ValidateOptions,
+    PassReport, ValidateOptions, select_passes, validate_pass, variants_to_build,
 };
 
 use super::output::{count, print_json, progress};
-use super::{load_materials, BuildArgs, Context, Failed};
+use super::{BuildArgs, Context, Failed, load_materials};
 
 #[derive(Serialize)]
 pub struct FailureOut {
@@ -68,7 +68,9 @@ pub fn build_reports(
     let mut plans = Vec::new();
     for pass in passes {
         let choices = variants_to_build(&ctx.lib, pass, &options).map_err(|e| match e {
-            wgsl_variants::validate::ValidateError::Budget { error, .. } => ctx.pass_failure(pass, format!("{}/{}: {error}", pass.shader, pass.name)),
+            wgsl_variants::validate::ValidateError::Budget { error, .. } => {
+                ctx.pass_failure(pass, format!("{}/{}: {error}", pass.shader, pass.name))
+            }
             other => Failed::from(other),
         })?;
         plans.push((pass, choices));

@@ -55,10 +55,10 @@ pub fn used_bindings_in(
             })?;
         let function_info = info.get_entry_point(index);
         for (handle, var) in module.global_variables.iter() {
-            if let Some(binding) = &var.binding {
-                if !function_info[handle].is_empty() {
-                    used.insert((binding.group, binding.binding));
-                }
+            if let Some(binding) = &var.binding
+                && !function_info[handle].is_empty()
+            {
+                used.insert((binding.group, binding.binding));
             }
         }
     }

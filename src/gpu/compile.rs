@@ -1,6 +1,6 @@
 //! Shader-module and pipeline creation inside error scopes.
 
-use super::context::{error_message, GpuContext};
+use super::context::{GpuContext, error_message};
 use super::error::GpuError;
 
 /// Runs `create` (which should create the shader module and the pipeline) inside error

@@ -145,11 +145,7 @@ pub fn f16_to_f32(bits: u16) -> f32 {
         0 => {
             // Zero or subnormal: mantissa * 2^-24, exact in f32.
             let magnitude = mantissa as f32 * f32::from_bits(0x3380_0000);
-            if negative {
-                -magnitude
-            } else {
-                magnitude
-            }
+            if negative { -magnitude } else { magnitude }
         }
         0x1f => f32::from_bits(sign | 0x7f80_0000 | (mantissa << 13)),
         _ => f32::from_bits(sign | ((exponent + 112) << 23) | (mantissa << 13)),

@@ -20,14 +20,14 @@ mod readback;
 mod render;
 mod resources;
 
-pub use bindings::{used_bindings, used_bindings_in, Slot};
+pub use bindings::{Slot, used_bindings, used_bindings_in};
 pub use compile::{compile_scoped, wgsl_module};
 pub use compute::run_compute;
-pub use context::{error_message, GpuContext, DEFAULT_TIMEOUT};
+pub use context::{DEFAULT_TIMEOUT, GpuContext, error_message};
 pub use error::GpuError;
-pub use format::{f16_to_f32, TargetFormat};
+pub use format::{TargetFormat, f16_to_f32};
 pub use readback::{
-    encode_texture_readback, finish_readbacks, map_buffers, read_texture, PendingReadback,
+    PendingReadback, encode_texture_readback, finish_readbacks, map_buffers, read_texture,
 };
-pub use render::{render, render_with, ColorTarget, RenderJob};
+pub use render::{ColorTarget, RenderJob, render, render_with};
 pub use resources::{BoundResource, GpuResources, Resource};

@@ -68,7 +68,7 @@ pub fn encode_texture_readback(
         f if f.has_depth_aspect() && f.has_stencil_aspect() => {
             return Err(fail(format!(
                 "cannot read back combined depth-stencil {f:?}"
-            )))
+            )));
         }
         _ => wgpu::TextureAspect::All,
     };

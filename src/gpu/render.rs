@@ -1,8 +1,11 @@
-//! Full-screen draws into one or more colour targets, read back to the CPU.
+//! Draws into one or more colour targets, read back to the CPU: full-screen draws driven by
+//! `@builtin(vertex_index)`, or meshes from vertex buffers ([`VertexBuffer`]); targets start
+//! cleared or with given contents ([`ColorTarget::with_initial`]), so that blending onto an
+//! earlier result can be checked.
 
 use std::collections::BTreeSet;
 
-use super::bindings::{used_bindings, Slot};
+use super::bindings::{Slot, used_bindings};
 use super::compile::{compile_scoped, wgsl_module};
 use super::context::GpuContext;
 use super::error::GpuError;
@@ -11,14 +14,18 @@ use super::readback::{encode_texture_readback, finish_readbacks};
 use super::resources::{BoundResource, GpuResources};
 
 /// One colour target of a [`RenderJob`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ColorTarget {
     /// Texture format of the target.
     pub format: TargetFormat,
-    /// Clear colour (RGBA) applied before the draw.
+    /// Clear colour (RGBA) applied before the draw (unless `initial` is set).
     pub clear: [f64; 4],
     /// Blend state; `None` replaces the destination.
     pub blend: Option<wgpu::BlendState>,
+    /// Initial contents (tightly packed rows of the target's format) uploaded before the draw
+    /// and loaded instead of clearing, e.g. an earlier target read back; `None` clears to
+    /// `clear`.
+    pub initial: Option<Vec<u8>>,
 }
 
 impl ColorTarget {
@@ -28,6 +35,7 @@ impl ColorTarget {
             format,
             clear: [0.0; 4],
             blend: None,
+            initial: None,
         }
     }
 
@@ -42,11 +50,78 @@ impl ColorTarget {
         self.blend = Some(blend);
         self
     }
+
+    /// Starts the target with `bytes` (tightly packed rows, `width · height` pixels of the
+    /// target's format) instead of clearing it: blending then composes onto these contents.
+    pub fn with_initial(mut self, bytes: Vec<u8>) -> Self {
+        self.initial = Some(bytes);
+        self
+    }
 }
 
-/// A full-screen draw without vertex buffers: the vertex shader derives positions from
-/// `@builtin(vertex_index)`; `vertex_count` vertices (e.g. 3 for a full-screen triangle, 6 for
-/// a quad) are drawn as a triangle list, one instance, no depth buffer, no culling.
+/// One vertex buffer of a [`RenderJob`]: per-vertex data and the layout the vertex shader
+/// reads it with (`@location`s of its attributes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexBuffer {
+    /// Bytes from one vertex to the next.
+    pub stride: u64,
+    /// The attributes: format, offset within a vertex, and shader `@location`.
+    pub attributes: Vec<wgpu::VertexAttribute>,
+    /// The vertex data, `stride` bytes per vertex.
+    pub data: Vec<u8>,
+}
+
+impl VertexBuffer {
+    /// A vertex buffer of `f32` attributes packed back to back in the given order: each entry
+    /// is `(location, components)` with 1 to 4 components, and `vertices` holds the values of
+    /// each vertex in that order.
+    ///
+    /// ```
+    /// use wgsl_variants::gpu::VertexBuffer;
+    /// // position vec3f at @location(0), uv vec2f at @location(1): 5 floats per vertex.
+    /// let vb = VertexBuffer::from_f32(&[(0, 3), (1, 2)], &[[0.0, 0.0, 0.0, 0.0, 1.0]]);
+    /// assert_eq!((vb.stride, vb.data.len()), (20, 20));
+    /// assert_eq!(vb.attributes[1].offset, 12);
+    /// ```
+    ///
+    /// # Panics
+    /// When a component count is not 1 to 4.
+    pub fn from_f32<const N: usize>(layout: &[(u32, u32)], vertices: &[[f32; N]]) -> Self {
+        let mut offset = 0u64;
+        let attributes = layout
+            .iter()
+            .map(|&(location, components)| {
+                let format = match components {
+                    1 => wgpu::VertexFormat::Float32,
+                    2 => wgpu::VertexFormat::Float32x2,
+                    3 => wgpu::VertexFormat::Float32x3,
+                    4 => wgpu::VertexFormat::Float32x4,
+                    n => panic!("a vertex attribute has 1 to 4 components, not {n}"),
+                };
+                let attribute = wgpu::VertexAttribute {
+                    format,
+                    offset,
+                    shader_location: location,
+                };
+                offset += u64::from(components) * 4;
+                attribute
+            })
+            .collect();
+        Self {
+            stride: offset,
+            attributes,
+            data: vertices
+                .iter()
+                .flat_map(|v| v.iter().flat_map(|x| x.to_le_bytes()))
+                .collect(),
+        }
+    }
+}
+
+/// One draw of `vertex_count` vertices as a triangle list, one instance, no depth buffer, no
+/// culling. Without vertex buffers the vertex shader derives positions from
+/// `@builtin(vertex_index)` (3 vertices for a full-screen triangle, 6 for a quad); with
+/// `vertex_buffers`, buffer `i` is bound at vertex-buffer slot `i`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderJob {
     /// Label used for the pipeline and in errors (usually the variant name).
@@ -65,6 +140,8 @@ pub struct RenderJob {
     pub targets: Vec<ColorTarget>,
     /// Number of vertices to draw.
     pub vertex_count: u32,
+    /// Vertex buffers, in slot order (empty for a draw from `@builtin(vertex_index)` alone).
+    pub vertex_buffers: Vec<VertexBuffer>,
     /// Resources for bind groups 0..N. Resources the shader does not use are skipped.
     pub resources: Vec<BoundResource>,
 }
@@ -82,6 +159,7 @@ impl RenderJob {
             height: 16,
             targets: vec![ColorTarget::new(TargetFormat::Rgba8Unorm)],
             vertex_count: 3,
+            vertex_buffers: Vec::new(),
             resources: Vec::new(),
         }
     }
@@ -95,6 +173,10 @@ pub fn render(ctx: &GpuContext, job: &RenderJob) -> Result<Vec<Vec<u8>>, GpuErro
 
 /// Renders `job` binding the already uploaded `resources` (`job.resources` is ignored), and
 /// returns the tightly packed bytes of each colour target, in target order.
+///
+/// Initial target contents ([`ColorTarget::initial`]) must hold exactly `width · height`
+/// pixels of the target's format, and vertex buffers at least `vertex_count` vertices;
+/// otherwise the job is a [`GpuError::Validation`].
 ///
 /// Use this to render many variants against one set of resources without re-uploading them.
 /// Only the slots the vertex and fragment entry points statically use are bound (wgpu's
@@ -127,6 +209,44 @@ pub fn render_with(
         )));
     }
 
+    let pixels = u64::from(job.width) * u64::from(job.height);
+    for (i, t) in job.targets.iter().enumerate() {
+        if let Some(initial) = &t.initial {
+            let needed = pixels * t.format.bytes_per_pixel() as u64;
+            if initial.len() as u64 != needed {
+                return Err(invalid(format!(
+                    "initial contents of target {i} ({}x{} {:?}) need {needed} bytes, got {}",
+                    job.width,
+                    job.height,
+                    t.format,
+                    initial.len()
+                )));
+            }
+        }
+    }
+    for (i, vb) in job.vertex_buffers.iter().enumerate() {
+        let needed = vb.stride * u64::from(job.vertex_count);
+        if vb.stride == 0 || (vb.data.len() as u64) < needed {
+            return Err(invalid(format!(
+                "vertex buffer {i} (stride {}) holds {} bytes; {} vertices need {needed}",
+                vb.stride,
+                vb.data.len(),
+                job.vertex_count
+            )));
+        }
+    }
+    let vertex_layouts: Vec<Option<wgpu::VertexBufferLayout<'_>>> = job
+        .vertex_buffers
+        .iter()
+        .map(|vb| {
+            Some(wgpu::VertexBufferLayout {
+                array_stride: vb.stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &vb.attributes,
+            })
+        })
+        .collect();
+
     let color_states: Vec<Option<wgpu::ColorTargetState>> = job
         .targets
         .iter()
@@ -148,7 +268,7 @@ pub fn render_with(
                     module: &module,
                     entry_point: Some(&job.vertex_entry),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: &[],
+                    buffers: &vertex_layouts,
                 },
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: None,
@@ -191,9 +311,43 @@ pub fn render_with(
                     sample_count: 1,
                     dimension: wgpu::TextureDimension::D2,
                     format: t.format.wgpu_format(),
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::COPY_SRC
+                        | wgpu::TextureUsages::COPY_DST,
                     view_formats: &[],
                 })
+            })
+            .collect();
+        for (texture, t) in targets.iter().zip(&job.targets) {
+            if let Some(initial) = &t.initial {
+                let bytes_per_row = job.width * t.format.bytes_per_pixel() as u32;
+                ctx.queue.write_texture(
+                    texture.as_image_copy(),
+                    initial,
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(bytes_per_row),
+                        rows_per_image: Some(job.height),
+                    },
+                    texture.size(),
+                );
+            }
+        }
+        let vertex_buffers: Vec<wgpu::Buffer> = job
+            .vertex_buffers
+            .iter()
+            .map(|vb| {
+                let size = super::readback::align_up(vb.data.len() as u64, 4).max(4);
+                let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size,
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                let mut padded = vb.data.clone();
+                padded.resize(size as usize, 0);
+                ctx.queue.write_buffer(&buffer, 0, &padded);
+                buffer
             })
             .collect();
         let views: Vec<wgpu::TextureView> = targets
@@ -205,12 +359,16 @@ pub fn render_with(
             .zip(&job.targets)
             .map(|(view, t)| {
                 let [r, g, b, a] = t.clear;
+                let load = match t.initial {
+                    Some(_) => wgpu::LoadOp::Load,
+                    None => wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+                };
                 Some(wgpu::RenderPassColorAttachment {
                     view,
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+                        load,
                         store: wgpu::StoreOp::Store,
                     },
                 })
@@ -232,6 +390,9 @@ pub fn render_with(
             pass.set_pipeline(&pipeline);
             for (group, bind_group) in &bind_groups {
                 pass.set_bind_group(*group, bind_group, &[]);
+            }
+            for (slot, buffer) in (0u32..).zip(&vertex_buffers) {
+                pass.set_vertex_buffer(slot, buffer.slice(..));
             }
             pass.draw(0..job.vertex_count, 0..1);
         }

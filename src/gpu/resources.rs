@@ -39,6 +39,14 @@ pub enum Resource {
         /// Use nearest filtering (a non-filtering sampler) instead of linear.
         nearest: bool,
     },
+    /// Like [`Resource::Sampler`], with the given addressing mode on all three axes (e.g.
+    /// [`wgpu::AddressMode::Repeat`] for tiled detail maps).
+    SamplerAddressed {
+        /// Use nearest filtering (a non-filtering sampler) instead of linear.
+        nearest: bool,
+        /// Addressing mode for u, v and w.
+        address_mode: wgpu::AddressMode,
+    },
     /// A comparison sampler (`sampler_comparison`) with linear filtering.
     ComparisonSampler {
         /// The comparison function.
@@ -198,7 +206,9 @@ fn upload_one(ctx: &GpuContext, label: &str, resource: &Resource) -> Result<GpuR
             if level_count == 0 || level_count > max_levels {
                 return Err(invalid(
                     label,
-                    format!("cube texture of size {size} needs 1..={max_levels} mip levels, got {level_count}"),
+                    format!(
+                        "cube texture of size {size} needs 1..={max_levels} mip levels, got {level_count}"
+                    ),
                 ));
             }
             let texture = create_texture(ctx, label, *format, *size, *size, 6, level_count)?;
@@ -216,25 +226,16 @@ fn upload_one(ctx: &GpuContext, label: &str, resource: &Resource) -> Result<GpuR
                 _texture: texture,
             }
         }
-        Resource::Sampler { nearest } => {
-            let filter = if *nearest {
-                wgpu::FilterMode::Nearest
-            } else {
-                wgpu::FilterMode::Linear
-            };
-            let mipmap_filter = if *nearest {
-                wgpu::MipmapFilterMode::Nearest
-            } else {
-                wgpu::MipmapFilterMode::Linear
-            };
-            GpuResource::Sampler(device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some(label),
-                mag_filter: filter,
-                min_filter: filter,
-                mipmap_filter,
-                ..Default::default()
-            }))
-        }
+        Resource::Sampler { nearest } => GpuResource::Sampler(create_sampler(
+            ctx,
+            label,
+            *nearest,
+            wgpu::AddressMode::ClampToEdge,
+        )),
+        Resource::SamplerAddressed {
+            nearest,
+            address_mode,
+        } => GpuResource::Sampler(create_sampler(ctx, label, *nearest, *address_mode)),
         Resource::ComparisonSampler { compare } => {
             GpuResource::Sampler(device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some(label),
@@ -244,6 +245,31 @@ fn upload_one(ctx: &GpuContext, label: &str, resource: &Resource) -> Result<GpuR
                 ..Default::default()
             }))
         }
+    })
+}
+
+/// A sampler with nearest or linear filtering (both for texels and mip levels) and one
+/// addressing mode on all axes.
+fn create_sampler(
+    ctx: &GpuContext,
+    label: &str,
+    nearest: bool,
+    address_mode: wgpu::AddressMode,
+) -> wgpu::Sampler {
+    let (filter, mipmap_filter) = if nearest {
+        (wgpu::FilterMode::Nearest, wgpu::MipmapFilterMode::Nearest)
+    } else {
+        (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear)
+    };
+    ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: address_mode,
+        address_mode_v: address_mode,
+        address_mode_w: address_mode,
+        mag_filter: filter,
+        min_filter: filter,
+        mipmap_filter,
+        ..Default::default()
     })
 }
 

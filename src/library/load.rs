@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use crate::diagnostic::{Diagnostic, SourceFiles};
 use crate::lookup::suggest;
 use crate::preprocess::tree::ParsedModule;
-use crate::preprocess::{parse_module, ParseLimits};
+use crate::preprocess::{ParseLimits, parse_module};
 use crate::shader::{Pass, Shader};
 use crate::source::{self, RawFile};
 
@@ -55,11 +55,13 @@ pub(crate) fn load(
     let mut files = SourceFiles::new();
     let total: usize = raw.iter().map(|f| f.bytes.len()).sum();
     if total > options.max_total_bytes {
-        let diagnostics = vec![LinkError::TooLarge {
-            bytes: total,
-            limit: options.max_total_bytes,
-        }
-        .diagnostic()];
+        let diagnostics = vec![
+            LinkError::TooLarge {
+                bytes: total,
+                limit: options.max_total_bytes,
+            }
+            .diagnostic(),
+        ];
         return Err(LoadError { files, diagnostics });
     }
     let paths: Vec<String> = raw

@@ -6,11 +6,11 @@ mod load;
 use std::path::Path;
 
 use crate::diagnostic::SourceFiles;
-use crate::lookup::{suggest, LookupError};
+use crate::lookup::{LookupError, suggest};
 use crate::materials::{self, Material, MaterialsError};
-use crate::preprocess::compose::{compose, ModuleGraph};
-use crate::preprocess::tree::ParsedModule;
 use crate::preprocess::Composed;
+use crate::preprocess::compose::{ModuleGraph, compose};
+use crate::preprocess::tree::ParsedModule;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
 use crate::variants::{Choice, Space};
@@ -37,6 +37,19 @@ pub struct Library {
     resolved: Vec<Vec<usize>>,
     shaders: Vec<Shader>,
     origin: Origin,
+}
+
+impl std::fmt::Debug for Library {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Library")
+            .field("origin", &self.origin)
+            .field("modules", &self.paths)
+            .field(
+                "shaders",
+                &self.shaders.iter().map(|s| &s.name).collect::<Vec<_>>(),
+            )
+            .finish()
+    }
 }
 
 /// One variant: a pass and the option chosen in each of its keyword sets.

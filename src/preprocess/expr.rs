@@ -331,7 +331,7 @@ impl Parser {
                         return Err(self.error(
                             &format!("`defined` needs a name, found {}", describe(t)),
                             *s,
-                        ))
+                        ));
                     }
                     None => return Err(self.error("`defined` needs a name", self.eof_span())),
                 };

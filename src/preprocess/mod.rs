@@ -15,4 +15,4 @@ pub mod tree;
 
 pub use compose::Composed;
 pub use error::ParseError;
-pub use parse::{parse_module, ParseLimits};
+pub use parse::{ParseLimits, parse_module};

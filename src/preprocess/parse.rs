@@ -151,11 +151,11 @@ impl<'a> ModuleParser<'a> {
             self.seen_code = true;
         }
         let nodes = self.container();
-        if let Some(Node::Text(run)) = nodes.last_mut() {
-            if run.end == index {
-                run.end = index + 1;
-                return;
-            }
+        if let Some(Node::Text(run)) = nodes.last_mut()
+            && run.end == index
+        {
+            run.end = index + 1;
+            return;
         }
         nodes.push(Node::Text(index..index + 1));
     }
@@ -404,7 +404,7 @@ impl<'a> ModuleParser<'a> {
                                 args[name.len()..].trim()
                             ),
                             span,
-                        })
+                        });
                     }
                 }
             }
@@ -430,14 +430,18 @@ impl<'a> ModuleParser<'a> {
             ));
         }
         if path.contains(char::is_whitespace) || path.contains('\\') || path.contains('"') {
-            return Err(malformed(format!("`{args}` is not a module path: write `/`-separated names relative to the library root, unquoted")));
+            return Err(malformed(format!(
+                "`{args}` is not a module path: write `/`-separated names relative to the library root, unquoted"
+            )));
         }
         if path.starts_with('/')
             || path
                 .split('/')
                 .any(|c| c == ".." || c == "." || c.is_empty())
         {
-            return Err(malformed(format!("`{args}` leaves the library root: paths are relative to the root, without `.`, `..` or a leading `/`")));
+            return Err(malformed(format!(
+                "`{args}` leaves the library root: paths are relative to the root, without `.`, `..` or a leading `/`"
+            )));
         }
         self.seen_code = true;
         let index = self.imports.len();
@@ -603,15 +607,19 @@ impl<'a> ModuleParser<'a> {
                 return Ok(());
             }
             "exclude_renderers" => {
-                pass.pragmas.push(Pragma::ExcludeRenderers(names.into_iter().map(|n| n.0).collect()));
+                pass.pragmas.push(Pragma::ExcludeRenderers(
+                    names.into_iter().map(|n| n.0).collect(),
+                ));
                 return Ok(());
             }
             other => {
                 return Err(ParseError::Malformed {
                     directive: "pragma",
-                    message: format!("unknown pragma `{other}`; supported: multi_compile, multi_compile_local, shader_feature, shader_feature_local, skip_variants, exclude_renderers"),
+                    message: format!(
+                        "unknown pragma `{other}`; supported: multi_compile, multi_compile_local, shader_feature, shader_feature_local, skip_variants, exclude_renderers"
+                    ),
                     span: kind_span,
-                })
+                });
             }
         };
         if names.is_empty() {

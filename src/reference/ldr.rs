@@ -54,11 +54,7 @@ pub fn ldr_encode(c: Vec3) -> Vec3 {
 /// ```
 pub fn ldr_decode1(s: f32) -> f32 {
     let c = -s.log2();
-    if c > 0.0 {
-        c
-    } else {
-        0.0
-    }
+    if c > 0.0 { c } else { 0.0 }
 }
 
 /// What the final deferred pass (LDR only) computes from RT3: `−log2(s)` per channel, clamped
@@ -109,7 +105,7 @@ mod tests {
         // 1023 · 2^-c, rounded: recomputed by hand.
         assert_eq!(stored(0.0, 10), 1023);
         assert_eq!(stored(0.5, 10), 723); // 1023/√2 = 723.37
-                                          // c = 1: 511.5, a tie; this reference rounds up (REFERENCE.md's 512), 511 is also right.
+        // c = 1: 511.5, a tie; this reference rounds up (REFERENCE.md's 512), 511 is also right.
         assert_eq!(stored(1.0, 10), 512);
         assert!(unorm_within(511, ldr_encode1(1.0), 10));
         assert_eq!(stored(2.0, 10), 256); // 255.75

@@ -49,11 +49,11 @@ pub mod surface;
 pub mod tolerance;
 
 pub use cube::CubeFaces;
-pub use gbuffer::{decode_normal, encode_normal, DecodedSurface, GBuffer, GBufferTexel, Rt3Texel};
+pub use gbuffer::{DecodedSurface, GBuffer, GBufferTexel, Rt3Texel, decode_normal, encode_normal};
 pub use ldr::{ldr_accumulate, ldr_decode, ldr_encode};
 pub use probe::Probe;
 pub use surface::{
+    Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Surface, Texels,
     final_ldr, reflection_buffer, reflection_probe_pixel, reflections_add, shade_deferred,
-    shade_forward, Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Surface,
-    Texels,
+    shade_forward,
 };

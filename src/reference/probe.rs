@@ -223,11 +223,7 @@ pub fn mix(a: Vec3, b: Vec3, t: f32) -> Vec3 {
 /// assert_eq!(m, Vec3::splat(2.5));
 /// ```
 pub fn forward_blend(e0: Vec3, e1: Vec3, t: f32) -> Vec3 {
-    if t >= 0.99999 {
-        e0
-    } else {
-        mix(e1, e0, t)
-    }
+    if t >= 0.99999 { e0 } else { mix(e1, e0, t) }
 }
 
 /// A deferred probe's weight at world position `p`: with `dist = max(p − box_max, box_min − p,

@@ -20,11 +20,11 @@ use glam::{Vec3, Vec4};
 
 use super::brdf::{diffuse_and_specular_from_metallic, direct, indirect_specular, sh_ambient};
 use super::cube::CubeFaces;
-use super::gbuffer::{decode_normal, GBuffer};
+use super::gbuffer::{GBuffer, decode_normal};
 use super::ldr::{ldr_accumulate, ldr_decode};
 use super::probe::{
-    box_project, box_project_grown, composite_f16, draw_order, falloff, forward_blend,
-    mip_from_smoothness, mix, sample_probe, Probe,
+    Probe, box_project, box_project_grown, composite_f16, draw_order, falloff, forward_blend,
+    mip_from_smoothness, mix, sample_probe,
 };
 
 /// The rendering-mode keyword set of the forward pass

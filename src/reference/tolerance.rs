@@ -163,11 +163,7 @@ pub fn f16x4_within(got: [u16; 4], expected: Vec4) -> bool {
 fn f32_ordinal(x: f32) -> i64 {
     let bits = x.to_bits();
     let mag = i64::from(bits & 0x7fff_ffff);
-    if bits & 0x8000_0000 != 0 {
-        -mag
-    } else {
-        mag
-    }
+    if bits & 0x8000_0000 != 0 { -mag } else { mag }
 }
 
 /// Distance between two `f32` values in units in the last place (0 for +0 and −0; one step

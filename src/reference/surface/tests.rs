@@ -1,7 +1,7 @@
 //! Per-keyword and hand-computed tests of the passes.
 
 use super::*;
-use crate::reference::gbuffer::{encode_normal, GBufferTexel};
+use crate::reference::gbuffer::{GBufferTexel, encode_normal};
 use crate::reference::ldr::ldr_encode;
 use std::f32::consts::PI;
 
@@ -506,7 +506,7 @@ fn deferred_reflections_match_forward_for_a_single_full_probe() {
     let env = forward_environment(&scene, geo.world_position, r, s.smoothness) * s.occlusion;
     let want = indirect_specular(env, spec, s.smoothness, omr, s.normal, v);
     assert!((refl - want).abs().max_element() < 2e-3, "{refl} vs {want}"); // f16 buffer
-                                                                           // Adding it to RT3 gives the no-reflection-buffer G-buffer's light.
+    // Adding it to RT3 gives the no-reflection-buffer G-buffer's light.
     let plain = Keywords::from_names(&["UNITY_HDR_ON"]).unwrap();
     let g2 = shade_deferred(&plain, &mat, &Texels::default(), &geo, &scene).unwrap();
     let added = reflections_add(g.rt3.truncate(), refl, true);
