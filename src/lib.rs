@@ -38,6 +38,7 @@ pub mod materials;
 pub mod preprocess;
 pub mod reference;
 pub mod shader;
+pub mod snapshot;
 pub mod source;
 pub mod validate;
 pub mod variants;

@@ -37,6 +37,14 @@ pub struct VariantError {
     pub notes: Vec<String>,
 }
 
+impl std::fmt::Display for VariantError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} (in variant {})", self.message, self.variant)
+    }
+}
+
+impl std::error::Error for VariantError {}
+
 impl VariantError {
     /// A renderable report naming the variant's keyword set.
     pub fn diagnostic(&self) -> Diagnostic {

@@ -1,0 +1,219 @@
+//! Canonical WGSL and snapshot sets, for reviewing generated code with insta.
+//!
+//! Canonical text is what naga's WGSL back end writes after compaction (unused types,
+//! constants and functions removed), as naga's own snapshot tests do: stable ordering and
+//! formatting, so snapshots do not churn with comment or whitespace edits, and byte-identical
+//! across runs and thread counts.
+//!
+//! Snapshot a whole library in your own tests with one call (insta must be a dev-dependency):
+//!
+//! ```no_run
+//! let lib = wgsl_variants::Library::from_dir("shaders").unwrap();
+//! wgsl_variants::assert_variant_snapshots!(&lib);
+//! ```
+
+use rayon::prelude::*;
+
+use crate::library::{Library, Variant};
+use crate::shader::Pass;
+use crate::validate::{VariantError, validate_composed};
+use crate::variants::{Choice, Space};
+
+/// A named text to snapshot.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Snapshot {
+    /// Snapshot name (file-name safe): `shader.pass.keywords`.
+    pub name: String,
+    /// The canonical WGSL (or the manifest).
+    pub text: String,
+}
+
+/// The canonical WGSL of a variant: validated, compacted, and written by naga's WGSL back end.
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// let text = wgsl_variants::snapshot::canonical_wgsl(&lib, &v).unwrap();
+/// assert!(text.contains("@fragment"));
+/// ```
+pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, VariantError> {
+    let composed = lib.compose(variant);
+    let label = variant.label();
+    let (mut module, _) = validate_composed(&composed, &label)?;
+    naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|e| VariantError {
+        variant: label.clone(),
+        stage: crate::validate::Stage::Validate,
+        message: format!("after compaction: {}", e.as_inner()),
+        labels: Vec::new(),
+        notes: Vec::new(),
+    })?;
+    naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty()).map_err(
+        |e| VariantError {
+            variant: label,
+            stage: crate::validate::Stage::Validate,
+            message: format!("naga's WGSL writer failed: {e}"),
+            labels: Vec::new(),
+            notes: Vec::new(),
+        },
+    )
+}
+
+/// A small covering set of a pass's variants, named: `all-off` (each set at its "none"
+/// option, or its first), each keyword alone (named by the keyword), and `all-on` (each set at
+/// its last option). Duplicates are removed; order is stable.
+pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
+    let base: Vec<u16> = pass
+        .sets
+        .iter()
+        .map(|s| s.none_index().unwrap_or(0) as u16)
+        .collect();
+    let mut out = vec![(
+        "all-off".to_string(),
+        Choice(base.clone().into_boxed_slice()),
+    )];
+    for (set, s) in pass.sets.iter().enumerate() {
+        for (option, name) in s.options.iter().enumerate() {
+            if let Some(name) = name
+                && option as u16 != base[set]
+            {
+                let mut c = base.clone();
+                c[set] = option as u16;
+                out.push((name.clone(), Choice(c.into_boxed_slice())));
+            }
+        }
+    }
+    out.push((
+        "all-on".to_string(),
+        Choice(pass.sets.iter().map(|s| s.len() as u16 - 1).collect()),
+    ));
+    let mut seen = std::collections::HashSet::new();
+    out.retain(|(_, c)| seen.insert(c.clone()));
+    out
+}
+
+fn file_safe(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect()
+}
+
+/// Canonical WGSL of the covering set of every pass, named `shader.pass.which`.
+pub fn covering_snapshots(lib: &Library) -> Result<Vec<Snapshot>, VariantError> {
+    let variants: Vec<(String, Variant<'_>)> = lib
+        .passes()
+        .flat_map(|pass| {
+            covering_set(pass).into_iter().map(move |(which, choice)| {
+                let name = format!(
+                    "{}.{}.{}",
+                    file_safe(&pass.shader),
+                    file_safe(&pass.name),
+                    file_safe(&which)
+                );
+                (name, Variant { pass, choice })
+            })
+        })
+        .collect();
+    variants
+        .par_iter()
+        .map(|(name, v)| {
+            Ok(Snapshot {
+                name: name.clone(),
+                text: canonical_wgsl(lib, v)?,
+            })
+        })
+        .collect()
+}
+
+/// A manifest of every variant of every pass's full space: one line per variant with its
+/// keyword set and a content hash of its canonical WGSL (BLAKE3, 16 hex digits), so a change to
+/// any variant shows in review. `budget` bounds the variants per pass.
+pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
+    let mut out = String::new();
+    for pass in lib.passes() {
+        let choices = Space::full(pass)
+            .enumerate(budget)
+            .map_err(|e| ManifestError::Budget(format!("{}/{}: {e}", pass.shader, pass.name)))?;
+        // Identical composed texts have identical canonical texts: hash each distinct one once.
+        let composed: Vec<String> = choices
+            .par_iter()
+            .map(|c| {
+                lib.wgsl(&Variant {
+                    pass,
+                    choice: c.clone(),
+                })
+            })
+            .collect();
+        let mut first: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        for (i, text) in composed.iter().enumerate() {
+            first.entry(text.as_str()).or_insert(i);
+        }
+        let mut distinct: Vec<usize> = first.values().copied().collect();
+        distinct.sort_unstable();
+        let hashes: Vec<(usize, String)> = distinct
+            .par_iter()
+            .map(|&i| {
+                let text = canonical_wgsl(
+                    lib,
+                    &Variant {
+                        pass,
+                        choice: choices[i].clone(),
+                    },
+                )?;
+                Ok((i, blake3::hash(text.as_bytes()).to_hex()[..16].to_string()))
+            })
+            .collect::<Result<_, VariantError>>()?;
+        let by_index: std::collections::HashMap<usize, &str> =
+            hashes.iter().map(|(i, h)| (*i, h.as_str())).collect();
+        out.push_str(&format!(
+            "# {}/{}: {} variants\n",
+            pass.shader,
+            pass.name,
+            choices.len()
+        ));
+        for (choice, text) in choices.iter().zip(&composed) {
+            let hash = by_index[&first[text.as_str()]];
+            out.push_str(&format!("{hash} {}\n", choice.label(pass)));
+        }
+    }
+    Ok(out)
+}
+
+/// Why a manifest could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum ManifestError {
+    /// A pass's full space is past the budget.
+    #[error("{0}")]
+    Budget(String),
+    /// A variant is invalid.
+    #[error(transparent)]
+    Invalid(#[from] VariantError),
+}
+
+/// Asserts insta snapshots of a library: the canonical WGSL of every pass's covering set
+/// ([`covering_set`]) and a manifest of every variant ([`manifest`]). Needs `insta` as a
+/// dev-dependency of the calling crate; snapshots land where insta puts them for that test.
+#[macro_export]
+macro_rules! assert_variant_snapshots {
+    ($lib:expr) => {{
+        let lib: &$crate::Library = $lib;
+        for snapshot in $crate::snapshot::covering_snapshots(lib)
+            .unwrap_or_else(|e| panic!("{}", e.diagnostic().render(lib.files(), false)))
+        {
+            ::insta::assert_snapshot!(snapshot.name, snapshot.text);
+        }
+        let manifest = $crate::snapshot::manifest(lib, 1_000_000).unwrap_or_else(|e| panic!("{e}"));
+        ::insta::assert_snapshot!("manifest", manifest);
+    }};
+}
