@@ -28,6 +28,7 @@
 
 #![deny(missing_docs)]
 
+pub mod cache;
 pub mod diagnostic;
 #[cfg(feature = "gpu")]
 pub mod gpu;

@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use num_bigint::BigUint;
 use rayon::prelude::*;
 
+use crate::cache::{Hash, ValidCache};
 use crate::diagnostic::{Diagnostic, Location, SourceFiles, Span};
 use crate::library::{Library, Variant};
 use crate::materials::{Material, MaterialsError};
@@ -275,47 +276,97 @@ pub fn variants_to_build(
         })
 }
 
-/// Validates one pass's variants; `progress(n)` is called as each distinct text is validated, with the number of variants that share it.
+/// Validates one pass's variants; `progress(n)` is called as each batch of `n` variants is done.
 pub fn validate_pass(
     lib: &Library,
     pass: &Pass,
     choices: &[Choice],
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    let composed: Vec<Composed> = choices
-        .par_iter()
-        .map(|c| {
-            lib.compose(&Variant {
-                pass,
-                choice: c.clone(),
+    validate_pass_with(lib, pass, choices, None, progress)
+}
+
+/// Variants composed and hashed per batch: memory stays flat however large the build set is.
+const BATCH: usize = 2048;
+
+struct Group {
+    first: usize,
+    members: u64,
+    error: Option<VariantError>,
+    failing: Vec<usize>,
+}
+
+/// [`validate_pass`] with an optional cache of texts known to be valid.
+///
+/// Variants are composed in parallel batches; each text is hashed (BLAKE3) and only the first
+/// variant with a given text is validated. Only hashes and failures are kept, never all the
+/// texts. Results are in enumeration order whatever the thread count.
+pub fn validate_pass_with(
+    lib: &Library,
+    pass: &Pass,
+    choices: &[Choice],
+    cache: Option<&ValidCache>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> PassReport {
+    let mut index: HashMap<Hash, usize> = HashMap::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for (batch, chunk) in choices.chunks(BATCH).enumerate() {
+        let start = batch * BATCH;
+        let composed: Vec<(Hash, Composed)> = chunk
+            .par_iter()
+            .map(|c| {
+                let composed = lib.compose(&Variant {
+                    pass,
+                    choice: c.clone(),
+                });
+                (crate::cache::hash(&composed.text), composed)
             })
-        })
-        .collect();
-    // Group identical texts: each distinct text is validated once. Groups are in order of
-    // first appearance, so results do not depend on thread count.
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    let mut by_text: HashMap<&str, usize> = HashMap::new();
-    for (i, c) in composed.iter().enumerate() {
-        let g = *by_text.entry(c.text.as_str()).or_insert_with(|| {
-            groups.push(Vec::new());
-            groups.len() - 1
-        });
-        groups[g].push(i);
-    }
-    let results: Vec<Option<VariantError>> = groups
-        .par_iter()
-        .map_init(new_validator, |validator, members| {
-            let first = members[0];
-            let label = Variant {
-                pass,
-                choice: choices[first].clone(),
+            .collect();
+        let mut member_of = Vec::with_capacity(chunk.len());
+        let mut fresh = Vec::new();
+        for (j, (h, _)) in composed.iter().enumerate() {
+            let g = *index.entry(*h).or_insert_with(|| {
+                groups.push(Group {
+                    first: start + j,
+                    members: 0,
+                    error: None,
+                    failing: Vec::new(),
+                });
+                fresh.push((groups.len() - 1, j));
+                groups.len() - 1
+            });
+            groups[g].members += 1;
+            member_of.push(g);
+        }
+        let results: Vec<Option<VariantError>> = fresh
+            .par_iter()
+            .map_init(new_validator, |validator, &(_, j)| {
+                let (hash, text) = &composed[j];
+                if cache.is_some_and(|c| c.contains(hash)) {
+                    return None;
+                }
+                let label = Variant {
+                    pass,
+                    choice: chunk[j].clone(),
+                }
+                .label();
+                let result = validate_with(text, &label, validator).err();
+                if let (None, Some(cache)) = (&result, cache) {
+                    cache.insert(*hash);
+                }
+                result
+            })
+            .collect();
+        for ((g, _), result) in fresh.iter().zip(results) {
+            groups[*g].error = result;
+        }
+        for (j, &g) in member_of.iter().enumerate() {
+            if groups[g].error.is_some() {
+                groups[g].failing.push(start + j);
             }
-            .label();
-            let result = validate_with(&composed[first], &label, validator).err();
-            progress(members.len() as u64);
-            result
-        })
-        .collect();
+        }
+        progress(chunk.len() as u64);
+    }
     let mut report = PassReport {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
@@ -326,12 +377,14 @@ pub fn validate_pass(
         invalid: 0,
         failures: Vec::new(),
     };
-    for (members, result) in groups.iter().zip(results) {
-        match result {
-            None => report.valid += members.len() as u64,
+    for group in groups {
+        match group.error {
+            None => report.valid += group.members,
             Some(error) => {
-                report.invalid += members.len() as u64;
-                let keyword_sets = members
+                report.invalid += group.members;
+                debug_assert_eq!(group.failing.first(), Some(&group.first));
+                let keyword_sets = group
+                    .failing
                     .iter()
                     .map(|&i| {
                         choices[i]

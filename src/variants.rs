@@ -247,3 +247,73 @@ impl<'p> Space<'p> {
         Ok(out)
     }
 }
+
+/// One of N shards of a build: variant number `i` (counted across all selected passes, in
+/// enumeration order) belongs to shard `i % N`. Written `K/N` with K from 1 to N, so a CI job
+/// matrix of N jobs covers every variant exactly once.
+///
+/// ```
+/// use wgsl_variants::variants::Shard;
+/// let s: Shard = "2/3".parse().unwrap();
+/// assert!(s.contains(1) && s.contains(4) && !s.contains(2));
+/// assert!("0/3".parse::<Shard>().is_err() && "4/3".parse::<Shard>().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// 0-based shard number.
+    pub index: u64,
+    /// Number of shards.
+    pub count: u64,
+}
+
+impl Shard {
+    /// Whether the variant with global number `i` is in this shard.
+    pub fn contains(&self, i: u64) -> bool {
+        i % self.count == self.index
+    }
+
+    /// Keeps this shard's variants of `plans` (per pass, in order), numbering across passes.
+    pub fn select<P>(&self, plans: Vec<(P, Vec<Choice>)>) -> Vec<(P, Vec<Choice>)> {
+        let mut next = 0u64;
+        plans
+            .into_iter()
+            .map(|(pass, choices)| {
+                let kept = choices
+                    .into_iter()
+                    .filter(|_| {
+                        let keep = self.contains(next);
+                        next += 1;
+                        keep
+                    })
+                    .collect();
+                (pass, kept)
+            })
+            .collect()
+    }
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Shard, String> {
+        let err = || format!("`{s}` is not a shard: write K/N with 1 <= K <= N, e.g. 2/4");
+        let (k, n) = s.split_once('/').ok_or_else(err)?;
+        let (k, n): (u64, u64) = (
+            k.trim().parse().map_err(|_| err())?,
+            n.trim().parse().map_err(|_| err())?,
+        );
+        if n == 0 || k == 0 || k > n {
+            return Err(err());
+        }
+        Ok(Shard {
+            index: k - 1,
+            count: n,
+        })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index + 1, self.count)
+    }
+}

@@ -173,3 +173,82 @@ fn materials_restrict_the_build_set() {
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("did you mean `_NORMAL_MAP`?"));
 }
+
+#[test]
+fn shards_partition_the_build_exactly() {
+    use wgsl_variants::validate::{ValidateOptions, variants_to_build};
+    use wgsl_variants::variants::Shard;
+    let lib = wgsl_variants::Library::bundled().unwrap();
+    let options = ValidateOptions {
+        all: true,
+        ..ValidateOptions::default()
+    };
+    let plans: Vec<_> = lib
+        .passes()
+        .map(|p| {
+            (
+                p.name.clone() + "@" + &p.shader,
+                variants_to_build(&lib, p, &options).unwrap(),
+            )
+        })
+        .collect();
+    let whole: Vec<(String, _)> = plans
+        .iter()
+        .flat_map(|(p, cs)| cs.iter().map(move |c| (p.clone(), c.clone())))
+        .collect();
+    let mut union = Vec::new();
+    for k in 1..=3 {
+        let shard: Shard = format!("{k}/3").parse().unwrap();
+        union.extend(
+            shard
+                .select(plans.clone())
+                .into_iter()
+                .flat_map(|(p, cs)| cs.into_iter().map(move |c| (p.clone(), c))),
+        );
+    }
+    assert_eq!(union.len(), whole.len(), "shards overlap or miss variants");
+    let mut sorted_union = union.clone();
+    sorted_union.sort();
+    sorted_union.dedup();
+    let mut sorted_whole = whole.clone();
+    sorted_whole.sort();
+    assert_eq!(sorted_union, sorted_whole);
+    // The CLI agrees: the shards' built counts add up to the whole.
+    let built: u64 = (1..=3)
+        .map(|k| {
+            json(&[
+                "validate",
+                "--all",
+                "--json",
+                "--no-cache",
+                "--shard",
+                &format!("{k}/3"),
+            ])["totals"]["built"]
+                .as_u64()
+                .unwrap()
+        })
+        .sum();
+    assert_eq!(built, whole.len() as u64);
+    assert_eq!(run(&["validate", "--shard", "4/3"]).status.code(), Some(2));
+}
+
+#[test]
+fn the_cache_changes_speed_not_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().to_str().unwrap();
+    let args = [
+        "validate", "--all", "--json", "--pass", "Deferred", "--cache", cache,
+    ];
+    let first = run(&args);
+    let files: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(files.len(), 1, "one cache file per crate and naga version");
+    assert_eq!(std::fs::metadata(&files[0]).unwrap().len(), 32 * 3072);
+    let second = run(&args);
+    assert_eq!(first.stdout, second.stdout);
+    // A damaged cache is ignored record by record, never trusted blindly.
+    std::fs::write(&files[0], b"garbage").unwrap();
+    assert_eq!(run(&args).stdout, first.stdout);
+}

@@ -74,6 +74,8 @@ enum Command {
         all: bool,
         #[command(flatten)]
         build: BuildArgs,
+        #[command(flatten)]
+        run: validate::RunArgs,
     },
     /// Print the final WGSL of one variant (validated first).
     Emit {
@@ -179,7 +181,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::List { materials } => list::run(&ctx, &materials),
-        Command::Validate { all, build } => validate::run(&ctx, all, &build),
+        Command::Validate { all, build, run } => validate::run(&ctx, all, &build, &run),
         Command::Emit {
             shader,
             pass,

@@ -1,13 +1,17 @@
 //! `wgsl-variants validate`.
 
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use serde::Serialize;
 use serde_json::value::RawValue;
 
 use wgsl_variants::validate::{
-    PassReport, ValidateOptions, select_passes, validate_pass, variants_to_build,
+    PassReport, ValidateOptions, select_passes, validate_pass_with, variants_to_build,
 };
+
+use wgsl_variants::cache::ValidCache;
+use wgsl_variants::variants::Shard;
 
 use super::output::{count, print_json, progress};
 use super::{BuildArgs, Context, Failed, load_materials};
@@ -47,6 +51,8 @@ pub struct Totals {
 struct ValidateOut {
     ok: bool,
     selection: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shard: Option<String>,
     passes: Vec<PassOut>,
     totals: Totals,
 }
@@ -56,6 +62,17 @@ pub fn build_reports(
     ctx: &Context,
     all: bool,
     build: &BuildArgs,
+) -> Result<Vec<PassReport>, Failed> {
+    build_reports_with(ctx, all, build, None, None)
+}
+
+/// [`build_reports`] for one shard, with a cache of valid texts.
+pub fn build_reports_with(
+    ctx: &Context,
+    all: bool,
+    build: &BuildArgs,
+    shard: Option<Shard>,
+    cache: Option<&ValidCache>,
 ) -> Result<Vec<PassReport>, Failed> {
     let options = ValidateOptions {
         all,
@@ -75,11 +92,14 @@ pub fn build_reports(
         })?;
         plans.push((pass, choices));
     }
+    if let Some(shard) = shard {
+        plans = shard.select(plans);
+    }
     let total: u64 = plans.iter().map(|p| p.1.len() as u64).sum();
     let bar = progress(total, "validating");
     let reports = plans
         .iter()
-        .map(|(pass, choices)| validate_pass(&ctx.lib, pass, choices, &|n| bar.inc(n)))
+        .map(|(pass, choices)| validate_pass_with(&ctx.lib, pass, choices, cache, &|n| bar.inc(n)))
         .collect();
     bar.finish_and_clear();
     Ok(reports)
@@ -109,8 +129,41 @@ pub fn pass_out(ctx: &Context, r: &PassReport) -> PassOut {
     }
 }
 
-pub fn run(ctx: &Context, all: bool, build: &BuildArgs) -> Result<ExitCode, Failed> {
-    let reports = build_reports(ctx, all, build)?;
+/// How `validate` runs: sharding and the cache of valid texts.
+#[derive(clap::Args, Debug, Clone)]
+pub struct RunArgs {
+    /// Build only shard K of N (variants numbered across passes; `K/N`, 1 <= K <= N).
+    #[arg(long, value_name = "K/N")]
+    shard: Option<Shard>,
+    /// Cache of validated texts [default: target/wgsl-variants-cache when ./target or
+    /// ./Cargo.toml exists].
+    #[arg(long, value_name = "DIR")]
+    cache: Option<PathBuf>,
+    /// Validate everything again; neither read nor write the cache.
+    #[arg(long, conflicts_with = "cache")]
+    no_cache: bool,
+}
+
+impl RunArgs {
+    fn cache_dir(&self) -> Option<PathBuf> {
+        if self.no_cache {
+            return None;
+        }
+        self.cache.clone().or_else(|| {
+            (Path::new("target").is_dir() || Path::new("Cargo.toml").is_file())
+                .then(|| PathBuf::from("target/wgsl-variants-cache"))
+        })
+    }
+}
+
+pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result<ExitCode, Failed> {
+    let cache = run.cache_dir().map(|dir| ValidCache::open(&dir));
+    let reports = build_reports_with(ctx, all, build, run.shard, cache.as_ref())?;
+    if let Some(cache) = &cache
+        && let Err(e) = cache.save()
+    {
+        eprintln!("warning: could not write the validation cache: {e}");
+    }
     let mut totals = Totals {
         passes: reports.len(),
         ..Totals::default()
@@ -127,6 +180,7 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs) -> Result<ExitCode, Fail
         print_json(&ValidateOut {
             ok,
             selection: if all { "full_space" } else { "build_set" },
+            shard: run.shard.map(|s| s.to_string()),
             passes,
             totals,
         })?;
