@@ -55,10 +55,17 @@ struct Composer<'g, 'a> {
 }
 
 impl Composer<'_, '_> {
+    /// Walks with an explicit stack: nesting depth (`#if` inside imports inside `#if` …) is
+    /// bounded by limits, but not by the thread's stack size.
     fn walk(&mut self, module: usize, nodes: &[Node]) {
         let graph = self.graph;
-        let parsed = &graph.modules[module];
-        for node in nodes {
+        let mut stack: Vec<(usize, &[Node])> = vec![(module, nodes)];
+        while let Some((module, nodes)) = stack.pop() {
+            let Some((node, rest)) = nodes.split_first() else {
+                continue;
+            };
+            stack.push((module, rest));
+            let parsed = &graph.modules[module];
             match node {
                 Node::Text(run) => {
                     let text = graph.files.text(parsed.file);
@@ -80,8 +87,7 @@ impl Composer<'_, '_> {
                         .iter()
                         .find(|(e, _)| e.eval(&lookup) != 0)
                         .map(|(_, b)| b);
-                    let body = taken.unwrap_or(&cond.otherwise);
-                    self.walk(module, body);
+                    stack.push((module, taken.unwrap_or(&cond.otherwise)));
                 }
                 Node::Define { name, value } => {
                     self.defines.insert(name.clone(), *value);
@@ -93,8 +99,7 @@ impl Composer<'_, '_> {
                     let target = graph.resolved[module][*index];
                     if !self.included[target] {
                         self.included[target] = true;
-                        let body = &graph.modules[target].body;
-                        self.walk(target, body);
+                        stack.push((target, &graph.modules[target].body));
                     }
                 }
             }

@@ -164,7 +164,10 @@ fn tokenize(text: &str, offset: usize, file: FileId) -> Result<Vec<(Tok, Span)>,
         }
         let span = |end: usize| Span::new(file, offset + start..offset + end);
         if c.is_ascii_digit() {
-            while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+            // Take `.` too, so `1.5` is reported as one literal that is not an integer.
+            while i < bytes.len()
+                && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_' || bytes[i] == b'.')
+            {
                 i += 1;
             }
             let lit = &text[start..i];
@@ -243,14 +246,19 @@ impl Parser {
         next: fn(&mut Parser) -> Result<Expr, ParseError>,
     ) -> Result<Expr, ParseError> {
         let mut lhs = next(self)?;
+        let depth = self.depth;
         while let Some(op) = self
             .peek_op()
             .and_then(|o| ops.iter().find(|(s, _)| *s == o))
         {
+            // A chain `a || b || c …` is a left-deep tree: each operator counts as a level.
+            let span = self.toks[self.pos].1;
+            self.enter(span)?;
             self.pos += 1;
             let rhs = next(self)?;
             lhs = Expr::Binary(op.1, Box::new(lhs), Box::new(rhs));
         }
+        self.depth = depth;
         Ok(lhs)
     }
 
@@ -280,7 +288,7 @@ impl Parser {
         self.depth += 1;
         if self.depth > self.max_depth {
             return Err(ParseError::TooDeep {
-                what: "expression",
+                what: "expression (parentheses, unary and binary operators)",
                 limit: self.max_depth,
                 span,
             });
@@ -426,5 +434,12 @@ mod tests {
             parse(&nots, 0, 0, 64),
             Err(ParseError::TooDeep { .. })
         ));
+        let chain = vec!["A"; 100_000].join(" || ");
+        assert!(matches!(
+            parse(&chain, 0, 0, 64),
+            Err(ParseError::TooDeep { .. })
+        ));
+        let ok = vec!["A"; 60].join(" && ");
+        assert_eq!(parse(&ok, 0, 0, 64).unwrap().eval(&|_: &str| Some(1)), 1);
     }
 }

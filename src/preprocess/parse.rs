@@ -51,7 +51,7 @@ pub fn parse_module(
     for (index, line) in scanned.iter().enumerate() {
         p.line(index as u32, line);
     }
-    p.finish_frames(Span::new(file, text.len()..text.len()));
+    p.finish_frames();
     if let Some(pass) = p.pass.take() {
         p.errors.push(ParseError::Unterminated {
             directive: "pass",
@@ -177,13 +177,18 @@ impl<'a> ModuleParser<'a> {
             self.span(args_start..args_start + args.len())
         };
         let result = match name {
-            "if" | "elif" => self.expr(args, args_start, name_span).map(|e| {
+            "if" | "elif" => {
+                // A bad expression still opens its branch, so the `#endif` that follows is
+                // not reported as unmatched too.
+                let result = self.expr(args, args_start, name_span);
+                let cond = result.clone().unwrap_or(Expr::Int(0));
                 if name == "if" {
-                    self.open("if", name_span, e)
+                    self.open("if", name_span, cond)
                 } else {
-                    self.elif(name_span, e)
+                    self.elif(name_span, cond)
                 }
-            }),
+                result.map(|_| ())
+            }
             "ifdef" | "ifndef" => self
                 .single_name(
                     if name == "ifdef" { "ifdef" } else { "ifndef" },
@@ -282,7 +287,8 @@ impl<'a> ModuleParser<'a> {
 
     fn open(&mut self, directive: &'static str, span: Span, cond: Expr) {
         self.seen_code = true;
-        if self.frames.len() >= self.limits.if_depth {
+        // Reported once, where the limit is first passed.
+        if self.frames.len() == self.limits.if_depth {
             self.errors.push(ParseError::TooDeep {
                 what: "`#if`",
                 limit: self.limits.if_depth,
@@ -362,15 +368,16 @@ impl<'a> ModuleParser<'a> {
         self.container().push(node);
     }
 
-    /// Reports every `#if` still open at `end` (end of file or `#endpass`) and closes them.
-    fn finish_frames(&mut self, end: Span) {
-        let _ = end;
-        while let Some(frame) = self.frames.pop() {
+    /// Reports the outermost `#if` still open (end of file or `#endpass`) and closes them all:
+    /// one error, however many are open.
+    fn finish_frames(&mut self) {
+        if let Some(frame) = self.frames.first() {
             self.errors.push(ParseError::Unterminated {
                 directive: frame.directive,
                 span: frame.span,
             });
         }
+        self.frames.clear();
     }
 
     fn define(&mut self, args: &str, span: Span) -> Result<(), ParseError> {
@@ -525,7 +532,7 @@ impl<'a> ModuleParser<'a> {
                 span,
             });
         }
-        self.finish_frames(span);
+        self.finish_frames();
         if let (Some(pass), Some(shader)) = (self.pass.take(), self.shader.as_mut()) {
             shader.passes.push(pass);
         }
