@@ -1,0 +1,57 @@
+// deferred/gbuffer: the built-in deferred path's G-buffer layout (docs/shading.md §1, §2, §7).
+//
+//   RT0 Rgba8Unorm    diffuse colour rgb, occlusion a
+//   RT1 Rgba8Unorm    specular colour rgb, smoothness a
+//   RT2 Rgb10a2Unorm  world normal · 0.5 + 0.5, a = 1
+//   RT3 Rgb10a2Unorm  exp2(-c) (LDR), or Rgba16Float c with UNITY_HDR_ON; a = 1
+//
+// Provides (no bindings):
+//   struct GBufferOutput { rt0, rt1, rt2, rt3: vec4f at @location(0..3) }
+//   fn gbuffer_encode_normal(n: vec3f) -> vec3f   normalize(n) · 0.5 + 0.5; zero length -> (0.5, 0.5, 1)
+//   fn gbuffer_decode_normal(rgb: vec3f) -> vec3f normalize(rgb · 2 - 1)
+//   fn gbuffer_pack(diffuse: vec3f, occlusion: f32, specular: vec3f, smoothness: f32,
+//                   normal: vec3f, c: vec3f) -> GBufferOutput
+//       RT3 = c under UNITY_HDR_ON, else ldr_encode(c).
+
+#import deferred/ldr
+
+struct GBufferOutput {
+    @location(0) rt0: vec4f,
+    @location(1) rt1: vec4f,
+    @location(2) rt2: vec4f,
+    @location(3) rt3: vec4f,
+}
+
+// normalize(n) · 0.5 + 0.5. A normal of zero length (or one whose squared length underflows
+// to 0, or a NaN) encodes as (0, 0, 1) -> (0.5, 0.5, 1).
+fn gbuffer_encode_normal(n: vec3f) -> vec3f {
+    let len2 = dot(n, n);
+    let unit = select(vec3f(0.0, 0.0, 1.0), normalize(n), len2 > 0.0);
+    return unit * 0.5 + 0.5;
+}
+
+// normalize(rgb · 2 - 1), as stored in RT2.
+fn gbuffer_decode_normal(rgb: vec3f) -> vec3f {
+    return normalize(rgb * 2.0 - 1.0);
+}
+
+// The four G-buffer targets of the Deferred pass: c is emission + ambient (+ reflections).
+fn gbuffer_pack(
+    diffuse: vec3f,
+    occlusion: f32,
+    specular: vec3f,
+    smoothness: f32,
+    normal: vec3f,
+    c: vec3f,
+) -> GBufferOutput {
+    var out: GBufferOutput;
+    out.rt0 = vec4f(diffuse, occlusion);
+    out.rt1 = vec4f(specular, smoothness);
+    out.rt2 = vec4f(gbuffer_encode_normal(normal), 1.0);
+#if UNITY_HDR_ON
+    out.rt3 = vec4f(c, 1.0);
+#else
+    out.rt3 = vec4f(ldr_encode(c), 1.0);
+#endif
+    return out;
+}

@@ -1,0 +1,116 @@
+// standard/my_lighting: the seed's "My Lighting" program for the standard shader's
+// ForwardBase (FORWARD_BASE_PASS) and Deferred (DEFERRED_PASS) passes (docs/shading.md §4-§7).
+//
+// Provides the entry points:
+//   @vertex   vs_main(VertexInput) -> VertexOutput
+//   @fragment fs_main(VertexOutput) -> GBufferOutput        (DEFERRED_PASS: RT0..RT3)
+//   @fragment fs_main(VertexOutput) -> @location(0) vec4f   (FORWARD_BASE_PASS)
+
+#import standard/bindings
+#import standard/surface
+#import lighting/brdf
+#import deferred/probe
+#import deferred/gbuffer
+
+struct VertexInput {
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) tangent: vec4f,
+    @location(3) uv: vec2f,
+}
+
+struct VertexOutput {
+    @builtin(position) clip_position: vec4f,
+    @location(0) world_position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) tangent: vec4f,
+    @location(3) uv: vec2f,
+}
+
+@vertex
+fn vs_main(in: VertexInput) -> VertexOutput {
+    var out: VertexOutput;
+    let world = object.model * vec4f(in.position, 1.0);
+    out.clip_position = camera.view_proj * world;
+    out.world_position = world.xyz;
+    out.normal = (object.normal_matrix * vec4f(in.normal, 0.0)).xyz;
+    out.tangent = vec4f((object.model * vec4f(in.tangent.xyz, 0.0)).xyz, in.tangent.w);
+    out.uv = in.uv;
+    return out;
+}
+
+#if defined(FORWARD_BASE_PASS) || (defined(DEFERRED_PASS) && !UNITY_ENABLE_REFLECTION_BUFFERS)
+// Two probes per object, blended by probe 0's weight t = box_min.w; probe 1 is sampled only
+// when t < 0.99999. The result is not yet multiplied by occlusion.
+fn my_lighting_probe_env(r: vec3f, p: vec3f, smoothness: f32) -> vec3f {
+    let mip = probe_mip_from_smoothness(smoothness);
+    let probe0 = probes.probe0;
+    let e0 = probe_sample(probe_cube0, probe_sampler, probe_box_project(r, p, probe0), mip, probe0.hdr);
+    let t = probe0.box_min.w;
+    var env = e0;
+    if t < PROBE_BLEND_ONLY_FIRST {
+        let probe1 = probes.probe1;
+        let e1 = probe_sample(probe_cube1, probe_sampler, probe_box_project(r, p, probe1), mip, probe1.hdr);
+        env = probe_forward_blend(e0, e1, t);
+    }
+    return env;
+}
+#endif
+
+@fragment
+#if defined(DEFERRED_PASS)
+fn fs_main(in: VertexOutput) -> GBufferOutput {
+#else
+fn fs_main(in: VertexOutput) -> @location(0) vec4f {
+#endif
+    let uv = in.uv;
+    let alpha = surface_alpha(uv);
+    surface_clip(alpha);
+
+    let n = surface_world_normal(uv, in.normal, in.tangent);
+    let v = brdf_view_dir(camera.position.xyz, in.world_position);
+    let albedo = surface_albedo(uv);
+    let metallic = surface_metallic(uv);
+    let smoothness = surface_smoothness(uv);
+    let occlusion = surface_occlusion(uv);
+    let emission = surface_emission(uv);
+
+    let setup = brdf_metallic_setup(albedo, metallic);
+    var diffuse = setup.diffuse;
+    var out_alpha = alpha;
+#if defined(_RENDERING_TRANSPARENT)
+    diffuse = brdf_premultiply_diffuse(diffuse, alpha);
+    out_alpha = brdf_premultiply_alpha(alpha, setup.one_minus_reflectivity);
+#endif
+
+    let indirect_diffuse = brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b) * occlusion;
+#if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS
+    // The per-pixel probes of internal/deferred_reflections add the indirect specular later.
+    let indirect_specular = vec3f(0.0);
+#else
+    let env = my_lighting_probe_env(brdf_reflect_dir(v, n), in.world_position, smoothness) * occlusion;
+    let indirect_specular =
+        brdf_indirect_specular(env, setup.spec_color, smoothness, setup.one_minus_reflectivity, n, v);
+#endif
+    let c = emission + diffuse * indirect_diffuse + indirect_specular;
+
+#if defined(DEFERRED_PASS)
+    // No direct light here: the deferred light passes add it to RT3.
+    return gbuffer_pack(diffuse, occlusion, setup.spec_color, smoothness, n, c);
+#else
+    let direct = brdf_direct(
+        diffuse,
+        setup.spec_color,
+        smoothness,
+        n,
+        v,
+        lighting.light_dir.xyz,
+        lighting.light_color.rgb,
+    );
+#if defined(_RENDERING_FADE) || defined(_RENDERING_TRANSPARENT)
+    return vec4f(c + direct, out_alpha);
+#else
+    return vec4f(c + direct, 1.0);
+#endif
+#endif
+}

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Fuzz every target for a fixed budget: `bash scripts/fuzz.sh [SECONDS_PER_TARGET]` (default 60).
+#
+# Targets (fuzz/fuzz_targets/, properties in fuzz/src/checks.rs): preprocess (directives of any
+# module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
+# imports). Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
+# saved under fuzz/artifacts/<target>/; copy it to fuzz/regressions/<target>/ and fix the bug:
+# `cargo test --test fuzz_regressions` replays every saved input.
+#
+# cargo-fuzz needs nightly compiler flags; RUSTC_BOOTSTRAP=1 lets the stable toolchain take them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
+export RUSTC_BOOTSTRAP=1
+summary=""
+for target in preprocess expr pragmas loader; do
+    corpus="fuzz/corpus/$target"
+    mkdir -p "$corpus"
+    cp -n fuzz/seeds/"$target"/* "$corpus"/ 2>/dev/null || true
+    log="$(mktemp)"
+    cargo fuzz run --release --sanitizer address "$target" "$corpus" -- \
+        -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 2>&1 | tee "$log" | grep -E "^(Done|==|SUMMARY|#[0-9]+ +(INITED|DONE))" || true
+    status=${PIPESTATUS[0]}
+    runs=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || echo 0)
+    summary+="fuzz $target: $runs executions in ${seconds}s, exit $status"$'\n'
+    rm -f "$log"
+    if [ "$status" != 0 ]; then
+        printf '%s' "$summary"
+        echo "fuzz target $target failed: see fuzz/artifacts/$target/" >&2
+        exit 1
+    fi
+done
+printf '%s' "$summary"

@@ -1,0 +1,54 @@
+//! Replays the fuzz seeds and every input the fuzzers ever found (`fuzz/regressions/<target>/`)
+//! through the same checks the fuzz targets run (`fuzz/src/checks.rs`).
+
+#[path = "../fuzz/src/checks.rs"]
+mod checks;
+
+use std::path::Path;
+
+fn inputs(kind: &str, target: &str) -> Vec<Vec<u8>> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz")
+        .join(kind)
+        .join(target);
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
+        .unwrap_or_default();
+    files.sort();
+    files
+        .into_iter()
+        .filter(|p| {
+            p.is_file()
+                && !p
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with("."))
+        })
+        .map(|p| std::fs::read(p).expect("read input"))
+        .collect()
+}
+
+#[test]
+fn fuzz_seeds_and_regressions_replay_cleanly() {
+    let targets: [(&str, fn(&[u8])); 4] = [
+        ("preprocess", checks::preprocess),
+        ("expr", checks::expr),
+        ("pragmas", checks::pragmas),
+        ("loader", checks::loader),
+    ];
+    let mut total = 0;
+    for (name, check) in targets {
+        let seeds = inputs("seeds", name);
+        assert!(!seeds.is_empty(), "no seeds for {name}");
+        let regressions = inputs("regressions", name);
+        for input in seeds.iter().chain(&regressions) {
+            check(input);
+        }
+        println!(
+            "fuzz {name}: {} seeds, {} regression inputs replayed",
+            seeds.len(),
+            regressions.len()
+        );
+        total += seeds.len() + regressions.len();
+    }
+    assert!(total > 0);
+}
