@@ -40,10 +40,10 @@ fn naga_version() -> String {
         };
         let mut lines = text.lines();
         while let Some(line) = lines.next() {
-            if line == "name = \"naga\"" {
-                if let Some(v) = lines.next().and_then(|l| l.strip_prefix("version = \"")) {
-                    return v.trim_end_matches('"').to_string();
-                }
+            if line == "name = \"naga\""
+                && let Some(v) = lines.next().and_then(|l| l.strip_prefix("version = \""))
+            {
+                return v.trim_end_matches('"').to_string();
             }
         }
     }

@@ -15,8 +15,25 @@ if ! ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1; then
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq mesa-vulkan-drivers >/dev/null
 fi
+# SPIRV-Tools' spirv-val and glslang's glslangValidator check the SPIR-V and GLSL that `emit`
+# writes (tests/emit.rs).
+if ! command -v spirv-val >/dev/null 2>&1 || ! command -v glslangValidator >/dev/null 2>&1; then
+    echo "== installing spirv-tools and glslang-tools for the emit tests"
+    sudo=""
+    if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq spirv-tools glslang-tools >/dev/null
+fi
 # Mesa's device-select layer complains about XDG_RUNTIME_DIR on headless machines; harmless.
 export NODEVICE_SELECT=1
 
 # --nocapture: the GPU tests print how much they compared.
 cargo test --release -- --nocapture
+
+# The examples (README "Using the shaders in your renderer"): a wgpu program that builds its
+# layouts from reflection and writes a PNG, and a crate whose build.rs bakes the library. The
+# crate has its own workspace; it shares this target folder.
+echo "== example: render_variant"
+cargo run --release --example render_variant -- target/render_variant.png
+echo "== example crate: examples/baked"
+CARGO_TARGET_DIR="$PWD/target" cargo run --release --manifest-path examples/baked/Cargo.toml

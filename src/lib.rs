@@ -6,7 +6,7 @@
 //! original `file:line:col` and the keyword set of the variant.
 //!
 //! The crate also bundles a deferred-shading library (`wgsl/`: G-buffer pass, LDR `exp2(-c)`
-//! encoding, reflection-probe blending), a CPU [`reference`] of its math, and a wgpu harness
+//! encoding, reflection-probe blending), a CPU [`reference`](mod@reference) of its math, and a wgpu harness
 //! ([`gpu`], feature `gpu`) that proves the WGSL against the reference.
 //!
 //! ```
@@ -28,8 +28,10 @@
 
 #![deny(missing_docs)]
 
+pub mod audit;
 pub mod cache;
 pub mod diagnostic;
+pub mod emit;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod keywords;
@@ -45,6 +47,8 @@ pub mod validate;
 pub mod variants;
 
 pub use diagnostic::{Diagnostic, Location, SourceFiles, Span};
+/// The `build.rs` API ([`emit::bake`]) and binding reflection ([`emit::reflect`]).
+pub use emit::{bake, reflect};
 pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use shader::{Pass, Shader};

@@ -283,39 +283,44 @@ pub fn validate_pass(
     choices: &[Choice],
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    validate_pass_with(lib, pass, choices, None, progress)
+    validate_pass_with(lib, pass, choices.iter().cloned(), None, progress)
 }
 
 /// Variants composed and hashed per batch: memory stays flat however large the build set is.
 const BATCH: usize = 2048;
 
-struct Group {
-    first: usize,
-    members: u64,
-    error: Option<VariantError>,
-    failing: Vec<usize>,
-}
-
-/// [`validate_pass`] with an optional cache of texts known to be valid.
+/// [`validate_pass`] over any sequence of variants (e.g. [`Space::iter`], never collected),
+/// with an optional cache of texts known to be valid.
 ///
 /// Variants are composed in parallel batches; each text is hashed (BLAKE3) and only the first
-/// variant with a given text is validated. Only hashes and failures are kept, never all the
-/// texts. Results are in enumeration order whatever the thread count.
+/// variant with a given text is validated. What is kept per distinct text is its hash and a
+/// count (about 40 bytes); texts are dropped batch by batch, and only failing variants are
+/// remembered. Results are in enumeration order whatever the thread count.
 pub fn validate_pass_with(
     lib: &Library,
     pass: &Pass,
-    choices: &[Choice],
+    choices: impl IntoIterator<Item = Choice>,
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    let mut index: HashMap<Hash, usize> = HashMap::new();
-    let mut groups: Vec<Group> = Vec::new();
-    for (batch, chunk) in choices.chunks(BATCH).enumerate() {
-        let start = batch * BATCH;
+    let mut index: HashMap<u128, usize> = HashMap::new();
+    let mut members: Vec<u64> = Vec::new();
+    // Failing groups, by group number (= order of first appearance): error and keyword sets.
+    let mut failing: std::collections::BTreeMap<usize, (VariantError, Vec<Choice>)> =
+        Default::default();
+    let mut choices = choices.into_iter();
+    let mut built = 0u64;
+    loop {
+        let chunk: Vec<Choice> = choices.by_ref().take(BATCH).collect();
+        if chunk.is_empty() {
+            break;
+        }
+        built += chunk.len() as u64;
         let composed: Vec<(Hash, Composed)> = chunk
             .par_iter()
             .map(|c| {
-                let composed = lib.compose(&Variant {
+                // No line map on the hot path: a failing text is composed again with it.
+                let composed = lib.compose_text(&Variant {
                     pass,
                     choice: c.clone(),
                 });
@@ -325,17 +330,13 @@ pub fn validate_pass_with(
         let mut member_of = Vec::with_capacity(chunk.len());
         let mut fresh = Vec::new();
         for (j, (h, _)) in composed.iter().enumerate() {
-            let g = *index.entry(*h).or_insert_with(|| {
-                groups.push(Group {
-                    first: start + j,
-                    members: 0,
-                    error: None,
-                    failing: Vec::new(),
-                });
-                fresh.push((groups.len() - 1, j));
-                groups.len() - 1
+            let key = u128::from_le_bytes(h[..16].try_into().unwrap_or_default());
+            let g = *index.entry(key).or_insert_with(|| {
+                members.push(0);
+                fresh.push((members.len() - 1, j));
+                members.len() - 1
             });
-            groups[g].members += 1;
+            members[g] += 1;
             member_of.push(g);
         }
         let results: Vec<Option<VariantError>> = fresh
@@ -345,12 +346,16 @@ pub fn validate_pass_with(
                 if cache.is_some_and(|c| c.contains(hash)) {
                     return None;
                 }
-                let label = Variant {
+                let variant = Variant {
                     pass,
                     choice: chunk[j].clone(),
-                }
-                .label();
-                let result = validate_with(text, &label, validator).err();
+                };
+                let result = match validate_with(text, &variant.label(), validator) {
+                    Ok(_) => None,
+                    Err(_) => {
+                        validate_with(&lib.compose(&variant), &variant.label(), validator).err()
+                    }
+                };
                 if let (None, Some(cache)) = (&result, cache) {
                     cache.insert(*hash);
                 }
@@ -358,48 +363,35 @@ pub fn validate_pass_with(
             })
             .collect();
         for ((g, _), result) in fresh.iter().zip(results) {
-            groups[*g].error = result;
-        }
-        for (j, &g) in member_of.iter().enumerate() {
-            if groups[g].error.is_some() {
-                groups[g].failing.push(start + j);
+            if let Some(error) = result {
+                failing.insert(*g, (error, Vec::new()));
             }
         }
-        progress(chunk.len() as u64);
+        for (choice, g) in chunk.into_iter().zip(member_of) {
+            if let Some((_, sets)) = failing.get_mut(&g) {
+                sets.push(choice);
+            }
+        }
+        progress(composed.len() as u64);
     }
-    let mut report = PassReport {
+    let invalid: u64 = failing.keys().map(|&g| members[g]).sum();
+    PassReport {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
         full_space: Space::full(pass).count(),
-        built: choices.len() as u64,
-        distinct: groups.len() as u64,
-        valid: 0,
-        invalid: 0,
-        failures: Vec::new(),
-    };
-    for group in groups {
-        match group.error {
-            None => report.valid += group.members,
-            Some(error) => {
-                report.invalid += group.members;
-                debug_assert_eq!(group.failing.first(), Some(&group.first));
-                let keyword_sets = group
-                    .failing
+        built,
+        distinct: members.len() as u64,
+        valid: built - invalid,
+        invalid,
+        failures: failing
+            .into_values()
+            .map(|(error, sets)| Failure {
+                error,
+                keyword_sets: sets
                     .iter()
-                    .map(|&i| {
-                        choices[i]
-                            .keywords(pass)
-                            .into_iter()
-                            .map(str::to_string)
-                            .collect()
-                    })
-                    .collect();
-                report.failures.push(Failure {
-                    error,
-                    keyword_sets,
-                });
-            }
-        }
+                    .map(|c| c.keywords(pass).into_iter().map(str::to_string).collect())
+                    .collect(),
+            })
+            .collect(),
     }
-    report
 }

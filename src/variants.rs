@@ -186,7 +186,7 @@ impl<'p> Space<'p> {
         }
     }
 
-    /// Every variant, in lexicographic order of set options, if there are at most `budget`.
+    /// Every variant, in [`Space::iter`] order, if there are at most `budget`.
     /// Cost is proportional to the result, whatever the size of the full space.
     pub fn enumerate(&self, budget: u64) -> Result<Vec<Choice>, BudgetError> {
         let count = self.count();
@@ -195,11 +195,14 @@ impl<'p> Space<'p> {
             .filter(|&n| n <= budget)
             .ok_or(BudgetError { count, budget })?;
         let mut out = Vec::with_capacity(n as usize);
-        if n == 0 {
-            return Ok(out);
-        }
-        // Free sets take every allowed option; with materials, shader_feature sets come from
-        // the material combinations instead.
+        out.extend(self.iter());
+        Ok(out)
+    }
+
+    /// The variants one at a time, without holding them: lexicographic order of set options
+    /// (last set fastest); with materials, each material combination of the `shader_feature`
+    /// sets in sorted order, then every `multi_compile` combination.
+    pub fn iter(&self) -> SpaceIter<'_> {
         let (free, fixed, combos): (Vec<usize>, Vec<usize>, Vec<Vec<u16>>) = match &self.features {
             None => (
                 (0..self.allowed.len()).collect(),
@@ -212,39 +215,61 @@ impl<'p> Space<'p> {
                 c.iter().cloned().collect(),
             ),
         };
+        let empty = self.allowed.iter().any(Vec::is_empty) || combos.is_empty();
+        SpaceIter {
+            allowed: &self.allowed,
+            digits: vec![0; free.len()],
+            free,
+            fixed,
+            combos,
+            combo: 0,
+            done: empty,
+        }
+    }
+}
+
+/// Iterator over a [`Space`]; see [`Space::iter`].
+#[derive(Clone, Debug)]
+pub struct SpaceIter<'s> {
+    allowed: &'s [Vec<u16>],
+    free: Vec<usize>,
+    fixed: Vec<usize>,
+    combos: Vec<Vec<u16>>,
+    combo: usize,
+    digits: Vec<usize>,
+    done: bool,
+}
+
+impl Iterator for SpaceIter<'_> {
+    type Item = Choice;
+
+    fn next(&mut self) -> Option<Choice> {
+        if self.done {
+            return None;
+        }
         let mut choice = vec![0u16; self.allowed.len()];
-        for combo in &combos {
-            for (&set, &o) in fixed.iter().zip(combo) {
-                choice[set] = o;
-            }
-            let mut digits = vec![0usize; free.len()];
-            loop {
-                for (&set, &d) in free.iter().zip(&digits) {
-                    choice[set] = self.allowed[set][d];
-                }
-                out.push(Choice(choice.clone().into_boxed_slice()));
-                // Odometer increment, last set fastest.
-                let mut i = free.len();
-                loop {
-                    if i == 0 {
-                        break;
-                    }
-                    i -= 1;
-                    digits[i] += 1;
-                    if digits[i] < self.allowed[free[i]].len() {
-                        break;
-                    }
-                    digits[i] = 0;
-                }
-                if digits.iter().all(|&d| d == 0) {
-                    break;
-                }
-            }
+        for (&set, &o) in self.fixed.iter().zip(&self.combos[self.combo]) {
+            choice[set] = o;
         }
-        if !fixed.is_empty() {
-            out.sort();
+        for (&set, &d) in self.free.iter().zip(&self.digits) {
+            choice[set] = self.allowed[set][d];
         }
-        Ok(out)
+        // Odometer increment, last set fastest; then the next material combination.
+        let mut i = self.free.len();
+        loop {
+            if i == 0 {
+                self.combo += 1;
+                self.done = self.combo == self.combos.len();
+                break;
+            }
+            i -= 1;
+            self.digits[i] += 1;
+            if self.digits[i] < self.allowed[self.free[i]].len() {
+                break;
+            }
+            self.digits[i] = 0;
+        }
+        Some(Choice(choice.into_boxed_slice()))
     }
 }
 

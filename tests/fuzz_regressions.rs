@@ -27,9 +27,12 @@ fn inputs(kind: &str, target: &str) -> Vec<Vec<u8>> {
         .collect()
 }
 
+/// A fuzz target: its name and its check.
+type Target = (&'static str, fn(&[u8]));
+
 #[test]
 fn fuzz_seeds_and_regressions_replay_cleanly() {
-    let targets: [(&str, fn(&[u8])); 4] = [
+    let targets: [Target; 4] = [
         ("preprocess", checks::preprocess),
         ("expr", checks::expr),
         ("pragmas", checks::pragmas),

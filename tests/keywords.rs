@@ -109,10 +109,11 @@ fn build_set_is_multi_compile_times_material_combinations() {
     assert_eq!(build.count(), BigUint::from(4u32));
     assert_eq!(
         labels(&lib, &build),
+        // Each material combination (sorted), then every multi_compile combination.
         [
             "{_SMOOTHNESS_METALLIC}",
-            "{_NORMAL_MAP}",
             "{UNITY_HDR_ON, _SMOOTHNESS_METALLIC}",
+            "{_NORMAL_MAP}",
             "{UNITY_HDR_ON, _NORMAL_MAP}"
         ]
     );

@@ -13,7 +13,7 @@ fn compose(body: &str, modules: &[(&str, &str)], keywords: &[&str]) -> String {
     let v = lib
         .variant("s", "P", keywords)
         .unwrap_or_else(|e| panic!("{e}"));
-    lib.wgsl(&v)
+    lib.compose(&v).text
 }
 
 fn lines(text: &str) -> Vec<&str> {

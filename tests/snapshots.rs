@@ -26,6 +26,16 @@ fn no_unreferenced_snapshots() {
         .map(|s| format!("{}.snap", s.name))
         .collect();
     expected.insert("manifest.snap".into());
+    // Reflection JSON (tests/reflect.rs, SNAPSHOTS).
+    for name in [
+        "reflect.standard.Deferred.all-off",
+        "reflect.standard.Deferred.maps-hdr-reflection-buffers",
+        "reflect.standard.ForwardBase.emission-occlusion",
+        "reflect.deferred_reflections.Reflections",
+        "reflect.deferred_final.Final",
+    ] {
+        expected.insert(format!("{name}.snap"));
+    }
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("snapshots");
     let mut stale = Vec::new();
     for entry in std::fs::read_dir(&dir).expect("snapshots/") {

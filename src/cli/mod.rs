@@ -1,9 +1,15 @@
 //! Command-line front end: argument parsing and dispatch. Each command lives in its own file.
 
 mod audit;
+#[cfg(feature = "gpu")]
+mod check_gpu;
 mod emit;
+mod export;
 mod list;
 mod output;
+mod reflect;
+#[cfg(feature = "gpu")]
+mod render;
 mod validate;
 
 use std::io::IsTerminal;
@@ -12,8 +18,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use wgsl_variants::Library;
 use wgsl_variants::materials::{self, Material};
+use wgsl_variants::{Library, LoadOptions};
 
 /// Unity-style shader variants for WGSL module trees, every variant validated by naga.
 #[derive(Parser, Debug)]
@@ -28,11 +34,45 @@ pub struct Cli {
     /// Colours in diagnostics.
     #[arg(long, global = true, value_enum, default_value_t = Color::Auto)]
     color: Color,
+    #[command(flatten)]
+    limits: Limits,
     /// Worker threads (default: one per core). Output does not depend on it.
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
+}
+
+/// Load limits: each has a clear error when passed.
+#[derive(clap::Args, Debug, Clone)]
+struct Limits {
+    /// Deepest `#if` nesting in a module.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().parse.if_depth)]
+    max_if_depth: usize,
+    /// Deepest expression nesting (parentheses and operators).
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().parse.expr_depth)]
+    max_expr_depth: usize,
+    /// Longest chain of imports.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().max_import_depth)]
+    max_import_depth: usize,
+    /// Most module files in the library.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().max_files)]
+    max_files: usize,
+    /// Most bytes of source in total.
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = LoadOptions::default().max_total_bytes)]
+    max_source_bytes: usize,
+}
+
+impl Limits {
+    fn options(&self) -> LoadOptions {
+        let mut o = LoadOptions::default();
+        o.parse.if_depth = self.max_if_depth;
+        o.parse.expr_depth = self.max_expr_depth;
+        o.max_import_depth = self.max_import_depth;
+        o.max_files = self.max_files;
+        o.max_total_bytes = self.max_source_bytes;
+        o
+    }
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -77,30 +117,23 @@ enum Command {
         #[command(flatten)]
         run: validate::RunArgs,
     },
-    /// Print the final WGSL of one variant (validated first).
-    Emit {
-        /// Shader name.
-        shader: String,
-        /// Pass name.
-        pass: String,
-        /// Keywords that are on, comma-separated.
-        #[arg(long, value_delimiter = ',', value_name = "A,B")]
-        keywords: Vec<String>,
-        /// Materials file: the variant must be in their build set.
-        #[arg(long, value_name = "FILE")]
-        materials: Option<PathBuf>,
-        /// If the exact variant is not built, use the closest one (Unity without strict matching).
-        #[arg(long)]
-        closest: bool,
-        /// Print the WGSL even if naga rejects it.
-        #[arg(long)]
-        no_validate: bool,
-    },
-    /// Variant counts per pass: full space, after skip_variants, build set, distinct, failures.
-    Audit {
-        #[command(flatten)]
-        build: BuildArgs,
-    },
+    /// Print one variant (validated first) as WGSL, GLSL, HLSL or MSL, or write a variant or
+    /// the whole build set through any back end (SPIR-V too) into --out DIR with manifest.json.
+    Emit(emit::EmitArgs),
+    /// The bind groups and bindings a variant uses: kind, size, stage visibility.
+    Reflect(reflect::ReflectArgs),
+    /// One module with its imports on its own: prefixed self-contained WGSL, or naga_oil's dialect.
+    Export(export::ExportArgs),
+    /// Variant counts per pass (full space, after skip_variants, build set, distinct), dead
+    /// keywords, a multiplier table per keyword set, budgets (--budget) and a chart (--chart).
+    Audit(audit::AuditArgs),
+    /// Render every variant of the bundled passes on the GPU (lavapipe is enough) and compare
+    /// every pixel, and compute kernels of the library's functions, with the CPU reference.
+    #[cfg(feature = "gpu")]
+    CheckGpu(check_gpu::CheckGpuArgs),
+    /// Render the GPU check's test scene and write PNG pictures (G-buffer, light, final frame).
+    #[cfg(feature = "gpu")]
+    Render(render::RenderArgs),
 }
 
 /// Everything a command needs: the library and how to print.
@@ -158,9 +191,10 @@ pub fn main() -> ExitCode {
         Color::Always => true,
         Color::Never => false,
     };
+    let options = cli.limits.options();
     let loaded = match &cli.root {
-        Some(root) => Library::from_dir(root),
-        None => Library::bundled(),
+        Some(root) => Library::from_dir_with(root, &options),
+        None => Library::from_raw(wgsl_variants::source::bundled_files(), &options),
     };
     let lib = match loaded {
         Ok(lib) => lib,
@@ -182,23 +216,14 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::List { materials } => list::run(&ctx, &materials),
         Command::Validate { all, build, run } => validate::run(&ctx, all, &build, &run),
-        Command::Emit {
-            shader,
-            pass,
-            keywords,
-            materials,
-            closest,
-            no_validate,
-        } => emit::run(
-            &ctx,
-            &shader,
-            &pass,
-            &keywords,
-            &materials,
-            closest,
-            !no_validate,
-        ),
-        Command::Audit { build } => audit::run(&ctx, &build),
+        Command::Emit(args) => emit::run(&ctx, &args),
+        Command::Reflect(args) => reflect::run(&ctx, &args),
+        Command::Export(args) => export::run(&ctx, &args),
+        Command::Audit(args) => audit::run(&ctx, &args),
+        #[cfg(feature = "gpu")]
+        Command::CheckGpu(args) => check_gpu::run(&ctx, &args),
+        #[cfg(feature = "gpu")]
+        Command::Render(args) => render::run(&ctx, &args),
     };
     match result {
         Ok(code) => code,

@@ -57,16 +57,8 @@ struct ValidateOut {
     totals: Totals,
 }
 
-/// Builds and validates the selected passes, with a progress bar on stderr.
-pub fn build_reports(
-    ctx: &Context,
-    all: bool,
-    build: &BuildArgs,
-) -> Result<Vec<PassReport>, Failed> {
-    build_reports_with(ctx, all, build, None, None)
-}
-
-/// [`build_reports`] for one shard, with a cache of valid texts.
+/// Builds and validates the selected passes (of one shard, with a cache of valid texts when
+/// given), with a progress bar on stderr.
 pub fn build_reports_with(
     ctx: &Context,
     all: bool,
@@ -99,7 +91,11 @@ pub fn build_reports_with(
     let bar = progress(total, "validating");
     let reports = plans
         .iter()
-        .map(|(pass, choices)| validate_pass_with(&ctx.lib, pass, choices, cache, &|n| bar.inc(n)))
+        .map(|(pass, choices)| {
+            validate_pass_with(&ctx.lib, pass, choices.iter().cloned(), cache, &|n| {
+                bar.inc(n)
+            })
+        })
         .collect();
     bar.finish_and_clear();
     Ok(reports)

@@ -62,4 +62,8 @@ pub enum GpuError {
         /// The timeout that expired, in seconds.
         seconds: f64,
     },
+    /// The GPU check cannot run as asked (an unknown shader or pass, a keyword set the
+    /// reference does not know, a kernel library that does not compose, ...).
+    #[error("GPU check: {0}")]
+    Check(String),
 }

@@ -242,6 +242,17 @@ impl Library {
 
     /// Composes a variant: the final WGSL text and its map back to the original files.
     pub fn compose(&self, variant: &Variant<'_>) -> Composed {
+        self.compose_with(variant, true)
+    }
+
+    /// The lean composition of a variant: the same program as [`Library::compose`] without
+    /// blank and comment-only lines and without the line map (for hashing and validating;
+    /// compose again with the map to locate an error).
+    pub fn compose_text(&self, variant: &Variant<'_>) -> Composed {
+        self.compose_with(variant, false)
+    }
+
+    fn compose_with(&self, variant: &Variant<'_>, with_map: bool) -> Composed {
         let graph = ModuleGraph {
             modules: &self.modules,
             resolved: &self.resolved,
@@ -252,11 +263,23 @@ impl Library {
             variant.pass.module,
             &variant.pass.body,
             variant.choice.defines(variant.pass),
+            with_map,
         )
     }
 
-    /// The final WGSL text of a variant.
+    /// The parsed modules with their imports resolved (module ids index
+    /// [`Library::module_paths`]), e.g. to compose or export a module on its own.
+    pub fn module_graph(&self) -> ModuleGraph<'_> {
+        ModuleGraph {
+            modules: &self.modules,
+            resolved: &self.resolved,
+            files: &self.files,
+        }
+    }
+
+    /// The final WGSL text of a variant, lean: blank and comment-only lines left out (use
+    /// [`Library::compose`] for the text with every line and its map to the sources).
     pub fn wgsl(&self, variant: &Variant<'_>) -> String {
-        self.compose(variant).text
+        self.compose_text(variant).text
     }
 }

@@ -30,16 +30,23 @@ pub struct Composed {
 ///
 /// Each module is emitted once, at its first import; later imports of it are no-ops.
 /// Directive lines produce no output.
+///
+/// With `with_map` false the composition is *lean*: blank and comment-only lines are left out
+/// and no line map is kept. The program is the same (half the bytes for naga to lex in the
+/// bundled library); a caller that hashes or validates the lean text composes again, with the
+/// map, to locate an error.
 pub fn compose(
     graph: &ModuleGraph<'_>,
     module: usize,
     body: &[Node],
     defines: HashMap<Box<str>, i64>,
+    with_map: bool,
 ) -> Composed {
     let mut c = Composer {
         graph,
         defines,
         included: vec![false; graph.modules.len()],
+        with_map,
         out: Composed::default(),
     };
     c.out.text.reserve(16 * 1024);
@@ -51,6 +58,7 @@ struct Composer<'g, 'a> {
     graph: &'g ModuleGraph<'a>,
     defines: HashMap<Box<str>, i64>,
     included: Vec<bool>,
+    with_map: bool,
     out: Composed,
 }
 
@@ -69,10 +77,20 @@ impl Composer<'_, '_> {
             match node {
                 Node::Text(run) => {
                     let text = graph.files.text(parsed.file);
-                    for line in &parsed.lines[run.start as usize..run.end as usize] {
-                        self.out
-                            .map
-                            .push(self.out.text.len(), parsed.file, line.start as usize);
+                    for (line, &comment_only) in parsed.lines[run.start as usize..run.end as usize]
+                        .iter()
+                        .zip(&parsed.comment_only[run.start as usize..run.end as usize])
+                    {
+                        if !self.with_map && comment_only {
+                            continue;
+                        }
+                        if self.with_map {
+                            self.out.map.push(
+                                self.out.text.len(),
+                                parsed.file,
+                                line.start as usize,
+                            );
+                        }
                         self.out
                             .text
                             .push_str(&text[line.start as usize..line.end as usize]);

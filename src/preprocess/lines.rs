@@ -13,6 +13,9 @@ pub struct Line {
     /// For a directive line: byte range of the directive text after `#`, without a trailing
     /// `//` comment or blanks.
     pub directive: Option<Range<usize>>,
+    /// A WGSL line that holds nothing but blanks or a `//` comment (outside block comments):
+    /// dropping it changes no program.
+    pub comment_only: bool,
 }
 
 /// Splits `text` into lines and classifies each one.
@@ -24,6 +27,7 @@ pub fn scan(text: &str) -> Vec<Line> {
         let end = start + piece.strip_suffix('\n').map_or(piece.len(), str::len);
         let line = &text[start..end];
         let trimmed = line.trim_start();
+        let comment_only = trimmed.is_empty() || (depth == 0 && trimmed.starts_with("//"));
         let directive = if depth == 0 && trimmed.starts_with('#') {
             let body_start = end - trimmed.len() + 1;
             let body = &text[body_start..end];
@@ -35,6 +39,7 @@ pub fn scan(text: &str) -> Vec<Line> {
         };
         lines.push(Line {
             range: start..end,
+            comment_only: comment_only && directive.is_none(),
             directive,
         });
         start += piece.len();

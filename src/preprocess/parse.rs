@@ -65,9 +65,11 @@ pub fn parse_module(
         .iter()
         .map(|l| l.range.start as u32..l.range.end as u32)
         .collect();
+    let comment_only = scanned.iter().map(|l| l.comment_only).collect();
     Ok(ParsedModule {
         file,
         lines,
+        comment_only,
         body: p.root,
         imports: p.imports,
         shader: p.shader,

@@ -113,6 +113,8 @@ pub struct ParsedModule {
     pub file: FileId,
     /// Byte range of each line.
     pub lines: Vec<Range<u32>>,
+    /// Whether each line is blank or only a `//` comment (left out of lean compositions).
+    pub comment_only: Vec<bool>,
     /// Body of a plain module (empty for a shader file).
     pub body: Vec<Node>,
     /// Every `#import` in the file, in order.

@@ -40,8 +40,11 @@ pub const RGB10A2: [u32; 4] = [10, 10, 10, 2];
 
 /// RT2's colour for a world normal: `normalize(n) · 0.5 + 0.5`.
 ///
-/// A normal that cannot be normalized (zero length, or so small or large that its length is not
-/// a finite non-zero number, or NaN) is taken as (0, 0, 1), which encodes as (0.5, 0.5, 1).
+/// Every finite non-zero normal is normalized, including tiny and huge ones whose squared
+/// length under- or overflows `f32` (the direction is computed in `f64`, where it does not).
+/// The zero normal is taken as (0, 0, 1), which encodes as (0.5, 0.5, 1); so is a normal with
+/// an infinite or NaN component, for which `normalize` defines nothing. (A GPU may flush
+/// subnormal components to zero; such normals are not comparable.)
 ///
 /// ```
 /// use glam::Vec3;
@@ -49,9 +52,15 @@ pub const RGB10A2: [u32; 4] = [10, 10, 10, 2];
 /// assert_eq!(encode_normal(Vec3::new(0.0, 0.0, 5.0)), Vec3::new(0.5, 0.5, 1.0));
 /// assert_eq!(encode_normal(Vec3::NEG_X), Vec3::new(0.0, 0.5, 0.5));
 /// assert_eq!(encode_normal(Vec3::ZERO), Vec3::new(0.5, 0.5, 1.0));
+/// assert_eq!(encode_normal(Vec3::new(0.0, -1.0e30, 0.0)), Vec3::new(0.5, 0.0, 0.5));
 /// ```
 pub fn encode_normal(n: Vec3) -> Vec3 {
-    n.normalize_or(Vec3::Z) * 0.5 + 0.5
+    let unit = if n.is_finite() && n != Vec3::ZERO {
+        n.as_dvec3().normalize().as_vec3()
+    } else {
+        Vec3::Z
+    };
+    unit * 0.5 + 0.5
 }
 
 /// The world normal from RT2's colour: `normalize(rgb · 2 − 1)`.
@@ -320,7 +329,25 @@ mod tests {
             encode_normal(Vec3::new(f32::NAN, 0.0, 0.0)),
             Vec3::new(0.5, 0.5, 1.0)
         );
-        assert_eq!(encode_normal(Vec3::splat(1e-30)), Vec3::new(0.5, 0.5, 1.0));
+        // Tiny and huge normals are normalized like any other (their squared length under- or
+        // overflows f32).
+        let diagonal = Vec3::splat(1.0 / 3f32.sqrt()) * 0.5 + 0.5;
+        assert!(
+            (encode_normal(Vec3::splat(1e-30)) - diagonal)
+                .abs()
+                .max_element()
+                < 1e-7
+        );
+        assert!(
+            (encode_normal(Vec3::splat(-3e30)) - (1.0 - diagonal))
+                .abs()
+                .max_element()
+                < 1e-7
+        );
+        assert_eq!(
+            encode_normal(Vec3::new(f32::MAX, 0.0, 0.0)),
+            Vec3::new(1.0, 0.5, 0.5)
+        );
         assert_eq!(
             encode_normal(Vec3::new(f32::INFINITY, 0.0, 0.0)),
             Vec3::new(0.5, 0.5, 1.0)

@@ -7,7 +7,7 @@
 //
 // Provides (no bindings):
 //   struct GBufferOutput { rt0, rt1, rt2, rt3: vec4f at @location(0..3) }
-//   fn gbuffer_encode_normal(n: vec3f) -> vec3f   normalize(n) · 0.5 + 0.5; zero length -> (0.5, 0.5, 1)
+//   fn gbuffer_encode_normal(n: vec3f) -> vec3f   normalize(n) · 0.5 + 0.5; zero or non-finite -> (0.5, 0.5, 1)
 //   fn gbuffer_decode_normal(rgb: vec3f) -> vec3f normalize(rgb · 2 - 1)
 //   fn gbuffer_pack(diffuse: vec3f, occlusion: f32, specular: vec3f, smoothness: f32,
 //                   normal: vec3f, c: vec3f) -> GBufferOutput
@@ -22,12 +22,19 @@ struct GBufferOutput {
     @location(3) rt3: vec4f,
 }
 
-// normalize(n) · 0.5 + 0.5. A normal of zero length (or one whose squared length underflows
-// to 0, or a NaN) encodes as (0, 0, 1) -> (0.5, 0.5, 1).
+// normalize(n) · 0.5 + 0.5. The normal is divided by its largest |component| first, so that
+// tiny and huge normals (whose squared length under- or overflows f32) normalize like any
+// other. A zero normal, and one with an infinite or NaN component, encodes as (0, 0, 1) ->
+// (0.5, 0.5, 1). Integer tests on the bits: comparisons with NaN may be folded by compilers.
 fn gbuffer_encode_normal(n: vec3f) -> vec3f {
-    let len2 = dot(n, n);
-    let unit = select(vec3f(0.0, 0.0, 1.0), normalize(n), len2 > 0.0);
-    return unit * 0.5 + 0.5;
+    let magnitude = bitcast<vec3u>(n) & vec3u(0x7fffffffu);
+    let finite = all(magnitude < vec3u(0x7f800000u));
+    // For finite values the bit patterns order like the magnitudes.
+    let largest = bitcast<f32>(max(max(magnitude.x, magnitude.y), magnitude.z));
+    if !finite || largest == 0.0 {
+        return vec3f(0.5, 0.5, 1.0);
+    }
+    return normalize(n / largest) * 0.5 + 0.5;
 }
 
 // normalize(rgb · 2 - 1), as stored in RT2.

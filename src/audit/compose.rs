@@ -1,0 +1,175 @@
+//! Composing a variant as a sequence of line ids, recording where each audited region went.
+//!
+//! This is [`crate::preprocess::compose::compose`] with two differences: every output line is
+//! an id (equal ids ⟺ equal line text, so equal id sequences ⟺ equal composed text), and the
+//! output range of each region found by the static analysis is recorded.
+
+use std::collections::HashMap;
+
+use crate::preprocess::compose::ModuleGraph;
+use crate::preprocess::tree::Node;
+use crate::shader::Pass;
+
+/// Every line of every module, interned: two lines have the same id iff their text is equal.
+pub(crate) struct LineIds {
+    /// For each module, the id of each of its lines.
+    pub per_module: Vec<Vec<u32>>,
+}
+
+impl LineIds {
+    /// Interns every line of the library.
+    pub fn new(graph: &ModuleGraph<'_>) -> LineIds {
+        let mut index: HashMap<&str, u32> = HashMap::new();
+        let per_module = graph
+            .modules
+            .iter()
+            .map(|m| {
+                let text = graph.files.text(m.file);
+                m.lines
+                    .iter()
+                    .zip(&m.comment_only)
+                    .map(|(r, &comment_only)| {
+                        // Blank and comment-only lines are no code: they never tell variants apart.
+                        if comment_only {
+                            return NO_CODE;
+                        }
+                        let line = &text[r.start as usize..r.end as usize];
+                        let next = index.len() as u32;
+                        *index.entry(line).or_insert(next)
+                    })
+                    .collect()
+            })
+            .collect();
+        LineIds { per_module }
+    }
+}
+
+/// The id of a blank or comment-only line, which composition leaves out (as the lean text of
+/// [`crate::Library::wgsl`] does).
+pub(crate) const NO_CODE: u32 = u32::MAX;
+
+/// The identity of a parsed node (its address; nodes do not move while a library lives).
+pub(crate) fn node_key(node: &Node) -> usize {
+    node as *const Node as usize
+}
+
+/// Composes variants of one pass into line ids.
+pub(crate) struct IdComposer<'a> {
+    /// The library's modules.
+    pub graph: &'a ModuleGraph<'a>,
+    /// Interned lines.
+    pub ids: &'a LineIds,
+    /// Region root nodes (by [`node_key`]) and their slot index.
+    pub regions: &'a HashMap<usize, usize>,
+    /// Number of slots (regions and constant runs).
+    pub slots: usize,
+}
+
+/// One composed variant: its lines and, per region slot, its output range.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct IdText {
+    /// The composed lines.
+    pub lines: Vec<u32>,
+    /// `(start, end)` in `lines` for each region slot; unused for constant slots.
+    pub spans: Vec<(u32, u32)>,
+}
+
+impl IdComposer<'_> {
+    /// Composes `pass` with `choice` (one option per set).
+    pub fn compose(&self, pass: &Pass, choice: &[u16]) -> IdText {
+        let defines: HashMap<Box<str>, i64> = choice
+            .iter()
+            .zip(&pass.sets)
+            .filter_map(|(&o, s)| s.options[o as usize].as_deref())
+            .map(|k| (Box::from(k), 1))
+            .collect();
+        let mut walk = Walk {
+            c: self,
+            defines,
+            included: vec![false; self.graph.modules.len()],
+            out: IdText {
+                lines: Vec::with_capacity(1024),
+                spans: vec![(0, 0); self.slots],
+            },
+        };
+        walk.walk(pass.module, &pass.body);
+        walk.out
+    }
+}
+
+struct Walk<'c, 'a> {
+    c: &'c IdComposer<'a>,
+    defines: HashMap<Box<str>, i64>,
+    included: Vec<bool>,
+    out: IdText,
+}
+
+enum Frame<'n> {
+    /// Nodes left to walk in a module.
+    Nodes(usize, &'n [Node]),
+    /// The end of a region's output.
+    End(usize),
+}
+
+impl Walk<'_, '_> {
+    /// Walks with an explicit stack, like the preprocessor: nesting is bounded by the load
+    /// limits, not by the thread's stack.
+    fn walk(&mut self, module: usize, nodes: &[Node]) {
+        let graph = self.c.graph;
+        let mut stack = vec![Frame::Nodes(module, nodes)];
+        while let Some(frame) = stack.pop() {
+            let (module, nodes) = match frame {
+                Frame::End(slot) => {
+                    self.out.spans[slot].1 = self.out.lines.len() as u32;
+                    continue;
+                }
+                Frame::Nodes(module, nodes) => (module, nodes),
+            };
+            let Some((node, rest)) = nodes.split_first() else {
+                continue;
+            };
+            stack.push(Frame::Nodes(module, rest));
+            if matches!(node, Node::If(_) | Node::Import(_))
+                && let Some(&slot) = self.c.regions.get(&node_key(node))
+            {
+                let here = self.out.lines.len() as u32;
+                self.out.spans[slot] = (here, here);
+                stack.push(Frame::End(slot));
+            }
+            match node {
+                Node::Text(run) => {
+                    let ids = &self.c.ids.per_module[module];
+                    self.out.lines.extend(
+                        ids[run.start as usize..run.end as usize]
+                            .iter()
+                            .copied()
+                            .filter(|&id| id != NO_CODE),
+                    );
+                }
+                Node::If(cond) => {
+                    let defines = &self.defines;
+                    let lookup = |n: &str| defines.get(n).copied();
+                    let taken = cond
+                        .branches
+                        .iter()
+                        .find(|(e, _)| e.eval(&lookup) != 0)
+                        .map(|(_, b)| b);
+                    stack.push(Frame::Nodes(module, taken.unwrap_or(&cond.otherwise)));
+                }
+                Node::Define { name, value } => {
+                    self.defines.insert(name.clone(), *value);
+                }
+                Node::Undef { name } => {
+                    self.defines.remove(name);
+                }
+                Node::Import(index) => {
+                    let target = graph.resolved[module][*index];
+                    if !self.included[target] {
+                        self.included[target] = true;
+                        stack.push(Frame::Nodes(target, &graph.modules[target].body));
+                    }
+                }
+            }
+        }
+    }
+}

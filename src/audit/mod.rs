@@ -1,0 +1,152 @@
+//! The variant-explosion audit: per pass, the stage counts, the number of *distinct* variants
+//! (keyword sets whose composed code is identical count once), dead keywords, keywords that
+//! matter only together, and a per-set multiplier table with suggestions.
+//!
+//! Everything is exact and nothing enumerates the space: a static walk of the pass's
+//! composition tree finds which keyword sets can change which part of the text, each small
+//! group of coupled sets is enumerated on its own, and a check on the region outputs proves
+//! that the distinct count is their product (see [`Method`]). Nothing here runs naga.
+//!
+//! ```
+//! use wgsl_variants::{Library, audit};
+//!
+//! let lib = Library::bundled().unwrap();
+//! let pass = lib.pass("standard", "Deferred").unwrap();
+//! let report = audit::audit_pass(&lib, pass, &audit::AuditOptions::default()).unwrap();
+//! assert_eq!(report.full_space, 3072u32.into());
+//! assert_eq!(report.distinct.count, 3072u32.into());
+//! assert!(report.distinct.exact && report.dead_keywords.is_empty());
+//! ```
+
+mod bits;
+pub mod budget;
+pub mod chart;
+mod compose;
+mod deps;
+mod distinct;
+mod domain;
+mod findings;
+mod report;
+
+use rayon::prelude::*;
+
+use crate::library::Library;
+use crate::materials::{self, Material, MaterialsError};
+use crate::shader::Pass;
+
+use compose::LineIds;
+use distinct::Limits;
+use domain::Domain;
+
+pub use report::{CodeGroup, Distinct, PassAudit, SetAudit, Together};
+
+/// How a distinct count was obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Exact: the product over components of coupled keyword sets, each enumerated on its
+    /// own, with the composed text proven to be an unambiguous concatenation of their regions.
+    Components,
+    /// Exact: every variant of the stage was composed and compared.
+    Enumeration,
+    /// An upper bound: a component was too large to enumerate and so was the whole stage.
+    Bound,
+}
+
+/// What to audit against, and the limits of the analysis.
+#[derive(Clone, Debug)]
+pub struct AuditOptions {
+    /// Materials for the `shader_feature` stripping stage (the build set).
+    pub materials: Option<Vec<Material>>,
+    /// Most assignments enumerated for one group of coupled keyword sets.
+    pub component_limit: u64,
+    /// Most variants composed when the groups cannot give an exact count (the whole stage is
+    /// then enumerated if it has at most this many variants; otherwise a bound is reported).
+    pub enumeration_limit: u64,
+}
+
+impl Default for AuditOptions {
+    fn default() -> Self {
+        AuditOptions {
+            materials: None,
+            component_limit: 1 << 16,
+            enumeration_limit: 1_000_000,
+        }
+    }
+}
+
+/// Audits one pass.
+pub fn audit_pass(
+    lib: &Library,
+    pass: &Pass,
+    options: &AuditOptions,
+) -> Result<PassAudit, MaterialsError> {
+    let ids = LineIds::new(&lib.module_graph());
+    audit_with(lib, &ids, pass, options)
+}
+
+/// Audits several passes (in parallel; the result is in the order given).
+pub fn audit_passes(
+    lib: &Library,
+    passes: &[&Pass],
+    options: &AuditOptions,
+) -> Result<Vec<PassAudit>, MaterialsError> {
+    if let Some(m) = &options.materials {
+        materials::check(m, lib.shaders())?;
+    }
+    let ids = LineIds::new(&lib.module_graph());
+    passes
+        .par_iter()
+        .map(|p| audit_with(lib, &ids, p, options))
+        .collect()
+}
+
+fn audit_with(
+    lib: &Library,
+    ids: &LineIds,
+    pass: &Pass,
+    options: &AuditOptions,
+) -> Result<PassAudit, MaterialsError> {
+    let graph = lib.module_graph();
+    let limits = Limits {
+        component: options.component_limit,
+        whole: options.enumeration_limit,
+    };
+    let features = match &options.materials {
+        None => None,
+        Some(m) => {
+            materials::check(m, lib.shaders())?;
+            Some(materials::feature_combinations(pass, m)?)
+        }
+    };
+    let analyse = |d: Domain| distinct::analyze(&graph, ids, pass, d, limits);
+    let full = analyse(Domain::full(pass));
+    let skip_domain = Domain::after_skip(pass);
+    let after = if skip_domain == full.domain {
+        full.clone()
+    } else {
+        analyse(skip_domain)
+    };
+    let build_domain = Domain::build(pass, features);
+    let build = if build_domain == after.domain {
+        after.clone()
+    } else {
+        analyse(build_domain)
+    };
+    let used = options.materials.as_ref().map(|m| used_keywords(pass, m));
+    Ok(report::assemble(pass, &full, &after, &build, used))
+}
+
+/// Keywords of `pass` that some material of its shader enables.
+fn used_keywords(pass: &Pass, materials: &[Material]) -> Vec<String> {
+    let mut used: Vec<String> = materials
+        .iter()
+        .filter(|m| m.shader == pass.shader)
+        .flat_map(|m| m.keywords.iter())
+        .filter(|k| pass.keyword(k).is_some())
+        .cloned()
+        .collect();
+    used.sort();
+    used.dedup();
+    used
+}

@@ -1,0 +1,385 @@
+//! The audit's result types, assembled from the stage analyses.
+
+use num_bigint::BigUint;
+
+use crate::preprocess::tree::SetKind;
+use crate::shader::Pass;
+
+use super::Method;
+use super::distinct::{Analysis, Component};
+use super::findings::{SetFindings, base_option, findings};
+
+/// Most classes listed per group of identical code, and members listed per class.
+const MAX_CLASSES: usize = 32;
+const MAX_MEMBERS: usize = 16;
+
+/// A distinct-variant count.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Distinct {
+    /// Number of distinct composed texts (an upper bound when not `exact`).
+    pub count: BigUint,
+    /// Whether `count` is exact.
+    pub exact: bool,
+    /// How it was obtained.
+    pub method: Method,
+}
+
+/// A keyword that changes code only when other keywords are on.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Together {
+    /// The keyword.
+    pub keyword: String,
+    /// The smallest sets of other keywords with which turning it on changes code (at most
+    /// eight are listed).
+    pub with: Vec<Vec<String>>,
+}
+
+/// Keyword sets whose choices, everything else equal, can generate identical code.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CodeGroup {
+    /// The keywords of the sets involved.
+    pub keywords: Vec<String>,
+    /// Number of assignments of those sets in the stage.
+    pub variants: BigUint,
+    /// Number of distinct codes among them.
+    pub distinct: u64,
+    /// The assignments that share code: each entry is one code, listing the keyword sets
+    /// (keywords on among `keywords`) that generate it. Only codes shared by two or more
+    /// assignments; at most 32 codes and 16 keyword sets each are listed.
+    pub shared: Vec<Vec<Vec<String>>>,
+    /// Number of codes shared by two or more assignments (listed or not).
+    pub shared_total: usize,
+}
+
+/// One keyword set in the multiplier table.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SetAudit {
+    /// The pragma as written, e.g. `shader_feature _ _NORMAL_MAP`.
+    pub declaration: String,
+    /// Its keywords, space-separated (the set's name in tables).
+    pub name: String,
+    /// `multi_compile` or `shader_feature`.
+    pub kind: SetKind,
+    /// Its options (`_` for "none").
+    pub options: Vec<String>,
+    /// How much it multiplies the full space (its number of options).
+    pub factor: usize,
+    /// Options left after `skip_variants`.
+    pub after_filtering: usize,
+    /// Options taken in the build set.
+    pub build_set: usize,
+    /// How much it multiplies the distinct variants of the full space, when that does not
+    /// depend on other sets (1 for a dead set); `None` when coupled.
+    pub distinct_factor: Option<u64>,
+    /// Names of the sets it is coupled with (their code depends on each other).
+    pub coupled_with: Vec<String>,
+    /// For a coupled set: assignments of its whole group, and distinct codes among them.
+    pub group: Option<(BigUint, u64)>,
+    /// No option changes any generated code.
+    pub dead: bool,
+    /// Keywords of the set that generate the same code as its base option (`_`, or its first
+    /// option) in every variant.
+    pub dead_keywords: Vec<String>,
+    /// Options that generate identical code in every variant (groups of two or more).
+    pub identical_options: Vec<Vec<String>>,
+    /// Keywords of the set that change code only together with others.
+    pub together: Vec<Together>,
+    /// Keywords of the set that some material enables (`None` without materials).
+    pub used_by_materials: Option<Vec<String>>,
+    /// What could be done about it.
+    pub suggestions: Vec<String>,
+    /// Whether the findings above are complete (false when its group was too large).
+    pub known: bool,
+}
+
+/// The audit of one pass.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PassAudit {
+    /// Shader name.
+    pub shader: String,
+    /// Pass name.
+    pub pass: String,
+    /// The full space: the product of the sets' sizes.
+    pub full_space: BigUint,
+    /// After `skip_variants`.
+    pub after_filtering: BigUint,
+    /// After `shader_feature` stripping against the materials (equal to `after_filtering`
+    /// without materials).
+    pub after_stripping: BigUint,
+    /// The variants `validate` builds (equal to `after_stripping`).
+    pub build_set: BigUint,
+    /// Distinct variants of the build set.
+    pub distinct: Distinct,
+    /// Distinct variants of the full space.
+    pub distinct_full_space: Distinct,
+    /// Distinct variants after `skip_variants`.
+    pub distinct_after_filtering: Distinct,
+    /// The multiplier table, one row per keyword set in declaration order.
+    pub sets: Vec<SetAudit>,
+    /// Keywords that change no generated code in any variant.
+    pub dead_keywords: Vec<String>,
+    /// Keywords that change code only together with others.
+    pub together: Vec<Together>,
+    /// Where build-set variants share code.
+    pub identical_code: Vec<CodeGroup>,
+    /// Whether dead keywords and the other findings are complete.
+    pub findings_exact: bool,
+    /// Whether materials were given.
+    pub materials: bool,
+}
+
+fn stage(a: &Analysis) -> Distinct {
+    Distinct {
+        count: a.distinct.clone(),
+        exact: a.exact,
+        method: a.method,
+    }
+}
+
+fn label(option: &Option<String>) -> String {
+    option.clone().unwrap_or_else(|| "_".to_string())
+}
+
+/// A set's name: its keywords, space-separated.
+pub(crate) fn set_name(pass: &Pass, set: usize) -> String {
+    let names: Vec<&str> = pass.sets[set].keywords().collect();
+    if names.is_empty() {
+        "_".to_string()
+    } else {
+        names.join(" ")
+    }
+}
+
+/// Builds the report from the analyses of the three stages.
+pub(crate) fn assemble(
+    pass: &Pass,
+    full: &Analysis,
+    after: &Analysis,
+    build: &Analysis,
+    used: Option<Vec<String>>,
+) -> PassAudit {
+    let found = findings(pass, full);
+    let sets: Vec<SetAudit> = (0..pass.sets.len())
+        .map(|s| set_row(pass, s, full, after, build, &found[s], used.as_deref()))
+        .collect();
+    let dead_keywords = sets.iter().flat_map(|r| r.dead_keywords.clone()).collect();
+    let together = sets.iter().flat_map(|r| r.together.clone()).collect();
+    let findings_exact = full.exact && found.iter().all(|f| f.known);
+    PassAudit {
+        shader: pass.shader.clone(),
+        pass: pass.name.clone(),
+        full_space: full.count.clone(),
+        after_filtering: after.count.clone(),
+        after_stripping: build.count.clone(),
+        build_set: build.count.clone(),
+        distinct: stage(build),
+        distinct_full_space: stage(full),
+        distinct_after_filtering: stage(after),
+        sets,
+        dead_keywords,
+        together,
+        identical_code: groups(pass, build),
+        findings_exact,
+        materials: used.is_some(),
+    }
+}
+
+fn set_row(
+    pass: &Pass,
+    s: usize,
+    full: &Analysis,
+    after: &Analysis,
+    build: &Analysis,
+    f: &SetFindings,
+    used: Option<&[String]>,
+) -> SetAudit {
+    let set = &pass.sets[s];
+    let opt = |o: usize| label(&set.options[o]);
+    let component = full.components.iter().find(|c| c.sets.contains(&s));
+    let (distinct_factor, coupled_with, group) = match component {
+        None => (Some(1), Vec::new(), None),
+        Some(c) if c.sets.len() == 1 => {
+            (c.table.as_ref().map(|t| t.classes as u64), Vec::new(), None)
+        }
+        Some(c) => (
+            None,
+            c.sets
+                .iter()
+                .filter(|&&t| t != s)
+                .map(|&t| set_name(pass, t))
+                .collect(),
+            c.table.as_ref().map(|t| (c.size.clone(), t.classes as u64)),
+        ),
+    };
+    let dead_keywords: Vec<String> = f
+        .dead_options
+        .iter()
+        .filter_map(|&o| set.options[o].clone())
+        .collect();
+    let together: Vec<Together> = f
+        .together
+        .iter()
+        .filter_map(|(o, with)| {
+            Some(Together {
+                keyword: set.options[*o].clone()?,
+                with: with.clone(),
+            })
+        })
+        .collect();
+    let used_by_materials = used.map(|u| {
+        set.keywords()
+            .filter(|k| u.iter().any(|x| x == k))
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    });
+    let mut suggestions = Vec::new();
+    let n = set.len();
+    if f.dead {
+        suggestions.push(format!(
+            "strip it: no generated code depends on it (it multiplies the space by {n} and distinct variants by 1)"
+        ));
+    } else {
+        for &o in &f.dead_options {
+            suggestions.push(format!(
+                "drop `{}`: it generates the same code as `{}` in every variant",
+                opt(o),
+                opt(base_option(pass, s))
+            ));
+        }
+        let base = base_option(pass, s);
+        for g in &f.equivalent {
+            if !g.contains(&base) {
+                let names: Vec<String> = g.iter().map(|&o| format!("`{}`", opt(o))).collect();
+                suggestions.push(format!(
+                    "merge {}: they generate identical code in every variant",
+                    names.join(" and ")
+                ));
+            }
+        }
+    }
+    if let Some(u) = &used_by_materials
+        && u.is_empty()
+        && n > 1
+        && !f.dead
+    {
+        match set.kind {
+            SetKind::MultiCompile => suggestions.push(format!(
+                "no material enables {}: if it is only set per material, declare it shader_feature (x{n} -> x1 with these materials)",
+                set.keywords().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+            )),
+            SetKind::ShaderFeature => suggestions.push(
+                "no material enables it: the build set keeps only its base option".to_string(),
+            ),
+        }
+    }
+    SetAudit {
+        declaration: set.to_string(),
+        name: set_name(pass, s),
+        kind: set.kind,
+        options: set.options.iter().map(label).collect(),
+        factor: n,
+        after_filtering: after.domain.options(s).len(),
+        build_set: build.domain.options(s).len(),
+        distinct_factor,
+        coupled_with,
+        group,
+        dead: f.dead,
+        dead_keywords,
+        identical_options: f
+            .equivalent
+            .iter()
+            .map(|g| g.iter().map(|&o| opt(o)).collect())
+            .collect(),
+        together,
+        used_by_materials,
+        suggestions,
+        known: f.known,
+    }
+}
+
+/// Where the build set's variants share code.
+fn groups(pass: &Pass, a: &Analysis) -> Vec<CodeGroup> {
+    let mut out = Vec::new();
+    for c in &a.components {
+        if let Some(g) = component_group(pass, a, c) {
+            out.push(g);
+        }
+    }
+    // Factors no code depends on: all their choices share code.
+    for (f, factor) in a.domain.factors.iter().enumerate() {
+        let sets = factor.sets();
+        if factor.len() < 2 || sets.is_empty() || !sets.iter().all(|s| a.dead.contains(s)) {
+            continue;
+        }
+        let members: Vec<Vec<String>> = (0..factor.len())
+            .take(MAX_MEMBERS)
+            .map(|i| keywords_of(pass, a, &[f], &[i], &sets))
+            .collect();
+        out.push(CodeGroup {
+            keywords: sets
+                .iter()
+                .flat_map(|&s| pass.sets[s].keywords().map(str::to_string))
+                .collect(),
+            variants: BigUint::from(factor.len()),
+            distinct: 1,
+            shared: vec![members],
+            shared_total: 1,
+        });
+    }
+    out.sort_by_key(|g| {
+        g.keywords
+            .first()
+            .and_then(|k| pass.keyword(k))
+            .map(|k| k.0)
+    });
+    out
+}
+
+fn component_group(pass: &Pass, a: &Analysis, c: &Component) -> Option<CodeGroup> {
+    let t = c.table.as_ref()?;
+    if t.classes as usize == t.class.len() {
+        return None;
+    }
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); t.classes as usize];
+    for (row, &class) in t.class.iter().enumerate() {
+        members[class as usize].push(row);
+    }
+    let shared: Vec<&Vec<usize>> = members.iter().filter(|m| m.len() > 1).collect();
+    Some(CodeGroup {
+        keywords: c
+            .sets
+            .iter()
+            .flat_map(|&s| pass.sets[s].keywords().map(str::to_string))
+            .collect(),
+        variants: c.size.clone(),
+        distinct: t.classes as u64,
+        shared_total: shared.len(),
+        shared: shared
+            .iter()
+            .take(MAX_CLASSES)
+            .map(|rows| {
+                rows.iter()
+                    .take(MAX_MEMBERS)
+                    .map(|&row| keywords_of(pass, a, &c.factors, &t.digits(row), &c.sets))
+                    .collect()
+            })
+            .collect(),
+    })
+}
+
+/// The keywords on among `sets` when `factors` take `digits`.
+fn keywords_of(
+    pass: &Pass,
+    a: &Analysis,
+    factors: &[usize],
+    digits: &[usize],
+    sets: &[usize],
+) -> Vec<String> {
+    let mut choice = vec![0u16; pass.sets.len()];
+    for (&f, &d) in factors.iter().zip(digits) {
+        a.domain.factors[f].apply(d, &mut choice);
+    }
+    sets.iter()
+        .filter_map(|&s| pass.sets[s].options[choice[s] as usize].clone())
+        .collect()
+}

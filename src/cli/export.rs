@@ -1,0 +1,161 @@
+//! `wgsl-variants export`: one module (with its imports) on its own, as self-contained
+//! prefixed WGSL or in naga_oil's dialect.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::ValueEnum;
+use serde::Serialize;
+
+use wgsl_variants::emit::export::{ExportError, export_prefixed};
+use wgsl_variants::emit::naga_oil::{self, NagaOilModule};
+
+use super::output::print_json;
+use super::{Context, Failed};
+
+/// The output dialect.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Dialect {
+    /// Self-contained WGSL, every top-level name prefixed (needs --prefix).
+    Wgsl,
+    /// naga_oil modules (`#define_import_path`, `#import`, `#ifdef`), for Bevy.
+    NagaOil,
+}
+
+/// `export` arguments.
+#[derive(clap::Args, Debug)]
+pub struct ExportArgs {
+    /// Module path, e.g. deferred/gbuffer (not a shader file).
+    #[arg(value_name = "MODULE", required_unless_present = "all")]
+    module: Option<String>,
+    /// WGSL: the prefix of every top-level name. naga_oil: the root of the import paths.
+    #[arg(long, value_name = "NAME")]
+    prefix: Option<String>,
+    /// WGSL: keywords defined (as 1) when composing, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "A,B")]
+    keywords: Vec<String>,
+    /// Output dialect.
+    #[arg(long, value_enum, default_value_t = Dialect::Wgsl)]
+    dialect: Dialect,
+    /// naga_oil: every module of the library.
+    #[arg(long)]
+    all: bool,
+    /// Write into DIR (naga_oil: the module and every module it imports, one file each, at
+    /// their library paths) instead of printing the module.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+#[derive(Serialize)]
+struct ModuleOut<'a> {
+    module: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    import_path: Option<&'a str>,
+    source: &'a str,
+}
+
+fn fail(ctx: &Context, e: ExportError) -> Failed {
+    Failed(ctx.render(&e.diagnostic()).trim_end().to_string())
+}
+
+fn write(dir: &Path, rel: &str, text: &str) -> Result<(), Failed> {
+    let path = dir.join(rel);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)
+            .map_err(|e| Failed(format!("error: cannot create `{}`: {e}", parent.display())))?;
+    }
+    std::fs::write(&path, text)
+        .map_err(|e| Failed(format!("error: cannot write `{}`: {e}", path.display())))
+}
+
+pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
+    let keywords: Vec<&str> = args
+        .keywords
+        .iter()
+        .map(|k| k.trim())
+        .filter(|k| !k.is_empty())
+        .collect();
+    match args.dialect {
+        Dialect::Wgsl => {
+            let (Some(module), false) = (&args.module, args.all) else {
+                return Err(Failed(
+                    "error: --all exports naga_oil modules; the WGSL dialect exports one MODULE"
+                        .into(),
+                ));
+            };
+            let Some(prefix) = &args.prefix else {
+                return Err(Failed("error: the WGSL dialect needs --prefix NAME (the prefix of every top-level name)".into()));
+            };
+            let text =
+                export_prefixed(&ctx.lib, module, prefix, &keywords).map_err(|e| fail(ctx, e))?;
+            if let Some(dir) = &args.out {
+                let rel = format!("{}.wgsl", module.trim().trim_end_matches(".wgsl"));
+                write(dir, &rel, &text)?;
+                println!("wrote {}", dir.join(rel).display());
+            } else if ctx.json {
+                print_json(&ModuleOut {
+                    module,
+                    import_path: None,
+                    source: &text,
+                })?;
+            } else {
+                print!("{text}");
+            }
+        }
+        Dialect::NagaOil => {
+            if !keywords.is_empty() {
+                return Err(Failed("error: naga_oil modules keep their conditions: pass keywords as shader defs when composing, not with --keywords".into()));
+            }
+            let root = args.prefix.as_deref();
+            let modules: Vec<NagaOilModule> = match (&args.module, args.all) {
+                (_, true) => naga_oil::export_all(&ctx.lib, root),
+                (Some(m), false) => naga_oil::export(&ctx.lib, m, root),
+                (None, false) => unreachable!("clap requires MODULE without --all"),
+            }
+            .map_err(|e| fail(ctx, e))?;
+            if let Some(dir) = &args.out {
+                for m in &modules {
+                    write(dir, &format!("{}.wgsl", m.path), &m.source)?;
+                }
+                println!(
+                    "wrote {} naga_oil module(s) to {}",
+                    modules.len(),
+                    dir.display()
+                );
+            } else {
+                // Without --out: the module asked for (every module with --all).
+                let shown: Vec<&NagaOilModule> = if args.all {
+                    modules.iter().collect()
+                } else {
+                    modules.last().into_iter().collect()
+                };
+                if ctx.json {
+                    let out: Vec<ModuleOut<'_>> = shown
+                        .iter()
+                        .map(|m| ModuleOut {
+                            module: &m.path,
+                            import_path: Some(&m.import_path),
+                            source: &m.source,
+                        })
+                        .collect();
+                    print_json(&out)?;
+                } else {
+                    for m in &shown {
+                        print!("{}", m.source);
+                    }
+                    if !args.all && modules.len() > 1 {
+                        let deps: Vec<&str> = modules[..modules.len() - 1]
+                            .iter()
+                            .map(|m| m.path.as_str())
+                            .collect();
+                        eprintln!(
+                            "note: register its imports first: {} (use --out DIR to write them all)",
+                            deps.join(", ")
+                        );
+                    }
+                }
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

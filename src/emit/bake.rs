@@ -1,0 +1,469 @@
+//! The `build.rs` API: build and validate a library's build set when the consuming crate
+//! compiles, and bake it in — WGSL text and/or SPIR-V words, with a strict lookup from keyword
+//! set to variant.
+//!
+//! ```no_run
+//! // build.rs of the consuming crate ([build-dependencies] wgsl-variants)
+//! use wgsl_variants::bake::{Bake, BakeTarget};
+//!
+//! Bake::new("shaders")
+//!     .materials("shaders/materials.toml")
+//!     .target(BakeTarget::Wgsl)
+//!     .target(BakeTarget::SpirV)
+//!     .run(); // writes $OUT_DIR/wgsl_variants.rs, or fails the build with diagnostics
+//! ```
+//!
+//! ```ignore
+//! // src/main.rs
+//! mod shaders {
+//!     include!(concat!(env!("OUT_DIR"), "/wgsl_variants.rs"));
+//! }
+//! let v = shaders::variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])?;
+//! let wgsl: &'static str = v.wgsl.unwrap();
+//! ```
+//!
+//! The generated file needs no runtime dependency. It defines `Variant` (shader, pass,
+//! keywords, entry points with stages, `wgsl: Option<&str>`, `spirv: Option<&[u32]>`, and the
+//! BLAKE3 hash of the canonical WGSL), `Pass`, `Stage`, `EntryPoint`, `LookupError`, and
+//! `variant(shader, pass, keywords)` (strict: keywords in any order, exactly the variant asked
+//! for or an error saying why — unknown shader, pass or keyword, or a combination that is not in
+//! the build set), `variants()` and `passes()`. The texts and words live next to it in
+//! `OUT_DIR/wgsl_variants/` (one file per distinct output, named by content hash) and are
+//! pulled in with `include_str!`/`include_bytes!`; SPIR-V bytes become words at compile time,
+//! without `unsafe`.
+//!
+//! `write_to` prints `cargo:rerun-if-changed` for the library root, every module file and the
+//! materials file, so edits to any shader rebuild the crate.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+
+use crate::library::{Library, Variant};
+use crate::materials;
+use crate::validate::ValidateOptions;
+
+use super::backends::{Contents, Options, Target, TranslateError, compile, translate};
+use super::reflect::{Stage, entry_points};
+use super::set::select;
+
+/// What to bake.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BakeTarget {
+    /// The canonical WGSL: validated, compacted, written by naga (`Variant::wgsl`).
+    Wgsl,
+    /// SPIR-V 1.0 words (`Variant::spirv`).
+    SpirV,
+}
+
+#[derive(Clone, Debug)]
+enum Source {
+    Dir(PathBuf),
+    Bundled,
+}
+
+/// A bake of a library's build set; see the [module docs](self).
+#[derive(Clone, Debug)]
+pub struct Bake {
+    source: Source,
+    materials: Option<PathBuf>,
+    targets: Vec<BakeTarget>,
+    file_name: String,
+    budget: u64,
+    options: Options,
+}
+
+/// What [`Bake::write_to`] wrote.
+#[derive(Clone, Debug)]
+pub struct Baked {
+    /// The generated Rust file.
+    pub file: PathBuf,
+    /// Variants baked.
+    pub variants: usize,
+    /// Distinct outputs written next to it.
+    pub outputs: usize,
+    /// Every path printed as `cargo:rerun-if-changed`.
+    pub rerun_if_changed: Vec<PathBuf>,
+}
+
+/// A bake failed: the rendered diagnostics (every failing variant, with its file, line and
+/// keyword set).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct BakeError(pub String);
+
+impl Bake {
+    /// Bakes the library in the folder `root` (relative paths are relative to the build
+    /// script's working directory, the consuming crate's root).
+    pub fn new(root: impl Into<PathBuf>) -> Bake {
+        Bake::with_source(Source::Dir(root.into()))
+    }
+
+    /// Bakes the library bundled with this crate.
+    pub fn bundled() -> Bake {
+        Bake::with_source(Source::Bundled)
+    }
+
+    fn with_source(source: Source) -> Bake {
+        Bake {
+            source,
+            materials: None,
+            targets: Vec::new(),
+            file_name: "wgsl_variants.rs".into(),
+            budget: 1_000_000,
+            options: Options::default(),
+        }
+    }
+
+    /// Restricts `shader_feature` combinations to those the materials (JSON or TOML) use;
+    /// as in a Unity build, a shader no material uses is not baked.
+    pub fn materials(mut self, path: impl Into<PathBuf>) -> Bake {
+        self.materials = Some(path.into());
+        self
+    }
+
+    /// Adds a target (WGSL when none is added).
+    pub fn target(mut self, target: BakeTarget) -> Bake {
+        if !self.targets.contains(&target) {
+            self.targets.push(target);
+        }
+        self
+    }
+
+    /// Name of the generated file in the output folder (default `wgsl_variants.rs`).
+    pub fn file_name(mut self, name: impl Into<String>) -> Bake {
+        self.file_name = name.into();
+        self
+    }
+
+    /// Most variants per pass (default 1,000,000); past it the bake fails.
+    pub fn max_variants(mut self, budget: u64) -> Bake {
+        self.budget = budget;
+        self
+    }
+
+    /// Keeps WGSL's coordinate space in SPIR-V (see
+    /// [`Options::keep_coordinate_space`](super::backends::Options)); set it when the SPIR-V
+    /// is given back to wgpu.
+    pub fn keep_coordinate_space(mut self, keep: bool) -> Bake {
+        self.options.keep_coordinate_space = keep;
+        self
+    }
+
+    /// For `build.rs`: [`Bake::write_to`] `$OUT_DIR`; on failure prints the diagnostics to
+    /// stderr and exits with status 1, so the build fails showing them.
+    pub fn run(self) -> Baked {
+        let out_dir = match std::env::var_os("OUT_DIR") {
+            Some(dir) => PathBuf::from(dir),
+            None => {
+                eprintln!("error: OUT_DIR is not set: Bake::run is meant for build scripts");
+                std::process::exit(1);
+            }
+        };
+        match self.write_to(&out_dir) {
+            Ok(baked) => baked,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(1);
+            }
+        }
+    }
+
+    /// Loads, builds and validates the build set, writes the generated Rust file and the
+    /// outputs into `out_dir`, and prints `cargo:rerun-if-changed` lines. Files are rewritten
+    /// only when their contents change; stale outputs are removed.
+    pub fn write_to(self, out_dir: impl AsRef<Path>) -> Result<Baked, BakeError> {
+        let out_dir = out_dir.as_ref();
+        let mut rerun = Vec::new();
+        if let Source::Dir(root) = &self.source {
+            rerun.push(root.clone());
+        }
+        if let Some(m) = &self.materials {
+            rerun.push(m.clone());
+        }
+        // Printed before loading, so that a failing library is watched too.
+        for path in &rerun {
+            println!("cargo:rerun-if-changed={}", path.display());
+        }
+        let lib = match &self.source {
+            Source::Dir(root) => Library::from_dir(root),
+            Source::Bundled => Library::bundled(),
+        }
+        .map_err(|e| {
+            BakeError(format!(
+                "{}error: the shader library could not be loaded ({} problem(s))",
+                e.render(false),
+                e.diagnostics.len()
+            ))
+        })?;
+        if let Source::Dir(root) = &self.source {
+            for module in lib.module_paths() {
+                let path = root.join(format!("{module}.wgsl"));
+                println!("cargo:rerun-if-changed={}", path.display());
+                rerun.push(path);
+            }
+        }
+        let materials = match &self.materials {
+            Some(path) => {
+                Some(materials::load(path).map_err(|e| BakeError(format!("error: {e}")))?)
+            }
+            None => None,
+        };
+        let options = ValidateOptions {
+            materials,
+            budget: self.budget,
+            ..ValidateOptions::default()
+        };
+        let selection = select(&lib, &options).map_err(|e| BakeError(format!("error: {e}")))?;
+        let targets = if self.targets.is_empty() {
+            vec![BakeTarget::Wgsl]
+        } else {
+            self.targets.clone()
+        };
+
+        // Build, validate and translate every variant in parallel.
+        let jobs: Vec<Variant<'_>> = selection
+            .iter()
+            .flat_map(|(pass, choices)| {
+                choices.iter().map(|choice| Variant {
+                    pass,
+                    choice: choice.clone(),
+                })
+            })
+            .collect();
+        let results: Vec<Result<BakedVariant, TranslateError>> = jobs
+            .par_iter()
+            .map(|variant| bake_variant(&lib, variant, &targets, &self.options))
+            .collect();
+        let failures: Vec<String> = results
+            .iter()
+            .filter_map(|r| r.as_ref().err())
+            .map(|e| match e {
+                TranslateError::Invalid(v) => v.diagnostic().render(lib.files(), false),
+                other => format!("error: {other}\n"),
+            })
+            .collect();
+        if !failures.is_empty() {
+            return Err(BakeError(format!(
+                "{}error: {} of {} variants failed to build; nothing was baked",
+                failures.concat(),
+                failures.len(),
+                jobs.len()
+            )));
+        }
+        let baked: Vec<BakedVariant> = results
+            .into_iter()
+            .map(|r| r.expect("no failures"))
+            .collect();
+        let origin = match &self.source {
+            Source::Dir(root) => root.display().to_string(),
+            Source::Bundled => "the bundled library".to_string(),
+        };
+        let outputs = generate(out_dir, &self.file_name, &origin, &selection, &jobs, &baked)?;
+        Ok(Baked {
+            file: out_dir.join(&self.file_name),
+            variants: jobs.len(),
+            outputs,
+            rerun_if_changed: rerun,
+        })
+    }
+}
+
+struct BakedVariant {
+    entry_points: Vec<(String, Stage)>,
+    wgsl: Option<String>,
+    spirv: Option<Vec<u8>>,
+    hash: String,
+}
+
+fn bake_variant(
+    lib: &Library,
+    variant: &Variant<'_>,
+    targets: &[BakeTarget],
+    options: &Options,
+) -> Result<BakedVariant, TranslateError> {
+    let (module, info) = compile(lib, variant)?;
+    let backend = |target: Target| {
+        translate(&module, &info, &target, options)
+            .map(|mut outputs| outputs.remove(0).contents)
+            .map_err(|error| TranslateError::Backend {
+                variant: variant.label(),
+                error,
+            })
+    };
+    let wgsl = match backend(Target::Wgsl)? {
+        Contents::Text(text) => text,
+        Contents::SpirV(_) => unreachable!("the WGSL back end writes text"),
+    };
+    let spirv = if targets.contains(&BakeTarget::SpirV) {
+        Some(backend(Target::SpirV)?.to_bytes())
+    } else {
+        None
+    };
+    Ok(BakedVariant {
+        entry_points: entry_points(&module)
+            .into_iter()
+            .map(|e| (e.name, e.stage))
+            .collect(),
+        hash: blake3::hash(wgsl.as_bytes()).to_hex().to_string(),
+        wgsl: targets.contains(&BakeTarget::Wgsl).then_some(wgsl),
+        spirv,
+    })
+}
+
+const PRELUDE: &str = include_str!("bake_prelude.rs");
+
+fn io(path: &Path, e: std::io::Error) -> BakeError {
+    BakeError(format!("error: cannot write `{}`: {e}", path.display()))
+}
+
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), BakeError> {
+    if std::fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    std::fs::write(path, bytes).map_err(|e| io(path, e))
+}
+
+fn lit(text: &str) -> String {
+    format!("{text:?}")
+}
+
+fn str_list<'a>(items: impl IntoIterator<Item = &'a str>) -> String {
+    let items: Vec<String> = items.into_iter().map(lit).collect();
+    format!("&[{}]", items.join(", "))
+}
+
+/// Writes the outputs and the Rust file; returns the number of distinct outputs.
+fn generate(
+    out_dir: &Path,
+    file_name: &str,
+    origin: &str,
+    selection: &super::set::Selection<'_>,
+    jobs: &[Variant<'_>],
+    baked: &[BakedVariant],
+) -> Result<usize, BakeError> {
+    let blob_dir = out_dir.join("wgsl_variants");
+    std::fs::create_dir_all(&blob_dir).map_err(|e| io(&blob_dir, e))?;
+    // Distinct outputs by content hash, in first-use order: name -> (static name, item).
+    let mut blobs: BTreeMap<String, String> = BTreeMap::new();
+    let mut items = String::new();
+    let mut blob_for = |bytes: &[u8], ext: &str, items: &mut String| -> Result<String, BakeError> {
+        let hash = blake3::hash(bytes).to_hex()[..32].to_string();
+        let name = format!("{hash}.{ext}");
+        if let Some(ident) = blobs.get(&name) {
+            return Ok(ident.clone());
+        }
+        let path = blob_dir.join(&name);
+        write_if_changed(&path, bytes)?;
+        let path_lit = lit(&path.display().to_string());
+        let ident = format!("{}_{}", ext.to_uppercase(), blobs.len());
+        if ext == "spv" {
+            let words = bytes.len() / 4;
+            let _ = writeln!(
+                items,
+                "#[allow(dead_code)]\nstatic {ident}: [u32; {words}] = spirv_words::<{words}>(include_bytes!({path_lit}));"
+            );
+        } else {
+            let _ = writeln!(
+                items,
+                "#[allow(dead_code)]\nstatic {ident}: &str = include_str!({path_lit});"
+            );
+        }
+        blobs.insert(name, ident.clone());
+        Ok(ident)
+    };
+
+    let mut variants = String::new();
+    for (variant, b) in jobs.iter().zip(baked) {
+        let keywords = variant.keywords();
+        let mut sorted = keywords.clone();
+        sorted.sort_unstable();
+        let wgsl = match &b.wgsl {
+            Some(text) => format!("Some({})", blob_for(text.as_bytes(), "wgsl", &mut items)?),
+            None => "None".into(),
+        };
+        let spirv = match &b.spirv {
+            Some(bytes) => format!("Some(&{})", blob_for(bytes, "spv", &mut items)?),
+            None => "None".into(),
+        };
+        let eps: Vec<String> = b
+            .entry_points
+            .iter()
+            .map(|(name, stage)| {
+                let stage = match stage {
+                    Stage::Vertex => "Vertex",
+                    Stage::Fragment => "Fragment",
+                    Stage::Compute => "Compute",
+                    _ => "Other",
+                };
+                format!(
+                    "EntryPoint {{ name: {}, stage: Stage::{stage} }}",
+                    lit(name)
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            variants,
+            "    Variant {{\n        shader: {},\n        pass: {},\n        keywords: {},\n        entry_points: &[{}],\n        wgsl: {wgsl},\n        spirv: {spirv},\n        hash: {},\n        sorted_keywords: {},\n    }},",
+            lit(&variant.pass.shader),
+            lit(&variant.pass.name),
+            str_list(keywords.iter().copied()),
+            eps.join(", "),
+            lit(&b.hash),
+            str_list(sorted.iter().copied()),
+        );
+    }
+
+    let mut passes = String::new();
+    let mut start = 0;
+    for (pass, choices) in selection {
+        let range = start..start + choices.len();
+        start = range.end;
+        let mut declared: Vec<&str> = pass
+            .sets
+            .iter()
+            .flat_map(|s| s.options.iter().flatten().map(String::as_str))
+            .collect();
+        declared.sort_unstable();
+        declared.dedup();
+        let mut index: Vec<usize> = range.collect();
+        let key = |i: &usize| {
+            let mut k = jobs[*i].keywords();
+            k.sort_unstable();
+            k
+        };
+        index.sort_by_key(key);
+        let index: Vec<String> = index.iter().map(usize::to_string).collect();
+        let _ = writeln!(
+            passes,
+            "    Pass {{\n        shader: {},\n        pass: {},\n        keywords: {},\n        index: &[{}],\n    }},",
+            lit(&pass.shader),
+            lit(&pass.name),
+            str_list(declared),
+            index.join(", ")
+        );
+    }
+
+    // Remove outputs of earlier bakes that are no longer referenced.
+    if let Ok(entries) = std::fs::read_dir(&blob_dir) {
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if !blobs.contains_key(&name) && (name.ends_with(".wgsl") || name.ends_with(".spv")) {
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+    }
+
+    let code = format!(
+        "// @generated by wgsl-variants {} (wgsl_variants::bake) from {}:\n// {} variants of {} passes. Do not edit. Include it in a module of its own:\n//     mod shaders {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file_name}\")); }}\n\n{PRELUDE}\n{items}\n#[allow(dead_code)]\nstatic VARIANTS: &[Variant] = &[\n{variants}];\n\n#[allow(dead_code)]\nstatic PASSES: &[Pass] = &[\n{passes}];\n",
+        env!("CARGO_PKG_VERSION"),
+        origin.replace('\n', " "),
+        jobs.len(),
+        selection.len(),
+    );
+    let path = out_dir.join(file_name);
+    write_if_changed(&path, code.as_bytes())?;
+    Ok(blobs.len())
+}

@@ -1,0 +1,321 @@
+//! A whole build set written to a folder, every variant through every requested back end,
+//! plus a `manifest.json` describing it.
+//!
+//! Layout: `DIR/<shader>/<pass>/<name>.<ext>`, where `<name>` is the variant's keywords joined
+//! with `+` (`none` when no keyword is on; `v<N>`, N its index in the pass's enumeration, when
+//! that would be longer than 100 bytes), and GLSL adds the entry point:
+//! `<name>.<entry point>.<vert|frag|comp>`. The manifest lists, for each variant in
+//! enumeration order: shader, pass, keywords, entry points with their stage, and each file
+//! with its target, entry point, size and BLAKE3 content hash (hex). Files and manifest are
+//! byte-identical across runs and thread counts.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::library::{Library, Variant};
+use crate::shader::Pass;
+use crate::validate::{ValidateError, ValidateOptions, select_passes, variants_to_build};
+use crate::variants::Choice;
+
+use super::backends::{Options, Output, Slot, Target, TranslateError, compile, slots, translate};
+use super::reflect::{EntryPoint, Stage, entry_points};
+
+/// The variants to emit, pass by pass.
+pub type Selection<'l> = Vec<(&'l Pass, Vec<Choice>)>;
+
+/// The build set of every pass that `options` selects (shader/pass filters, materials,
+/// budget; `options.all` takes the full space instead).
+pub fn select<'l>(
+    lib: &'l Library,
+    options: &ValidateOptions,
+) -> Result<Selection<'l>, ValidateError> {
+    select_passes(lib, options.shader.as_deref(), options.pass.as_deref())?
+        .into_iter()
+        .map(|pass| Ok((pass, variants_to_build(lib, pass, options)?)))
+        .collect()
+}
+
+/// One back end's name and version in a manifest.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ManifestTarget {
+    /// `wgsl`, `spirv`, `glsl`, `hlsl` or `msl`.
+    pub target: String,
+    /// Language version (`450`, `300es`, `5_1`, `2.0`, SPIR-V `1.0`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub version: Option<String>,
+}
+
+/// One written file.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ManifestFile {
+    /// The back end that wrote it.
+    pub target: String,
+    /// The entry point, for back ends with one output per entry point (GLSL).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub entry_point: Option<String>,
+    /// That entry point's stage.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<Stage>,
+    /// Path relative to the output folder, `/`-separated.
+    pub file: String,
+    /// Size in bytes.
+    pub bytes: usize,
+    /// BLAKE3 hash of the contents, hex.
+    pub blake3: String,
+    /// GLSL and MSL: the flat slot of each binding (see [`super::backends`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub slots: Vec<Slot>,
+}
+
+/// One variant in a manifest.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ManifestVariant {
+    /// Shader name.
+    pub shader: String,
+    /// Pass name.
+    #[serde(rename = "pass")]
+    pub pass_name: String,
+    /// Keywords that are on, in set order.
+    pub keywords: Vec<String>,
+    /// Entry points with their stages.
+    pub entry_points: Vec<EntryPoint>,
+    /// The files written for it, in target order.
+    pub files: Vec<ManifestFile>,
+}
+
+/// `manifest.json`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Manifest {
+    /// `wgsl-variants <version>`.
+    pub generator: String,
+    /// The back ends, in the order given.
+    pub targets: Vec<ManifestTarget>,
+    /// Every variant, pass by pass in enumeration order.
+    pub variants: Vec<ManifestVariant>,
+}
+
+/// Why a build set could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum SetError {
+    /// Variants failed validation or translation; every failure is listed.
+    #[error("{} variant(s) failed", .0.len())]
+    Failed(Vec<TranslateError>),
+    /// A file could not be written.
+    #[error("cannot write `{path}`: {message}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The OS error.
+        message: String,
+    },
+}
+
+fn io_error(path: &Path, e: std::io::Error) -> SetError {
+    SetError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
+}
+
+/// A file-name-safe form of a shader or pass name.
+pub fn file_safe(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect()
+}
+
+/// The file stem of a variant (see the module docs).
+pub fn variant_stem(keywords: &[&str], index: usize) -> String {
+    let joined = if keywords.is_empty() {
+        "none".to_string()
+    } else {
+        keywords
+            .iter()
+            .map(|k| file_safe(k))
+            .collect::<Vec<_>>()
+            .join("+")
+    };
+    if joined.len() > 100 {
+        format!("v{index}")
+    } else {
+        joined
+    }
+}
+
+/// The outputs of one variant.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariantOutputs {
+    /// The variant's entry points.
+    pub entry_points: Vec<EntryPoint>,
+    /// Every output of every target, in target order.
+    pub outputs: Vec<(Target, Output)>,
+}
+
+/// Every output of one variant for each target.
+pub fn emit_variant(
+    lib: &Library,
+    variant: &Variant<'_>,
+    targets: &[Target],
+    options: &Options,
+) -> Result<VariantOutputs, TranslateError> {
+    let (module, info) = compile(lib, variant)?;
+    let mut outputs = Vec::new();
+    for target in targets {
+        let written = translate(&module, &info, target, options).map_err(|error| {
+            TranslateError::Backend {
+                variant: variant.label(),
+                error,
+            }
+        })?;
+        outputs.extend(written.into_iter().map(|o| (*target, o)));
+    }
+    Ok(VariantOutputs {
+        entry_points: entry_points(&module),
+        outputs,
+    })
+}
+
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), SetError> {
+    if std::fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    std::fs::write(path, bytes).map_err(|e| io_error(path, e))
+}
+
+/// Writes every variant of `selection` through every target into `dir` (created if needed;
+/// existing files are overwritten, others left alone) and `dir/manifest.json`. Returns the
+/// manifest. Nothing is written when any variant fails: every failure is returned.
+pub fn write_set(
+    lib: &Library,
+    selection: &Selection<'_>,
+    targets: &[Target],
+    options: &Options,
+    dir: &Path,
+) -> Result<Manifest, SetError> {
+    struct Job<'a> {
+        pass: &'a Pass,
+        index: usize,
+        choice: &'a Choice,
+    }
+    let jobs: Vec<Job<'_>> = selection
+        .iter()
+        .flat_map(|(pass, choices)| {
+            choices.iter().enumerate().map(move |(index, choice)| Job {
+                pass,
+                index,
+                choice,
+            })
+        })
+        .collect();
+    // First compile and translate everything (in parallel); write only when all succeeded.
+    type Done = (Vec<EntryPoint>, Vec<(Target, Output, Vec<Slot>)>);
+    let results: Vec<Result<Done, TranslateError>> = jobs
+        .par_iter()
+        .map(|job| {
+            let variant = Variant {
+                pass: job.pass,
+                choice: job.choice.clone(),
+            };
+            let (module, info) = compile(lib, &variant)?;
+            let mut outputs = Vec::new();
+            for target in targets {
+                let written = translate(&module, &info, target, options).map_err(|error| {
+                    TranslateError::Backend {
+                        variant: variant.label(),
+                        error,
+                    }
+                })?;
+                let target_slots = slots(&module, &info, target);
+                outputs.extend(
+                    written
+                        .into_iter()
+                        .map(|o| (*target, o, target_slots.clone())),
+                );
+            }
+            Ok((entry_points(&module), outputs))
+        })
+        .collect();
+    let failures: Vec<TranslateError> = results
+        .iter()
+        .filter_map(|r| r.as_ref().err().cloned())
+        .collect();
+    if !failures.is_empty() {
+        return Err(SetError::Failed(failures));
+    }
+
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let mut variants = Vec::with_capacity(jobs.len());
+    let mut files_seen: HashSet<String> = HashSet::new();
+    for (job, result) in jobs.iter().zip(results) {
+        let (eps, outputs) = result.expect("failures returned above");
+        let keywords = job.choice.keywords(job.pass);
+        let folder = format!(
+            "{}/{}",
+            file_safe(&job.pass.shader),
+            file_safe(&job.pass.name)
+        );
+        let mut stem = variant_stem(&keywords, job.index);
+        if files_seen.contains(&format!("{folder}/{stem}")) {
+            stem = format!("v{}", job.index);
+        }
+        files_seen.insert(format!("{folder}/{stem}"));
+        std::fs::create_dir_all(dir.join(&folder)).map_err(|e| io_error(dir, e))?;
+        let mut files = Vec::new();
+        for (target, output, slots) in outputs {
+            let (entry_point, stage) = match &output.entry_point {
+                Some(ep) => (Some(ep.name.clone()), Some(ep.stage)),
+                None => (None, None),
+            };
+            let file = match &entry_point {
+                Some(name) => format!(
+                    "{folder}/{stem}.{}.{}",
+                    file_safe(name),
+                    target.extension(stage)
+                ),
+                None => format!("{folder}/{stem}.{}", target.extension(None)),
+            };
+            let bytes = output.contents.to_bytes();
+            write_if_changed(&dir.join(&file), &bytes)?;
+            files.push(ManifestFile {
+                target: target.name().to_string(),
+                entry_point,
+                stage,
+                file,
+                bytes: bytes.len(),
+                blake3: blake3::hash(&bytes).to_hex().to_string(),
+                slots,
+            });
+        }
+        variants.push(ManifestVariant {
+            shader: job.pass.shader.clone(),
+            pass_name: job.pass.name.clone(),
+            keywords: keywords.into_iter().map(str::to_string).collect(),
+            entry_points: eps,
+            files,
+        });
+    }
+    let manifest = Manifest {
+        generator: format!("wgsl-variants {}", env!("CARGO_PKG_VERSION")),
+        targets: targets
+            .iter()
+            .map(|t| ManifestTarget {
+                target: t.name().to_string(),
+                version: t.version(),
+            })
+            .collect(),
+        variants,
+    };
+    let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serializes");
+    json.push('\n');
+    write_if_changed(&dir.join("manifest.json"), json.as_bytes())?;
+    Ok(manifest)
+}

@@ -1,0 +1,380 @@
+//! Binding reflection: snapshots of a few variants' JSON, the stable-numbering rule of the
+//! bundled library over every variant, keywords removing bindings, the command line, and
+//! (feature `gpu`) wgpu accepting pipelines whose layouts are built from the reflection.
+
+use std::collections::BTreeMap;
+use std::process::Command;
+
+use rayon::prelude::*;
+use serde_json::Value;
+
+use wgsl_variants::reflect::{BindingKind, Reflection, SampleType};
+use wgsl_variants::{Library, Space, Variant};
+
+/// A snapshot: name, shader, pass, keywords.
+type SnapshotVariant = (
+    &'static str,
+    &'static str,
+    &'static str,
+    &'static [&'static str],
+);
+
+/// The variants whose reflection JSON is snapshot (`snapshots/reflect.*.snap`).
+pub const SNAPSHOTS: [SnapshotVariant; 5] = [
+    (
+        "reflect.standard.Deferred.all-off",
+        "standard",
+        "Deferred",
+        &[],
+    ),
+    (
+        "reflect.standard.Deferred.maps-hdr-reflection-buffers",
+        "standard",
+        "Deferred",
+        &[
+            "_METALLIC_MAP",
+            "_NORMAL_MAP",
+            "_DETAIL_ALBEDO_MAP",
+            "UNITY_HDR_ON",
+            "UNITY_ENABLE_REFLECTION_BUFFERS",
+        ],
+    ),
+    (
+        "reflect.standard.ForwardBase.emission-occlusion",
+        "standard",
+        "ForwardBase",
+        &["_RENDERING_FADE", "_OCCLUSION_MAP", "_EMISSION_MAP"],
+    ),
+    (
+        "reflect.deferred_reflections.Reflections",
+        "deferred_reflections",
+        "Reflections",
+        &[],
+    ),
+    (
+        "reflect.deferred_final.Final",
+        "deferred_final",
+        "Final",
+        &[],
+    ),
+];
+
+#[test]
+fn reflection_json_snapshots() {
+    let lib = Library::bundled().unwrap();
+    for (name, shader, pass, keywords) in SNAPSHOTS {
+        let v = lib.variant(shader, pass, keywords).unwrap();
+        let json = serde_json::to_string_pretty(&lib.reflect(&v).unwrap()).unwrap();
+        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
+            insta::assert_snapshot!(name, json);
+        });
+    }
+}
+
+/// The reflection of every variant of every bundled pass, computed once for the tests.
+fn reflect_all(lib: &Library) -> &'static [Reflection] {
+    static ALL: std::sync::OnceLock<Vec<Reflection>> = std::sync::OnceLock::new();
+    ALL.get_or_init(|| compute_all(lib))
+}
+
+fn compute_all(lib: &Library) -> Vec<Reflection> {
+    lib.passes()
+        .flat_map(|pass| {
+            Space::full(pass)
+                .enumerate(1_000_000)
+                .unwrap()
+                .into_iter()
+                .map(move |choice| Variant { pass, choice })
+        })
+        .collect::<Vec<_>>()
+        .par_iter()
+        .map(|v| lib.reflect(v).unwrap())
+        .collect()
+}
+
+/// The rule the README documents: within a pass, a (group, binding) slot always holds the
+/// same resource — same name, same kind — in every variant that has it. Checked over the full
+/// space of every bundled pass (4612 variants).
+#[test]
+fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
+    let lib = Library::bundled().unwrap();
+    let all = reflect_all(&lib);
+    assert_eq!(all.len(), 4612);
+    // (shader, pass, group, binding) -> (name, kind)
+    type Slot = (String, String, u32, u32);
+    let mut seen: BTreeMap<Slot, (String, BindingKind)> = BTreeMap::new();
+    for r in all {
+        for b in &r.bindings {
+            let key = (r.shader.clone(), r.pass_name.clone(), b.group, b.binding);
+            let value = (b.name.clone(), b.kind.clone());
+            let first = seen.entry(key.clone()).or_insert_with(|| value.clone());
+            assert_eq!(
+                *first, value,
+                "{key:?} changes in {}/{} {:?}",
+                r.shader, r.pass_name, r.keywords
+            );
+        }
+    }
+    // Two names never share a slot, and one name never moves between slots.
+    let mut by_name: BTreeMap<(String, String, String), (u32, u32)> = BTreeMap::new();
+    for ((shader, pass, group, binding), (name, _)) in &seen {
+        let old = by_name.insert(
+            (shader.clone(), pass.clone(), name.clone()),
+            (*group, *binding),
+        );
+        assert!(old.is_none(), "{shader}/{pass} {name} has two slots");
+    }
+    // The standard passes use three groups: frame (0), material (1), object (2).
+    let standard: Vec<_> = seen
+        .keys()
+        .filter(|k| k.0 == "standard" && k.1 == "Deferred")
+        .collect();
+    assert_eq!(standard.len(), 6 + 10 + 1);
+}
+
+/// A keyword that is off removes its texture; one that is on brings it (with the same slot).
+#[test]
+fn keywords_add_and_remove_bindings() {
+    let lib = Library::bundled().unwrap();
+    let all = reflect_all(&lib);
+    let maps = [
+        ("_METALLIC_MAP", "metallic_map", (1, 3)),
+        ("_NORMAL_MAP", "normal_map", (1, 4)),
+        ("_OCCLUSION_MAP", "occlusion_map", (1, 5)),
+        ("_EMISSION_MAP", "emission_map", (1, 6)),
+        ("_DETAIL_ALBEDO_MAP", "detail_albedo", (1, 8)),
+        ("_DETAIL_NORMAL_MAP", "detail_normal", (1, 9)),
+    ];
+    let mut checked = 0;
+    for r in all.iter().filter(|r| r.shader == "standard") {
+        let has = |name: &str| {
+            r.bindings
+                .iter()
+                .find(|b| b.name == name)
+                .map(|b| (b.group, b.binding))
+        };
+        let on = |k: &str| r.keywords.iter().any(|x| x == k);
+        for (keyword, name, slot) in maps {
+            assert_eq!(
+                has(name),
+                on(keyword).then_some(slot),
+                "{keyword} in {:?}",
+                r.keywords
+            );
+        }
+        // The detail mask is sampled only to blend a detail map.
+        let detail = on("_DETAIL_ALBEDO_MAP") || on("_DETAIL_NORMAL_MAP");
+        assert_eq!(has("detail_mask").is_some(), on("_DETAIL_MASK") && detail);
+        // Probes are bound where the pass samples them.
+        let probes = r.pass_name == "ForwardBase" || !on("UNITY_ENABLE_REFLECTION_BUFFERS");
+        for name in ["probes", "probe_cube0", "probe_cube1", "probe_sampler"] {
+            assert_eq!(
+                has(name).is_some(),
+                probes,
+                "{name} in {}/{:?}",
+                r.pass_name,
+                r.keywords
+            );
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 4608);
+}
+
+#[test]
+fn texture_sample_types_follow_wgpu_rules() {
+    let lib = Library::bundled().unwrap();
+    let v = lib
+        .variant("deferred_reflections", "Reflections", &[] as &[&str])
+        .unwrap();
+    let r = lib.reflect(&v).unwrap();
+    let sample_type = |name: &str| match &r.bindings.iter().find(|b| b.name == name).unwrap().kind {
+        BindingKind::Texture { sample_type, .. } => *sample_type,
+        other => panic!("{name} is {other:?}"),
+    };
+    // Loaded with textureLoad only: any float format, including Rgba32Float positions.
+    for name in ["rt0", "rt1", "rt2", "position_tex"] {
+        assert_eq!(sample_type(name), SampleType::UnfilterableFloat, "{name}");
+    }
+    assert_eq!(sample_type("probe_cube"), SampleType::Float);
+    let uniforms = r.bindings.iter().find(|b| b.name == "reflection").unwrap();
+    // Probe (5 × vec4f) + camera position (vec4f).
+    assert_eq!(uniforms.kind, BindingKind::UniformBuffer { size: 96 });
+}
+
+#[test]
+fn reflect_command_line() {
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let json: Value = serde_json::from_str(&run(&[
+        "reflect",
+        "standard",
+        "Deferred",
+        "--keywords",
+        "_NORMAL_MAP,UNITY_HDR_ON",
+        "--json",
+    ]))
+    .unwrap();
+    let lib = Library::bundled().unwrap();
+    let v = lib
+        .variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])
+        .unwrap();
+    assert_eq!(
+        json,
+        serde_json::to_value(lib.reflect(&v).unwrap()).unwrap()
+    );
+    let text = run(&[
+        "reflect",
+        "standard",
+        "Deferred",
+        "--keywords",
+        "_NORMAL_MAP",
+    ]);
+    assert!(
+        text.starts_with(
+            "standard/Deferred {_NORMAL_MAP}\nentry points: vs_main (vertex), fs_main (fragment)\n"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("binding 4   normal_map"), "{text}");
+    assert!(text.contains("texture 2d float"), "{text}");
+
+    let out = Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args([
+            "reflect",
+            "standard",
+            "Deferred",
+            "--keywords",
+            "_NORMAL_MAPP",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("_NORMAL_MAP"));
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    use wgsl_variants::gpu::{GpuContext, GpuError};
+    use wgsl_variants::snapshot::covering_set;
+    use wgsl_variants::{Library, Variant};
+
+    fn context() -> Option<GpuContext> {
+        match GpuContext::new(std::env::var("WGSL_VARIANTS_ADAPTER").ok().as_deref()) {
+            Ok(ctx) => Some(ctx),
+            Err(e @ GpuError::NoAdapter { .. }) => {
+                let required = std::env::var("CI").is_ok_and(|v| v == "true")
+                    || std::env::var("WGSL_VARIANTS_REQUIRE_GPU").is_ok_and(|v| v == "1");
+                assert!(!required, "a GPU adapter is required: {e}");
+                eprintln!("SKIPPED: no GPU adapter: {e}");
+                None
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// wgpu checks a pipeline against an explicit layout: every binding the shader uses must
+    /// be in it with a compatible type and visibility. Layouts built from the reflection pass
+    /// for the covering set of every bundled pass.
+    #[test]
+    fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
+        let Some(ctx) = context() else { return };
+        let lib = Library::bundled().unwrap();
+        let mut pipelines = 0;
+        for pass in lib.passes() {
+            for (which, choice) in covering_set(pass) {
+                let v = Variant { pass, choice };
+                let label = format!("{} ({which})", v.label());
+                let reflection = lib.reflect(&v).unwrap();
+                let wgsl = lib.wgsl(&v);
+                let deferred = pass.name == "Deferred";
+                let hdr = v.keywords().contains(&"UNITY_HDR_ON");
+                let formats: Vec<wgpu::TextureFormat> = if deferred {
+                    vec![
+                        wgpu::TextureFormat::Rgba8Unorm,
+                        wgpu::TextureFormat::Rgba8Unorm,
+                        wgpu::TextureFormat::Rgb10a2Unorm,
+                        if hdr {
+                            wgpu::TextureFormat::Rgba16Float
+                        } else {
+                            wgpu::TextureFormat::Rgb10a2Unorm
+                        },
+                    ]
+                } else {
+                    vec![wgpu::TextureFormat::Rgba16Float]
+                };
+                let standard = pass.shader == "standard";
+                let (_, error) = ctx.capture(|| {
+                    let layouts = reflection
+                        .create_bind_group_layouts(&ctx.device, &label)
+                        .unwrap();
+                    let layout_refs: Vec<Option<&wgpu::BindGroupLayout>> =
+                        layouts.iter().map(Some).collect();
+                    let layout =
+                        ctx.device
+                            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                                label: Some(&label),
+                                bind_group_layouts: &layout_refs,
+                                immediate_size: 0,
+                            });
+                    let module = ctx
+                        .device
+                        .create_shader_module(wgpu::ShaderModuleDescriptor {
+                            label: Some(&label),
+                            source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
+                        });
+                    let attributes = wgpu::vertex_attr_array![
+                        0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
+                    ];
+                    let buffers = [Some(wgpu::VertexBufferLayout {
+                        array_stride: 48,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &attributes,
+                    })];
+                    let targets: Vec<Option<wgpu::ColorTargetState>> =
+                        formats.iter().map(|&f| Some(f.into())).collect();
+                    ctx.device
+                        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                            label: Some(&label),
+                            layout: Some(&layout),
+                            vertex: wgpu::VertexState {
+                                module: &module,
+                                entry_point: Some("vs_main"),
+                                compilation_options: Default::default(),
+                                buffers: if standard { &buffers } else { &[] },
+                            },
+                            fragment: Some(wgpu::FragmentState {
+                                module: &module,
+                                entry_point: Some("fs_main"),
+                                compilation_options: Default::default(),
+                                targets: &targets,
+                            }),
+                            primitive: Default::default(),
+                            depth_stencil: None,
+                            multisample: Default::default(),
+                            multiview_mask: None,
+                            cache: None,
+                        })
+                });
+                assert!(
+                    error.is_none(),
+                    "{label}: {}",
+                    error.map(|e| e.to_string()).unwrap_or_default()
+                );
+                pipelines += 1;
+            }
+        }
+        println!("wgpu accepted {pipelines} pipelines with layouts from reflection");
+        assert!(pipelines > 30);
+    }
+}
