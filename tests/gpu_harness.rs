@@ -534,3 +534,31 @@ struct P {{ v: vec4<f32> }}
         ctx.adapter_name()
     );
 }
+
+#[test]
+fn an_adapter_that_is_not_there_is_a_clear_error() {
+    match GpuContext::new(Some("no-such-adapter-anywhere")) {
+        Err(e @ GpuError::NoAdapter { .. }) => {
+            let message = e.to_string();
+            assert!(message.contains("no-such-adapter-anywhere"), "{message}");
+        }
+        Err(other) => panic!("expected NoAdapter, got {other}"),
+        Ok(ctx) => panic!("matched adapter {}", ctx.adapter_name()),
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args([
+            "check-gpu",
+            "--adapter",
+            "no-such-adapter-anywhere",
+            "--pass",
+            "Final",
+        ])
+        .output()
+        .expect("run check-gpu");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        !stderr.contains("panicked") && stderr.contains("no-such-adapter-anywhere"),
+        "{stderr}"
+    );
+}
