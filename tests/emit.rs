@@ -764,3 +764,38 @@ fn bake_fails_with_rendered_diagnostics() {
         .unwrap_err();
     assert!(e.to_string().contains("nope"), "{e}");
 }
+
+#[test]
+fn emit_out_shards_partition_the_build_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = |name: &str, extra: &[&str]| -> Vec<serde_json::Value> {
+        let out = dir.path().join(name);
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args([
+                "emit",
+                "--out",
+                out.to_str().unwrap(),
+                "--shader",
+                "deferred_reflections",
+            ])
+            .args(extra)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let text = std::fs::read_to_string(out.join("manifest.json")).unwrap();
+        let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        json["variants"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| serde_json::json!([v["pass"], v["keywords"]]))
+            .collect()
+    };
+    let whole = manifest("all", &[]);
+    let mut union = manifest("one", &["--shard", "1/2"]);
+    union.extend(manifest("two", &["--shard", "2/2"]));
+    assert_eq!(union.len(), whole.len(), "shards overlap or miss variants");
+    for v in &whole {
+        assert!(union.contains(v), "{v} missing from the shards");
+    }
+}

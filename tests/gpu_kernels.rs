@@ -19,6 +19,7 @@ fn run(lib: &Library, pass: Option<&str>) -> Option<CheckReport> {
         adapter: std::env::var("WGSL_VARIANTS_ADAPTER").ok(),
         threads: 1,
         sample: 1,
+        shard: None,
     };
     match check::run(lib, &options) {
         Ok(report) => Some(report),

@@ -34,12 +34,24 @@ fn run(
     pass: Option<&str>,
     sample: usize,
 ) -> Option<CheckReport> {
+    run_shard(lib, shader, pass, sample, None)
+}
+
+/// [`run`] for one shard of the variants.
+fn run_shard(
+    lib: &Library,
+    shader: Option<&str>,
+    pass: Option<&str>,
+    sample: usize,
+    shard: Option<wgsl_variants::variants::Shard>,
+) -> Option<CheckReport> {
     let options = CheckOptions {
         shader: shader.map(str::to_owned),
         pass: pass.map(str::to_owned),
         adapter: std::env::var("WGSL_VARIANTS_ADAPTER").ok(),
         threads: 0,
         sample,
+        shard,
     };
     match check::run(lib, &options) {
         Ok(report) => Some(report),
@@ -232,4 +244,28 @@ fn pictures_are_written() {
     .unwrap();
     assert_eq!(forward.len(), 2);
     assert!(pictures::render_pictures(&ctx, &lib, &scene, "deferred_final", "Final", &[]).is_err());
+}
+
+#[test]
+fn shards_of_the_gpu_check_add_up_to_the_whole() {
+    let lib = Library::bundled().unwrap();
+    let variants = |shard: Option<&str>| -> Option<u64> {
+        let report = run_shard(
+            &lib,
+            Some("standard"),
+            Some("ForwardBase"),
+            128,
+            shard.map(|s| s.parse().unwrap()),
+        )?;
+        let p = report.passes.iter().find(|p| p.pass == "ForwardBase")?;
+        assert_eq!(p.mismatches, 0);
+        Some(p.variants_run as u64)
+    };
+    let Some(whole) = variants(None) else { return };
+    let parts: u64 = ["1/3", "2/3", "3/3"]
+        .iter()
+        .map(|s| variants(Some(s)).unwrap_or(0))
+        .sum();
+    assert_eq!(whole, 1536 / 128);
+    assert_eq!(parts, whole);
 }

@@ -29,6 +29,9 @@ pub struct CheckGpuArgs {
     /// is then not judged).
     #[arg(long, value_name = "N", default_value_t = 1)]
     sample: usize,
+    /// Only shard K of N of each standard pass's variants (`K/N`), for a CI job matrix.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<wgsl_variants::variants::Shard>,
 }
 
 pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
@@ -38,6 +41,7 @@ pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
         adapter: args.adapter.clone(),
         threads: args.workers,
         sample: args.sample,
+        shard: args.shard,
     };
     let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {

@@ -86,6 +86,9 @@ pub struct EmitArgs {
     /// With --out and no SHADER/PASS: the full space of every pass, not the build set.
     #[arg(long)]
     all: bool,
+    /// With --out: only shard K of N of the variants (numbered across passes; `K/N`).
+    #[arg(long, value_name = "K/N")]
+    shard: Option<wgsl_variants::variants::Shard>,
     #[command(flatten)]
     build: BuildArgs,
 }
@@ -340,6 +343,10 @@ fn write_build_set(
             pass: args.build.pass.clone(),
         },
     )?;
+    let selection = match args.shard {
+        Some(shard) => shard.select(selection),
+        None => selection,
+    };
     write_selection(ctx, &selection, targets, options, dir)
 }
 

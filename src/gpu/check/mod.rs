@@ -50,6 +50,9 @@ pub struct CheckOptions {
     /// Check every n-th variant of the standard passes only (0 or 1: all of them). Keyword
     /// coverage is judged on the full space only.
     pub sample: usize,
+    /// Only this shard of each standard pass's variants (variant i of a pass is in shard
+    /// `i % N`); with `sample`, both apply. Keyword coverage is judged on the full space only.
+    pub shard: Option<crate::variants::Shard>,
 }
 
 /// The passes the check knows, as `(shader, pass)`.
@@ -162,6 +165,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 &scene,
                 pass,
                 options.sample,
+                options.shard,
             )?);
         }
     }

@@ -182,6 +182,7 @@ pub fn check_standard_pass(
     scene: &TestScene,
     pass: &Pass,
     sample: usize,
+    shard: Option<crate::variants::Shard>,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
     let deferred = is_deferred(pass);
@@ -190,7 +191,12 @@ pub fn check_standard_pass(
         .enumerate(MAX_VARIANTS)
         .map_err(|e| GpuError::Check(format!("{}/{}: {e}", pass.shader, pass.name)))?;
     let every = sample.max(1);
-    let choices: Vec<Choice> = all.into_iter().step_by(every).collect();
+    let choices: Vec<Choice> = all
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| i % every == 0 && shard.is_none_or(|s| s.contains(*i as u64)))
+        .map(|(_, c)| c)
+        .collect();
 
     // Compose every variant; render each distinct text once.
     let mut distinct: HashMap<String, usize> = HashMap::new();
@@ -284,7 +290,7 @@ pub fn check_standard_pass(
     report.keywords = keyword_coverage(pass, &choices, |a, b| {
         decoded[text_of[a]] != decoded[text_of[b]]
     });
-    if every == 1 {
+    if every == 1 && shard.is_none() {
         report.untested_keywords = report
             .keywords
             .iter()
@@ -293,7 +299,8 @@ pub fn check_standard_pass(
             .collect();
     } else {
         report.notes.push(format!(
-            "sampled every {every}th variant: keyword coverage is judged on the full space only"
+            "sampled every {every}th variant{}: keyword coverage is judged on the full space only",
+            shard.map(|s| format!(" of shard {s}")).unwrap_or_default()
         ));
     }
     report.notes.push(format!(
