@@ -18,6 +18,10 @@ for target in preprocess expr pragmas loader; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
     cp -n fuzz/seeds/"$target"/* "$corpus"/ 2>/dev/null || true
+    if [ "$target" = preprocess ]; then
+        # The bundled modules are seeds too (shader files are pass bodies, not modules).
+        for m in $(grep -rL '^#shader' wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
+    fi
     log="$(mktemp)"
     cargo fuzz run --release --sanitizer address "$target" "$corpus" -- \
         -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 2>&1 | tee "$log" | grep -E "^(Done|==|SUMMARY|#[0-9]+ +(INITED|DONE))" || true

@@ -40,7 +40,14 @@ fn fuzz_seeds_and_regressions_replay_cleanly() {
     ];
     let mut total = 0;
     for (name, check) in targets {
-        let seeds = inputs("seeds", name);
+        let mut seeds = inputs("seeds", name);
+        if name == "preprocess" {
+            // The bundled modules are seeds too, as scripts/fuzz.sh gives them to the fuzzer.
+            let lib = wgsl_variants::Library::bundled().expect("bundled library");
+            let modules = (0..lib.module_paths().len())
+                .filter(|&i| !lib.shaders().iter().any(|s| s.file == i));
+            seeds.extend(modules.map(|i| lib.files().text(i).as_bytes().to_vec()));
+        }
         assert!(!seeds.is_empty(), "no seeds for {name}");
         let regressions = inputs("regressions", name);
         for input in seeds.iter().chain(&regressions) {

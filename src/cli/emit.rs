@@ -8,14 +8,12 @@ use std::process::ExitCode;
 use clap::ValueEnum;
 use serde::Serialize;
 
-use wgsl_variants::Variant;
 use wgsl_variants::emit::backends::{
     self, Options, Target, TargetKind, TranslateError, parse_glsl_version, parse_msl_version,
     parse_shader_model,
 };
 use wgsl_variants::emit::reflect::Stage;
 use wgsl_variants::emit::set::{self, SetError};
-use wgsl_variants::lookup::{lookup_closest, lookup_strict};
 use wgsl_variants::validate::{ValidateOptions, validate_composed};
 
 use super::output::print_json;
@@ -129,9 +127,6 @@ struct WrittenOut {
     targets: Vec<String>,
 }
 
-/// Neighbour search for error messages and `--closest` looks at most this many variants.
-const NEIGHBOUR_BUDGET: u64 = 1_000_000;
-
 fn targets(args: &EmitArgs) -> Result<Vec<Target>, Failed> {
     let mut out: Vec<Target> = Vec::new();
     let kinds = if args.targets.is_empty() {
@@ -191,26 +186,7 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
     }
     let materials = load_materials(&args.build.materials)?;
     let pass = ctx.lib.pass(shader, pass)?;
-    let space = ctx.lib.build_set(pass, materials.as_deref())?;
-    let keywords: Vec<&str> = args
-        .keywords
-        .iter()
-        .map(|k| k.trim())
-        .filter(|k| !k.is_empty())
-        .collect();
-    let found = if args.closest {
-        lookup_closest(&space, &keywords, NEIGHBOUR_BUDGET)
-    } else {
-        lookup_strict(&space, &keywords, NEIGHBOUR_BUDGET)
-    };
-    let choice = found.map_err(|e| ctx.pass_failure(pass, format!("{e}")))?;
-    let variant = Variant { pass, choice };
-    if args.closest && variant.keywords() != keywords {
-        eprintln!(
-            "note: no exact variant; using the closest, {}",
-            variant.label()
-        );
-    }
+    let variant = ctx.find_variant(pass, materials.as_deref(), &args.keywords, args.closest)?;
 
     if let Some(dir) = &args.out {
         let selection = vec![(pass, vec![variant.choice.clone()])];

@@ -148,6 +148,39 @@ impl Context {
         d.render(self.lib.files(), self.color)
     }
 
+    /// The variant of `pass` with `keywords` on, in the build set of `materials`: strict, or
+    /// the closest one with `closest` (with a note on stderr when it differs).
+    fn find_variant<'l>(
+        &'l self,
+        pass: &'l wgsl_variants::Pass,
+        materials: Option<&[Material]>,
+        keywords: &[String],
+        closest: bool,
+    ) -> Result<wgsl_variants::Variant<'l>, Failed> {
+        // Neighbour search for error messages and `--closest` looks at most this many variants.
+        const NEIGHBOUR_BUDGET: u64 = 1_000_000;
+        let space = self.lib.build_set(pass, materials)?;
+        let keywords: Vec<&str> = keywords
+            .iter()
+            .map(|k| k.trim())
+            .filter(|k| !k.is_empty())
+            .collect();
+        let found = if closest {
+            wgsl_variants::lookup::lookup_closest(&space, &keywords, NEIGHBOUR_BUDGET)
+        } else {
+            wgsl_variants::lookup::lookup_strict(&space, &keywords, NEIGHBOUR_BUDGET)
+        };
+        let choice = found.map_err(|e| self.pass_failure(pass, format!("{e}")))?;
+        let variant = wgsl_variants::Variant { pass, choice };
+        if closest && variant.keywords() != keywords {
+            eprintln!(
+                "note: no exact variant; using the closest, {}",
+                variant.label()
+            );
+        }
+        Ok(variant)
+    }
+
     /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
     fn pass_failure(&self, pass: &wgsl_variants::Pass, message: String) -> Failed {
         let mut d = wgsl_variants::Diagnostic::new(message).at(pass.span, "pass declared here");
