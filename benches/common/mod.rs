@@ -162,23 +162,9 @@ pub fn naga_oil_deferred(
     choices: &[wgsl_variants::Choice],
     rounds: usize,
 ) -> Option<Duration> {
-    use naga_oil::compose::{
-        ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
-    };
+    use naga_oil::compose::{NagaModuleDescriptor, ShaderDefValue};
     let modules = wgsl_variants::emit::naga_oil::export_all(lib, Some("wv")).ok()?;
-    let mut composer = Composer::default();
-    for m in &modules {
-        composer
-            .add_composable_module(ComposableModuleDescriptor {
-                source: &m.source,
-                file_path: &format!("{}.wgsl", m.path),
-                language: ShaderLanguage::Wgsl,
-                as_name: None,
-                additional_imports: &[],
-                shader_defs: Default::default(),
-            })
-            .ok()?;
-    }
+    let mut composer = naga_oil_composer(&modules)?;
     let program = modules
         .iter()
         .find(|m| m.path == "standard/my_lighting")?
@@ -221,21 +207,29 @@ pub fn naga_oil_deferred(
 
 /// naga_oil: creating a Composer and registering the bundled modules (its cold start).
 pub fn naga_oil_cold(lib: &Library, rounds: usize) -> Option<Duration> {
-    use naga_oil::compose::{ComposableModuleDescriptor, Composer, ShaderLanguage};
     let modules = wgsl_variants::emit::naga_oil::export_all(lib, Some("wv")).ok()?;
     Some(median(rounds, || {
-        let mut composer = Composer::default();
-        for m in &modules {
-            composer
-                .add_composable_module(ComposableModuleDescriptor {
-                    source: &m.source,
-                    file_path: &format!("{}.wgsl", m.path),
-                    language: ShaderLanguage::Wgsl,
-                    as_name: None,
-                    additional_imports: &[],
-                    shader_defs: Default::default(),
-                })
-                .expect("registers");
-        }
+        naga_oil_composer(&modules).expect("registers");
     }))
+}
+
+/// A new naga_oil Composer with every exported module registered (`None` if one is refused).
+fn naga_oil_composer(
+    modules: &[wgsl_variants::emit::naga_oil::NagaOilModule],
+) -> Option<naga_oil::compose::Composer> {
+    use naga_oil::compose::{ComposableModuleDescriptor, Composer, ShaderLanguage};
+    let mut composer = Composer::default();
+    for m in modules {
+        composer
+            .add_composable_module(ComposableModuleDescriptor {
+                source: &m.source,
+                file_path: &format!("{}.wgsl", m.path),
+                language: ShaderLanguage::Wgsl,
+                as_name: None,
+                additional_imports: &[],
+                shader_defs: Default::default(),
+            })
+            .ok()?;
+    }
+    Some(composer)
 }
