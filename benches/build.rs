@@ -2,7 +2,10 @@
 //!
 //! `cargo bench --bench build` prints a table and writes `target/bench-summary.json` with each
 //! measurement and the ratios `ratio_vs_naga_floor` and `ratio_vs_naga_oil` (lower is faster).
-//! Every figure is the median of several rounds; ratios compare figures from this run only.
+//! The contestants (the naga floor, this crate, naga_oil, and both sides again on 2 threads)
+//! build the same slices of the space in turn, round after round (`BENCH_ROUNDS`, default 5),
+//! so that a slow moment of a noisy machine slows them alike. Each ratio is the median over
+//! rounds of the ratio within a round; times are medians over rounds.
 
 mod common;
 
@@ -38,7 +41,7 @@ fn main() {
     let rounds = std::env::var("BENCH_ROUNDS")
         .ok()
         .and_then(|r| r.parse().ok())
-        .unwrap_or(3);
+        .unwrap_or(5);
     let lib = Library::bundled().expect("bundled library");
     let pass = lib.pass("standard", "Deferred").expect("Deferred");
     let choices = Space::full(pass).enumerate(1_000_000).expect("enumerable");
@@ -61,17 +64,39 @@ fn main() {
 
     let one = pool(1);
     let two = pool(2);
-    let floor = common::median(rounds, || one.install(|| naga_floor(&texts)));
-    let ours = common::median(rounds, || {
-        one.install(|| assert_eq!(validate_pass(&lib, pass, &choices, &|_| {}).invalid, 0));
-    });
-    let ours_2 = common::median(rounds, || {
-        two.install(|| assert_eq!(validate_pass(&lib, pass, &choices, &|_| {}).invalid, 0));
-    });
-    let floor_2 = common::median(rounds, || {
-        two.install(|| texts.par_chunks(64).for_each(naga_floor))
-    });
-    let naga_oil = common::naga_oil_deferred(&lib, pass, &choices, rounds);
+    // Every contestant builds the same slices of the space, interleaved (see common::interleaved).
+    let slices = 12;
+    let per_slice = choices.len().div_ceil(slices);
+    let range = |s: usize| s * per_slice..((s + 1) * per_slice).min(choices.len());
+    let mut oil = common::NagaOil::new(&lib, pass, &choices);
+    let mut oil_ok = oil.is_some();
+    let times = common::interleaved(
+        rounds,
+        slices,
+        &mut [
+            &mut |s| one.install(|| naga_floor(&texts[range(s)])),
+            &mut |s| {
+                one.install(|| {
+                    let report = validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+                    assert_eq!(report.invalid, 0);
+                })
+            },
+            &mut |s| {
+                if let Some(o) = oil.as_mut() {
+                    oil_ok &= o.build(range(s));
+                }
+            },
+            &mut |s| two.install(|| texts[range(s)].par_chunks(16).for_each(naga_floor)),
+            &mut |s| {
+                two.install(|| {
+                    let report = validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+                    assert_eq!(report.invalid, 0);
+                })
+            },
+        ],
+    );
+    let [floor, ours, naga_oil, floor_2, ours_2] = [0, 1, 2, 3, 4].map(|i| &times[i]);
+    let naga_oil = oil_ok.then_some(naga_oil);
     let naga_oil_cold = common::naga_oil_cold(&lib, rounds * 3);
 
     let one_variant = &choices[choices.len() / 2];
@@ -93,30 +118,31 @@ fn main() {
     });
 
     let per = |d: Duration| d.as_secs_f64() * 1e3 / n;
-    let ratio_floor = ours.as_secs_f64() / floor.as_secs_f64();
-    let ratio_oil = naga_oil.map(|o| ours.as_secs_f64() / o.as_secs_f64());
+    let ratio_floor = common::median_ratio(ours, floor);
+    let ratio_oil = naga_oil.map(|o| common::median_ratio(ours, o));
+    let speedup = common::median_ratio(ours, ours_2);
+    let floor_speedup = common::median_ratio(floor, floor_2);
     println!(
         "{:<46} {:>10} {:>12}",
-        "measurement (3072 variants, median)", "total", "per variant"
+        format!("{} variants, {rounds} rounds, median", choices.len()),
+        "total",
+        "per variant"
     );
-    for (name, d) in [
+    let mut rows = vec![
         ("naga floor: parse + validate final texts, 1 thread", floor),
         ("wgsl-variants: compose + validate, 1 thread", ours),
         ("naga floor, 2 threads", floor_2),
         ("wgsl-variants, 2 threads", ours_2),
-    ] {
+    ];
+    if let Some(o) = naga_oil {
+        rows.push(("naga_oil 0.23: compose + validate, 1 thread", o));
+    }
+    for (name, times) in rows {
+        let d = common::median_of(times);
         println!(
             "{name:<46} {:>8.0}ms {:>9.3}ms",
             d.as_secs_f64() * 1e3,
             per(d)
-        );
-    }
-    if let Some(o) = naga_oil {
-        println!(
-            "{:<46} {:>8.0}ms {:>9.3}ms",
-            "naga_oil 0.23: compose + validate, 1 thread",
-            o.as_secs_f64() * 1e3,
-            per(o)
         );
     }
     println!(
@@ -130,13 +156,12 @@ fn main() {
             c.as_secs_f64() * 1e3
         );
     }
-    println!(
-        "ratio vs naga floor (1 thread): {ratio_floor:.3}   speed-up on 2 threads: {:.2}x",
-        ours.as_secs_f64() / ours_2.as_secs_f64()
-    );
+    println!("ratios are medians over rounds of the ratio within each round:");
+    println!("  ratio vs naga floor (1 thread): {ratio_floor:.3}");
+    println!("  speed-up on 2 threads: {speedup:.2}x (the naga floor itself: {floor_speedup:.2}x)");
     if let Some(r) = ratio_oil {
         println!(
-            "ratio vs naga_oil (1 thread): {r:.3} ({:.2}x faster)",
+            "  ratio vs naga_oil (1 thread): {r:.3} ({:.2}x faster)",
             1.0 / r
         );
     }
@@ -147,17 +172,19 @@ fn main() {
         "rounds": rounds,
         "variants": choices.len(),
         "composed_bytes_avg": bytes,
-        "naga_floor_ms_per_variant": per(floor),
-        "ours_ms_per_variant": per(ours),
-        "ours_2_threads_ms_per_variant": per(ours_2),
-        "naga_floor_2_threads_ms_per_variant": per(floor_2),
-        "naga_oil_ms_per_variant": naga_oil.map(per),
+        "method": "contestants interleaved slice by slice; ratios are medians of per-round ratios",
+        "naga_floor_ms_per_variant": per(common::median_of(floor)),
+        "ours_ms_per_variant": per(common::median_of(ours)),
+        "ours_2_threads_ms_per_variant": per(common::median_of(ours_2)),
+        "naga_floor_2_threads_ms_per_variant": per(common::median_of(floor_2)),
+        "naga_oil_ms_per_variant": naga_oil.map(|o| per(common::median_of(o))),
         "single_variant_cold_ms": cold.as_secs_f64() * 1e3,
         "single_variant_warm_ms": warm.as_secs_f64() * 1e3,
         "naga_oil_cold_start_ms": naga_oil_cold.map(|c| c.as_secs_f64() * 1e3),
         "ratio_vs_naga_floor": ratio_floor,
         "ratio_vs_naga_oil": ratio_oil,
-        "speedup_2_threads": ours.as_secs_f64() / ours_2.as_secs_f64(),
+        "speedup_2_threads": speedup,
+        "naga_floor_speedup_2_threads": floor_speedup,
         "memory": memory,
     }));
 }

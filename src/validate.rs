@@ -1,6 +1,6 @@
 //! Validating variants with naga, in parallel, with errors mapped to the original modules.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use num_bigint::BigUint;
 use rayon::prelude::*;
@@ -286,16 +286,22 @@ pub fn validate_pass(
     validate_pass_with(lib, pass, choices.iter().cloned(), None, progress)
 }
 
-/// Variants composed and hashed per batch: memory stays flat however large the build set is.
-const BATCH: usize = 2048;
+/// Variants composed and hashed per batch, per worker thread: enough that the end of a batch
+/// (where workers wait for the slowest) costs little, few enough that the texts alive at once
+/// stay a few megabytes.
+const BATCH_PER_THREAD: usize = 256;
 
 /// [`validate_pass`] over any sequence of variants (e.g. [`Space::iter`], never collected),
 /// with an optional cache of texts known to be valid.
 ///
 /// Variants are composed in parallel batches; each text is hashed (BLAKE3) and only the first
-/// variant with a given text is validated. What is kept per distinct text is its hash and a
-/// count (about 40 bytes); texts are dropped batch by batch, and only failing variants are
-/// remembered. Results are in enumeration order whatever the thread count.
+/// variant with a given text is validated. Texts are dropped batch by batch; what is kept is
+/// the failing variants and, unless [`crate::audit::proves_all_distinct`] shows that every
+/// variant of the pass has its own text, 16 bytes per distinct text seen. Results are in
+/// enumeration order whatever the thread count.
+///
+/// `choices` are expected to be different keyword sets, as every [`Space`] gives them; when
+/// the audit proves all texts distinct, a keyword set given twice is validated twice.
 pub fn validate_pass_with(
     lib: &Library,
     pass: &Pass,
@@ -303,15 +309,18 @@ pub fn validate_pass_with(
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    let mut index: HashMap<u128, usize> = HashMap::new();
-    let mut members: Vec<u64> = Vec::new();
-    // Failing groups, by group number (= order of first appearance): error and keyword sets.
-    let mut failing: std::collections::BTreeMap<usize, (VariantError, Vec<Choice>)> =
-        Default::default();
+    // Keys (128 bits of the text's hash) of the texts seen; not kept when the audit proves
+    // that no two variants share a text, so memory does not grow with the space.
+    let mut seen: Option<HashSet<u128>> =
+        (!crate::audit::proves_all_distinct(lib, pass)).then(HashSet::new);
+    // One entry per failing text, in order of first appearance: error and keyword sets.
+    let mut failures: Vec<(VariantError, Vec<Choice>)> = Vec::new();
+    let mut failing: HashMap<u128, usize> = HashMap::new();
+    let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
     let mut choices = choices.into_iter();
-    let mut built = 0u64;
+    let (mut built, mut distinct) = (0u64, 0u64);
     loop {
-        let chunk: Vec<Choice> = choices.by_ref().take(BATCH).collect();
+        let chunk: Vec<Choice> = choices.by_ref().take(batch).collect();
         if chunk.is_empty() {
             break;
         }
@@ -327,21 +336,14 @@ pub fn validate_pass_with(
                 (crate::cache::hash(&composed.text), composed)
             })
             .collect();
-        let mut member_of = Vec::with_capacity(chunk.len());
-        let mut fresh = Vec::new();
-        for (j, (h, _)) in composed.iter().enumerate() {
-            let key = u128::from_le_bytes(h[..16].try_into().unwrap_or_default());
-            let g = *index.entry(key).or_insert_with(|| {
-                members.push(0);
-                fresh.push((members.len() - 1, j));
-                members.len() - 1
-            });
-            members[g] += 1;
-            member_of.push(g);
-        }
+        let keys: Vec<u128> = composed.iter().map(|(h, _)| key(h)).collect();
+        let fresh: Vec<usize> = (0..chunk.len())
+            .filter(|&j| seen.as_mut().is_none_or(|s| s.insert(keys[j])))
+            .collect();
+        distinct += fresh.len() as u64;
         let results: Vec<Option<VariantError>> = fresh
             .par_iter()
-            .map_init(new_validator, |validator, &(_, j)| {
+            .map_init(new_validator, |validator, &j| {
                 let (hash, text) = &composed[j];
                 if cache.is_some_and(|c| c.contains(hash)) {
                     return None;
@@ -362,29 +364,33 @@ pub fn validate_pass_with(
                 result
             })
             .collect();
-        for ((g, _), result) in fresh.iter().zip(results) {
+        drop(composed);
+        for (&j, result) in fresh.iter().zip(results) {
             if let Some(error) = result {
-                failing.insert(*g, (error, Vec::new()));
+                failing.insert(keys[j], failures.len());
+                failures.push((error, Vec::new()));
             }
         }
-        for (choice, g) in chunk.into_iter().zip(member_of) {
-            if let Some((_, sets)) = failing.get_mut(&g) {
-                sets.push(choice);
+        if !failing.is_empty() {
+            for (choice, k) in chunk.into_iter().zip(&keys) {
+                if let Some(&f) = failing.get(k) {
+                    failures[f].1.push(choice);
+                }
             }
         }
-        progress(composed.len() as u64);
+        progress(keys.len() as u64);
     }
-    let invalid: u64 = failing.keys().map(|&g| members[g]).sum();
+    let invalid: u64 = failures.iter().map(|(_, sets)| sets.len() as u64).sum();
     PassReport {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
         full_space: Space::full(pass).count(),
         built,
-        distinct: members.len() as u64,
+        distinct,
         valid: built - invalid,
         invalid,
-        failures: failing
-            .into_values()
+        failures: failures
+            .into_iter()
             .map(|(error, sets)| Failure {
                 error,
                 keyword_sets: sets
@@ -394,4 +400,12 @@ pub fn validate_pass_with(
             })
             .collect(),
     }
+}
+
+/// The dedup key of a text: 128 bits of its BLAKE3 hash (a collision among 10^12 texts has a
+/// probability below 2^-48).
+fn key(hash: &Hash) -> u128 {
+    let mut bytes = [0u8; 16];
+    bytes.copy_from_slice(&hash[..16]);
+    u128::from_le_bytes(bytes)
 }

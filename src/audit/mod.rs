@@ -85,6 +85,39 @@ pub fn audit_pass(
     audit_with(lib, &ids, pass, options)
 }
 
+/// Whether every variant of `pass`'s full space composes to a different text, proved by the
+/// static analysis alone (never by enumerating the space). `false` means "not proved": some
+/// variants share a text, or the analysis could not certify an exact count within its default
+/// per-component limit.
+///
+/// Validation uses this to skip its index of seen texts: when every text is different, each
+/// variant is validated once anyway, and memory stays the same however large the space.
+///
+/// ```
+/// use wgsl_variants::{Library, audit};
+///
+/// let lib = Library::bundled().unwrap();
+/// assert!(audit::proves_all_distinct(&lib, lib.pass("standard", "Deferred").unwrap()));
+///
+/// // DEAD changes no code: both of its variants compose to the same text.
+/// let lib = Library::from_sources([(
+///     "s.wgsl",
+///     "#shader s\n#pass P\n#pragma multi_compile _ DEAD\nfn f() {}\n#endpass",
+/// )])
+/// .unwrap();
+/// assert!(!audit::proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
+/// ```
+pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
+    let graph = lib.module_graph();
+    let ids = LineIds::new(&graph);
+    let limits = Limits {
+        component: AuditOptions::default().component_limit,
+        whole: 0,
+    };
+    let full = distinct::analyze(&graph, &ids, pass, Domain::full(pass), limits);
+    full.exact && full.distinct == full.count
+}
+
 /// Audits several passes (in parallel; the result is in the order given).
 pub fn audit_passes(
     lib: &Library,
