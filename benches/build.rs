@@ -70,6 +70,11 @@ fn main() {
     let range = |s: usize| s * per_slice..((s + 1) * per_slice).min(choices.len());
     let mut oil = common::NagaOil::new(&lib, pass, &choices);
     let mut oil_ok = oil.is_some();
+    let oil_texts = oil
+        .as_mut()
+        .and_then(common::NagaOil::output_texts)
+        .unwrap_or_default();
+    let oil_bytes = oil_texts.iter().map(String::len).sum::<usize>() as f64 / n;
     let times = common::interleaved(
         rounds,
         slices,
@@ -88,6 +93,11 @@ fn main() {
             },
             &mut |s| two.install(|| texts[range(s)].par_chunks(16).for_each(naga_floor)),
             &mut |s| {
+                if !oil_texts.is_empty() {
+                    one.install(|| naga_floor(&oil_texts[range(s)]))
+                }
+            },
+            &mut |s| {
                 two.install(|| {
                     let report = validate_pass(&lib, pass, &choices[range(s)], &|_| {});
                     assert_eq!(report.invalid, 0);
@@ -95,7 +105,7 @@ fn main() {
             },
         ],
     );
-    let [floor, ours, naga_oil, floor_2, ours_2] = [0, 1, 2, 3, 4].map(|i| &times[i]);
+    let [floor, ours, naga_oil, floor_2, oil_floor, ours_2] = [0, 1, 2, 3, 4, 5].map(|i| &times[i]);
     let naga_oil = oil_ok.then_some(naga_oil);
     let naga_oil_cold = common::naga_oil_cold(&lib, rounds * 3);
 
@@ -136,6 +146,7 @@ fn main() {
     ];
     if let Some(o) = naga_oil {
         rows.push(("naga_oil 0.23: compose + validate, 1 thread", o));
+        rows.push(("naga floor on naga_oil's own outputs", oil_floor));
     }
     for (name, times) in rows {
         let d = common::median_of(times);
@@ -156,6 +167,14 @@ fn main() {
             c.as_secs_f64() * 1e3
         );
     }
+    let oil_over_own_floor = naga_oil.map(|o| common::median_ratio(o, oil_floor));
+    if naga_oil.is_some() {
+        println!(
+            "naga_oil's outputs (written back to WGSL): {:.1} KB on average (ours {:.1} KB)",
+            oil_bytes / 1024.0,
+            bytes / 1024.0
+        );
+    }
     println!("ratios are medians over rounds of the ratio within each round:");
     println!("  ratio vs naga floor (1 thread): {ratio_floor:.3}");
     println!("  speed-up on 2 threads: {speedup:.2}x (the naga floor itself: {floor_speedup:.2}x)");
@@ -164,6 +183,9 @@ fn main() {
             "  ratio vs naga_oil (1 thread): {r:.3} ({:.2}x faster)",
             1.0 / r
         );
+    }
+    if let Some(r) = oil_over_own_floor {
+        println!("  naga_oil vs the naga floor of its own outputs: {r:.3}");
     }
 
     let memory = common::memory_flatness();
@@ -183,6 +205,8 @@ fn main() {
         "naga_oil_cold_start_ms": naga_oil_cold.map(|c| c.as_secs_f64() * 1e3),
         "ratio_vs_naga_floor": ratio_floor,
         "ratio_vs_naga_oil": ratio_oil,
+        "naga_oil_ratio_vs_own_output_floor": oil_over_own_floor,
+        "naga_oil_output_bytes_avg": naga_oil.map(|_| oil_bytes),
         "speedup_2_threads": speedup,
         "naga_floor_speedup_2_threads": floor_speedup,
         "memory": memory,

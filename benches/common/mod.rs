@@ -1,111 +1,16 @@
 //! Shared pieces of the benchmarks: timing, machine description, the summary file, memory.
 #![allow(dead_code)] // each bench uses a subset
 
-use std::path::PathBuf;
+mod timing;
+
 use std::process::Command;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use serde_json::{Value, json};
 use wgsl_variants::validate::validate_pass_with;
 use wgsl_variants::{Library, Space};
 
-/// Median wall time of `rounds` runs of `f` (after one warm-up run).
-pub fn median(rounds: usize, mut f: impl FnMut()) -> Duration {
-    f();
-    let mut times: Vec<Duration> = (0..rounds.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[times.len() / 2]
-}
-
-/// The median of some durations.
-pub fn median_of(times: &[Duration]) -> Duration {
-    let mut times = times.to_vec();
-    times.sort();
-    times[times.len() / 2]
-}
-
-/// The median over rounds of `a[r] / b[r]`: a paired ratio, so that a slow moment of the
-/// machine, which slows both sides of a round alike, does not move it.
-pub fn median_ratio(a: &[Duration], b: &[Duration]) -> f64 {
-    let mut ratios: Vec<f64> = a
-        .iter()
-        .zip(b)
-        .map(|(a, b)| a.as_secs_f64() / b.as_secs_f64())
-        .collect();
-    ratios.sort_by(f64::total_cmp);
-    ratios[ratios.len() / 2]
-}
-
-/// Times contestants doing the same work, interleaved: in each round every contestant runs
-/// on each of `slices` slices of the work in turn, the order rotating, so that drift of a
-/// noisy machine falls on all of them alike. Returns, per contestant, its total time in each
-/// round (after one warm-up pass over the first slice).
-pub fn interleaved(
-    rounds: usize,
-    slices: usize,
-    contestants: &mut [&mut dyn FnMut(usize)],
-) -> Vec<Vec<Duration>> {
-    let n = contestants.len();
-    for c in contestants.iter_mut() {
-        c(0);
-    }
-    let mut totals = vec![vec![Duration::ZERO; rounds.max(1)]; n];
-    for (round, step) in (0..rounds.max(1)).flat_map(|r| (0..slices).map(move |s| (r, s))) {
-        for k in 0..n {
-            let c = (k + round + step) % n;
-            let t = Instant::now();
-            contestants[c](step);
-            totals[c][round] += t.elapsed();
-        }
-    }
-    totals
-}
-
-/// What the numbers were measured on.
-pub fn machine() -> Value {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
-        })
-        .unwrap_or_default();
-    json!({ "cpu": cpu, "cores": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1) })
-}
-
-/// `target/bench-summary.json`, next to cargo's target dir.
-fn summary_path() -> PathBuf {
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"));
-    target.join("bench-summary.json")
-}
-
-/// Merges `values` (an object) into `target/bench-summary.json`, so every bench adds its
-/// measurements to one file.
-pub fn write_summary(values: Value) {
-    let path = summary_path();
-    let mut summary: Value = std::fs::read_to_string(&path)
-        .ok()
-        .and_then(|s| serde_json::from_str(&s).ok())
-        .unwrap_or_else(|| json!({}));
-    if let (Some(into), Some(from)) = (summary.as_object_mut(), values.as_object()) {
-        for (k, v) in from {
-            into.insert(k.clone(), v.clone());
-        }
-    }
-    let text = serde_json::to_string_pretty(&summary).expect("json");
-    std::fs::create_dir_all(path.parent().expect("parent")).expect("target dir");
-    std::fs::write(&path, text + "\n").expect("write bench summary");
-    println!("wrote {}", path.display());
-}
+pub use timing::*;
 
 /// A synthetic library: one pass with a three-way `multi_compile` set and `keywords` two-way
 /// sets (3 × 2^keywords variants), each keyword guarding a function of its own, so every
@@ -271,6 +176,34 @@ impl NagaOil {
             defs,
             validator,
         })
+    }
+
+    /// naga_oil's own output for every choice, written back to WGSL by naga: the work that
+    /// remains for naga once naga_oil has composed (naga_oil imports only the items a
+    /// program uses, so its modules are smaller than the whole text this crate validates).
+    pub fn output_texts(&mut self) -> Option<Vec<String>> {
+        use naga_oil::compose::NagaModuleDescriptor;
+        let defs = self.defs.clone();
+        defs.into_iter()
+            .map(|shader_defs| {
+                let module = self
+                    .composer
+                    .make_naga_module(NagaModuleDescriptor {
+                        source: &self.program,
+                        file_path: "standard/my_lighting.wgsl",
+                        shader_defs,
+                        ..Default::default()
+                    })
+                    .ok()?;
+                let info = self.validator.validate(&module).ok()?;
+                naga::back::wgsl::write_string(
+                    &module,
+                    &info,
+                    naga::back::wgsl::WriterFlags::empty(),
+                )
+                .ok()
+            })
+            .collect()
     }
 
     /// Composes and validates the variants `range` of the choices; whether all were valid.
