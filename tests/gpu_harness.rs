@@ -4,36 +4,22 @@
 //! pass, unless `CI=true` or `WGSL_VARIANTS_REQUIRE_GPU=1`, in which case they fail.
 //! `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter by name.
 
-use std::time::Instant;
+mod common;
 
 use wgsl_variants::gpu::{
     BoundResource, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, Resource,
-    TargetFormat, read_texture, render, render_with, run_compute,
+    TargetFormat, read_texture, render, run_compute,
 };
 
 /// Creates a context, or returns `None` (after a loud message) when no adapter exists and a
 /// GPU is not required.
 fn context() -> Option<GpuContext> {
-    let filter = std::env::var("WGSL_VARIANTS_ADAPTER").ok();
-    match GpuContext::new(filter.as_deref()) {
-        Ok(ctx) => {
-            eprintln!("using adapter: {}", ctx.adapter_name());
-            Some(ctx)
-        }
-        Err(e @ GpuError::NoAdapter { .. }) => {
-            let required = std::env::var("CI").is_ok_and(|v| v == "true")
-                || std::env::var("WGSL_VARIANTS_REQUIRE_GPU").is_ok_and(|v| v == "1");
-            assert!(
-                !required,
-                "a GPU adapter is required (CI / WGSL_VARIANTS_REQUIRE_GPU): {e}"
-            );
-            eprintln!("==================================================================");
-            eprintln!("SKIPPED: no GPU adapter: {e}");
-            eprintln!("==================================================================");
-            None
-        }
-        Err(e) => panic!("GPU context creation failed: {e}"),
-    }
+    let ctx = common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "GPU context creation",
+    )?;
+    eprintln!("using adapter: {}", ctx.adapter_name());
+    Some(ctx)
 }
 
 /// Full-screen triangle vertex shader shared by the render tests.
@@ -488,51 +474,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // Let the work drain before the device is dropped.
     ctx.timeout = std::time::Duration::from_secs(120);
     ctx.wait("drain").expect("drain");
-}
-
-/// Throughput check: many small pipelines + 16x16 renders on one device.
-/// Run with `cargo test --release -- --ignored --nocapture many_small_renders`.
-#[test]
-#[ignore]
-fn many_small_renders() {
-    let Some(ctx) = context() else { return };
-    let count: usize = std::env::var("WGSL_VARIANTS_RENDER_COUNT")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1000);
-    let resources = GpuResources::upload(
-        &ctx,
-        "shared",
-        &[BoundResource::new(
-            0,
-            0,
-            Resource::Uniform(bytemuck::cast_slice(&[0.5f32; 4]).to_vec()),
-        )],
-    )
-    .expect("upload");
-    let start = Instant::now();
-    for i in 0..count {
-        // A distinct shader per job, so nothing is cached by source.
-        let wgsl = format!(
-            "{FULLSCREEN_VS}
-struct P {{ v: vec4<f32> }}
-@group(0) @binding(0) var<uniform> p: P;
-@fragment fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {{
-    return p.v * {}.0 / {count}.0 + vec4<f32>(pos.x / 16.0, 0.0, 0.0, 0.0);
-}}",
-            i
-        );
-        let job = RenderJob::new(&format!("variant-{i}"), &wgsl, "vs", "fs");
-        let out = render_with(&ctx, &job, &resources).expect("render");
-        assert_eq!(out[0].len(), 16 * 16 * 4);
-    }
-    let elapsed = start.elapsed();
-    eprintln!(
-        "{count} pipelines + 16x16 renders in {:.2} s ({:.2} ms each) on {}",
-        elapsed.as_secs_f64(),
-        elapsed.as_secs_f64() * 1000.0 / count as f64,
-        ctx.adapter_name()
-    );
 }
 
 #[test]

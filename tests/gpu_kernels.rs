@@ -7,8 +7,9 @@
 //! Without a wgpu adapter the tests print a loud SKIPPED line and pass, unless `CI=true` or
 //! `WGSL_VARIANTS_REQUIRE_GPU=1`. `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter.
 
+mod common;
+
 use wgsl_variants::Library;
-use wgsl_variants::gpu::GpuError;
 use wgsl_variants::gpu::check::{self, CheckOptions, CheckReport, KERNELS, kernels};
 use wgsl_variants::source::{RawFile, bundled_files};
 
@@ -16,27 +17,12 @@ fn run(lib: &Library, pass: Option<&str>) -> Option<CheckReport> {
     let options = CheckOptions {
         shader: Some(KERNELS.to_owned()),
         pass: pass.map(str::to_owned),
-        adapter: std::env::var("WGSL_VARIANTS_ADAPTER").ok(),
+        adapter: common::gpu::adapter_filter(),
         threads: 1,
         sample: 1,
         shard: None,
     };
-    match check::run(lib, &options) {
-        Ok(report) => Some(report),
-        Err(e @ GpuError::NoAdapter { .. }) => {
-            let required = std::env::var("CI").is_ok_and(|v| v == "true")
-                || std::env::var("WGSL_VARIANTS_REQUIRE_GPU").is_ok_and(|v| v == "1");
-            assert!(
-                !required,
-                "a GPU adapter is required (CI / WGSL_VARIANTS_REQUIRE_GPU): {e}"
-            );
-            eprintln!("==================================================================");
-            eprintln!("SKIPPED: no GPU adapter: {e}");
-            eprintln!("==================================================================");
-            None
-        }
-        Err(e) => panic!("the GPU check could not run: {e}"),
-    }
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
 
 #[test]

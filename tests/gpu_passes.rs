@@ -13,8 +13,9 @@
 //! `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th variant only (keyword coverage is then not
 //! judged).
 
+mod common;
+
 use wgsl_variants::Library;
-use wgsl_variants::gpu::GpuError;
 use wgsl_variants::gpu::check::{self, CheckOptions, CheckReport, TestScene, pictures};
 use wgsl_variants::source::{RawFile, bundled_files};
 
@@ -48,27 +49,12 @@ fn run_shard(
     let options = CheckOptions {
         shader: shader.map(str::to_owned),
         pass: pass.map(str::to_owned),
-        adapter: std::env::var("WGSL_VARIANTS_ADAPTER").ok(),
+        adapter: common::gpu::adapter_filter(),
         threads: 0,
         sample,
         shard,
     };
-    match check::run(lib, &options) {
-        Ok(report) => Some(report),
-        Err(e @ GpuError::NoAdapter { .. }) => {
-            let required = std::env::var("CI").is_ok_and(|v| v == "true")
-                || std::env::var("WGSL_VARIANTS_REQUIRE_GPU").is_ok_and(|v| v == "1");
-            assert!(
-                !required,
-                "a GPU adapter is required (CI / WGSL_VARIANTS_REQUIRE_GPU): {e}"
-            );
-            eprintln!("==================================================================");
-            eprintln!("SKIPPED: no GPU adapter: {e}");
-            eprintln!("==================================================================");
-            None
-        }
-        Err(e) => panic!("the GPU check could not run: {e}"),
-    }
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
 
 /// Asserts a passing report with the expected variant count and prints what it compared.
