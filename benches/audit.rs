@@ -5,6 +5,10 @@
 //!
 //! `cargo bench --bench audit` (plain `std::time::Instant`; medians of several runs).
 
+mod common;
+#[path = "../tests/common/synthetic.rs"]
+mod synthetic;
+
 use std::collections::HashSet;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::hint::black_box;
@@ -13,39 +17,9 @@ use std::time::{Duration, Instant};
 use wgsl_variants::audit::{self, AuditOptions};
 use wgsl_variants::{Library, Space, Variant};
 
-/// `n` two-way multi_compile sets; with `grouped`, keywords come in fours (one with code of
-/// its own, two that change code only together, one never read), else each guards a function.
+/// The synthetic keyword shader of the audit's tests, as a library.
 fn synthetic(n: usize, grouped: bool) -> Library {
-    let mut pass = String::from("#shader synth\n#pass P\n");
-    for i in 0..n {
-        pass.push_str(&format!("#pragma multi_compile _ K{i}\n"));
-    }
-    pass.push_str("#import lib/features\n#endpass\n");
-    let mut lib = String::new();
-    for i in 0..n {
-        let condition = match (grouped, i % 4) {
-            (false, _) | (true, 0) => format!("defined(K{i})"),
-            (true, 1) => format!("defined(K{i}) && defined(K{})", i + 1),
-            (true, _) => continue,
-        };
-        lib.push_str(&format!(
-            "#if {condition}\nfn feature_{i}() -> f32 {{ return {i}.0; }}\n#endif\n"
-        ));
-    }
-    Library::from_sources([("synth.wgsl", pass), ("lib/features.wgsl", lib)]).expect("synthetic")
-}
-
-/// Median wall time of `runs` calls.
-fn median(runs: usize, mut f: impl FnMut()) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
+    Library::from_sources(synthetic::keyword_shader(n, grouped)).expect("synthetic")
 }
 
 fn ms(d: Duration) -> String {
@@ -80,7 +54,7 @@ fn main() {
     let variant = bundled
         .variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])
         .unwrap();
-    let naga = median(21, || {
+    let naga = common::median(21, || {
         black_box(bundled.naga_module(&variant).unwrap());
     });
 
@@ -124,7 +98,7 @@ fn main() {
             .or_else(|_| lib.pass("standard", "Deferred"))
             .unwrap();
         let mut distinct = String::new();
-        let time = median(11, || {
+        let time = common::median(11, || {
             let a = audit::audit_pass(lib, pass, &options).unwrap();
             assert!(a.distinct.exact);
             distinct = a.distinct.count.to_string();

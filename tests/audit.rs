@@ -2,6 +2,10 @@
 //! a fixture made to have dead and coupled keywords, synthetic 40- and 64-keyword shaders),
 //! and the analytic distinct count cross-checked against enumeration on random libraries.
 
+mod common;
+
+use common::synthetic;
+
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -659,35 +663,9 @@ fn fixture_materials_strip_and_share_code() {
 // ---------------------------------------------------------------------------------------------
 // Synthetic 40- and 64-keyword shaders: exact without enumeration.
 
-/// `n` two-way multi_compile sets K0..K{n-1}. With `grouped`, keywords come in fours: K4g
-/// guards code of its own, K4g+1 and K4g+2 guard code only together, K4g+3 is never read.
-/// Otherwise every keyword guards a function of its own.
-fn synthetic(n: usize, grouped: bool) -> Vec<(String, String)> {
-    let mut pass = String::from("#shader synth\n#pass P\n");
-    for i in 0..n {
-        pass.push_str(&format!("#pragma multi_compile _ K{i}\n"));
-    }
-    pass.push_str("#import lib/features\n#endpass\n");
-    let mut lib = String::new();
-    for i in 0..n {
-        let condition = match (grouped, i % 4) {
-            (false, _) | (true, 0) => format!("defined(K{i})"),
-            (true, 1) => format!("defined(K{i}) && defined(K{})", i + 1),
-            (true, _) => continue,
-        };
-        lib.push_str(&format!(
-            "#if {condition}\nfn feature_{i}() -> f32 {{ return {i}.0; }}\n#endif\n"
-        ));
-    }
-    vec![
-        ("synth.wgsl".to_string(), pass),
-        ("lib/features.wgsl".to_string(), lib),
-    ]
-}
-
 #[test]
 fn forty_independent_keywords_are_audited_exactly() {
-    let lib = Library::from_sources(synthetic(40, false)).unwrap();
+    let lib = Library::from_sources(synthetic::keyword_shader(40, false)).unwrap();
     let a = audit_of(&lib, "synth", "P", &AuditOptions::default());
     assert_eq!(a.full_space, pow2(40));
     assert_eq!(a.distinct.count, pow2(40));
@@ -698,7 +676,7 @@ fn forty_independent_keywords_are_audited_exactly() {
 
 #[test]
 fn sixty_four_keywords_with_dead_and_coupled_ones_are_audited_exactly() {
-    let lib = Library::from_sources(synthetic(64, true)).unwrap();
+    let lib = Library::from_sources(synthetic::keyword_shader(64, true)).unwrap();
     let a = audit_of(&lib, "synth", "P", &AuditOptions::default());
     assert_eq!(a.full_space, pow2(64));
     assert_eq!(a.full_space.to_string(), "18446744073709551616");
@@ -712,7 +690,7 @@ fn sixty_four_keywords_with_dead_and_coupled_ones_are_audited_exactly() {
     assert_eq!(a.together[0].keyword, "K1");
     assert_eq!(a.together[0].with, vec![strings(&["K2"])]);
     // 40 keywords, grouped: 10 groups of 4 → 2^20 distinct of 2^40.
-    let lib = Library::from_sources(synthetic(40, true)).unwrap();
+    let lib = Library::from_sources(synthetic::keyword_shader(40, true)).unwrap();
     let a = audit_of(&lib, "synth", "P", &AuditOptions::default());
     assert_eq!(
         (a.full_space.clone(), a.distinct.count.clone()),
@@ -872,7 +850,7 @@ fn cli_budget_file_errors_are_clear() {
 #[test]
 fn cli_audits_64_keywords_exactly_and_gates_them() {
     let dir = tempfile::tempdir().unwrap();
-    for (path, text) in synthetic(64, true) {
+    for (path, text) in synthetic::keyword_shader(64, true) {
         let p = dir.path().join(path);
         std::fs::create_dir_all(p.parent().unwrap()).unwrap();
         std::fs::write(p, text).unwrap();

@@ -1,7 +1,6 @@
 //! The one policy for GPU tests without an adapter: under `CI=true` or
 //! `WGSL_VARIANTS_REQUIRE_GPU=1` the test fails; elsewhere it prints a loud SKIPPED banner and
 //! passes. `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter by name.
-#![allow(dead_code)] // each test file uses a subset
 
 use wgsl_variants::gpu::GpuError;
 
