@@ -23,38 +23,16 @@ fn pool(threads: usize) -> rayon::ThreadPool {
         .expect("thread pool")
 }
 
-fn naga_floor(texts: &[String]) {
-    let mut validator = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    );
-    for text in texts {
-        let module = naga::front::wgsl::parse_str(text).expect("parses");
-        validator.validate(&module).expect("valid");
-    }
-}
-
 fn main() {
     if common::memory_child() {
         return;
     }
-    let rounds = std::env::var("BENCH_ROUNDS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(5);
+    let rounds = common::rounds();
     let lib = Library::bundled().expect("bundled library");
     let pass = lib.pass("standard", "Deferred").expect("Deferred");
     let choices = Space::full(pass).enumerate(1_000_000).expect("enumerable");
     let n = choices.len() as f64;
-    let texts: Vec<String> = choices
-        .iter()
-        .map(|c| {
-            lib.wgsl(&Variant {
-                pass,
-                choice: c.clone(),
-            })
-        })
-        .collect();
+    let texts = common::final_texts(&lib, pass, &choices);
     let bytes = texts.iter().map(String::len).sum::<usize>() as f64 / n;
     println!(
         "standard/Deferred: {} variants, composed texts {:.1} KB on average",
@@ -79,7 +57,7 @@ fn main() {
         rounds,
         slices,
         &mut [
-            &mut |s| one.install(|| naga_floor(&texts[range(s)])),
+            &mut |s| one.install(|| common::naga_floor(&mut common::validator(), &texts[range(s)])),
             &mut |s| {
                 one.install(|| {
                     let report = validate_pass(&lib, pass, &choices[range(s)], &|_| {});
@@ -91,10 +69,18 @@ fn main() {
                     oil_ok &= o.build(range(s));
                 }
             },
-            &mut |s| two.install(|| texts[range(s)].par_chunks(16).for_each(naga_floor)),
+            &mut |s| {
+                two.install(|| {
+                    texts[range(s)]
+                        .par_chunks(16)
+                        .for_each(|c| common::naga_floor(&mut common::validator(), c))
+                })
+            },
             &mut |s| {
                 if !oil_texts.is_empty() {
-                    one.install(|| naga_floor(&oil_texts[range(s)]))
+                    one.install(|| {
+                        common::naga_floor(&mut common::validator(), &oil_texts[range(s)])
+                    })
                 }
             },
             &mut |s| {

@@ -74,10 +74,7 @@ struct P {{ v: vec4f }}
 }
 
 fn main() {
-    let rounds = std::env::var("BENCH_ROUNDS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(5);
+    let rounds = common::rounds();
     // New pipelines must be compiled, not found in Mesa's on-disk cache from an earlier run.
     // SAFETY: set before any other thread exists (the GPU context is created after).
     unsafe { std::env::set_var("MESA_SHADER_CACHE_DISABLE", "true") };

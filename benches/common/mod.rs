@@ -2,6 +2,7 @@
 #![allow(dead_code)] // each bench uses a subset
 
 mod timing;
+mod workload;
 
 use std::process::Command;
 use std::time::Duration;
@@ -11,6 +12,7 @@ use wgsl_variants::validate::validate_pass_with;
 use wgsl_variants::{Library, Space};
 
 pub use timing::*;
+pub use workload::*;
 
 /// A synthetic library: one pass with a three-way `multi_compile` set and `keywords` two-way
 /// sets (3 × 2^keywords variants), each keyword guarding a function of its own, so every
@@ -166,10 +168,7 @@ impl NagaOil {
                     .collect()
             })
             .collect();
-        let validator = naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        );
+        let validator = validator();
         Some(NagaOil {
             composer,
             program,

@@ -6,6 +6,14 @@ use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
+/// Rounds per measurement: `BENCH_ROUNDS`, default 5.
+pub fn rounds() -> usize {
+    std::env::var("BENCH_ROUNDS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(5)
+}
+
 /// Median wall time of `rounds` runs of `f` (after one warm-up run).
 pub fn median(rounds: usize, mut f: impl FnMut()) -> Duration {
     f();

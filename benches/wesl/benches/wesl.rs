@@ -27,12 +27,18 @@
 #[allow(dead_code)]
 #[path = "../../common/timing.rs"]
 mod timing;
+// The workload and the naga floor, as benches/build.rs measures them.
+#[allow(dead_code)]
+#[path = "../../common/workload.rs"]
+mod workload;
+
+use workload::{naga_floor, validator};
 
 use std::borrow::Cow;
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Duration;
 
-use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+use naga::valid::{ModuleInfo, Validator};
 use serde_json::json;
 use wesl::syntax::ModulePath;
 use wesl::{Resolver, VirtualResolver, Wesl};
@@ -103,19 +109,6 @@ fn set_features<R: Resolver>(wesl: &mut Wesl<R>, define: &str, keywords: &[&str]
     wesl.set_feature(define, true);
     for k in keywords {
         wesl.set_feature(k, on.contains(k));
-    }
-}
-
-/// naga's validator as every contestant uses it.
-fn validator() -> Validator {
-    Validator::new(ValidationFlags::all(), Capabilities::default())
-}
-
-/// The naga floor: parse + validate final texts.
-fn naga_floor(validator: &mut Validator, texts: &[String]) {
-    for text in texts {
-        let module = naga::front::wgsl::parse_str(text).expect("parses");
-        validator.validate(&module).expect("valid");
     }
 }
 
@@ -428,25 +421,14 @@ impl Check {
 }
 
 fn main() {
-    let rounds = std::env::var("BENCH_ROUNDS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(5);
+    let rounds = timing::rounds();
     let lib = Library::bundled().expect("bundled library");
     let pass = lib.pass("standard", "Deferred").expect("Deferred");
     let choices = Space::full(pass).enumerate(1_000_000).expect("enumerable");
     let n = choices.len() as f64;
     let keywords: Vec<&str> = pass.keywords().collect();
     let on: Vec<Vec<&str>> = choices.iter().map(|c| c.keywords(pass)).collect();
-    let texts: Vec<String> = choices
-        .iter()
-        .map(|c| {
-            lib.wgsl(&Variant {
-                pass,
-                choice: c.clone(),
-            })
-        })
-        .collect();
+    let texts = workload::final_texts(&lib, pass, &choices);
 
     // WESL's warm setup, outside timing: the modules registered once; one compiler per
     // contestant, since features are set on the compiler.
