@@ -5,9 +5,8 @@
 //!
 //! `cargo bench --bench audit` (plain `std::time::Instant`; medians of several runs).
 
-mod common;
-#[path = "../tests/common/synthetic.rs"]
-mod synthetic;
+use test_support as common;
+use test_support::shaders;
 
 use std::collections::HashSet;
 use std::hash::{DefaultHasher, Hash, Hasher};
@@ -19,7 +18,7 @@ use wgsl_variants::{Library, Space, Variant};
 
 /// The synthetic keyword shader of the audit's tests, as a library.
 fn synthetic(n: usize, grouped: bool) -> Library {
-    Library::from_sources(synthetic::keyword_shader(n, grouped)).expect("synthetic")
+    Library::from_sources(shaders::keyword_shader(n, grouped)).expect("synthetic")
 }
 
 fn ms(d: Duration) -> String {

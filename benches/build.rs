@@ -7,7 +7,7 @@
 //! so that a slow moment of a noisy machine slows them alike. Each ratio is the median over
 //! rounds of the ratio within a round; times are medians over rounds.
 
-mod common;
+use test_support as common;
 
 use std::time::Duration;
 

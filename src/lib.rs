@@ -6,8 +6,10 @@
 //! original `file:line:col` and the keyword set of the variant.
 //!
 //! The crate also bundles a deferred-shading library (`wgsl/`: G-buffer pass, LDR `exp2(-c)`
-//! encoding, reflection-probe blending), a CPU [`reference`](mod@reference) of its math, and a wgpu harness
-//! ([`gpu`], feature `gpu`) that proves the WGSL against the reference.
+//! encoding, reflection-probe blending) and a CPU [`reference`](mod@reference) of its math. The
+//! wgpu harness that proves the WGSL against the reference is the `wgsl-variants-gpu` crate, and
+//! the command line is `wgsl-variants-cli`: this crate has no wgpu, clap or image in its tree,
+//! so a `build.rs` can depend on it cheaply.
 //!
 //! ```
 //! use wgsl_variants::{Library, variants::Space};
@@ -32,8 +34,6 @@ pub mod audit;
 pub mod cache;
 pub mod diagnostic;
 pub mod emit;
-#[cfg(feature = "gpu")]
-pub mod gpu;
 pub mod keywords;
 pub mod library;
 pub mod lookup;

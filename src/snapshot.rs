@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use crate::library::{Library, Variant};
 use crate::shader::Pass;
-use crate::validate::{VariantError, validate_composed};
+use crate::validate::VariantError;
 use crate::variants::{Choice, Space};
 
 /// A named text to snapshot.
@@ -37,22 +37,8 @@ pub struct Snapshot {
 /// assert!(text.contains("@fragment"));
 /// ```
 pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, VariantError> {
-    let composed = lib.compose(variant);
+    let (module, info) = crate::validate::compile(lib, variant)?;
     let label = variant.label();
-    let (mut module, _) = validate_composed(&composed, &label)?;
-    naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .map_err(|e| VariantError {
-        variant: label.clone(),
-        stage: crate::validate::Stage::Validate,
-        message: format!("after compaction: {}", e.as_inner()),
-        labels: Vec::new(),
-        notes: Vec::new(),
-    })?;
     naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty()).map_err(
         |e| VariantError {
             variant: label,

@@ -85,10 +85,12 @@ pub fn validate_composed(
     composed: &Composed,
     variant: &str,
 ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-    validate_with(composed, variant, &mut new_validator())
+    validate_with(composed, variant, &mut validator())
 }
 
-fn new_validator() -> naga::valid::Validator {
+/// The validator every stage uses: every check on, and the capabilities WebGPU gives a shader
+/// by default (what wgpu accepts without optional features).
+pub fn validator() -> naga::valid::Validator {
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
@@ -133,6 +135,31 @@ fn validate_with(
             labels,
             notes: Vec::new(),
         }
+    })?;
+    Ok((module, info))
+}
+
+/// Composes, validates and compacts a variant (unused items removed, then validated again):
+/// the module every back end writes and snapshots are made of.
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// let (module, _info) = wgsl_variants::validate::compile(&lib, &v).unwrap();
+/// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
+/// ```
+pub fn compile(
+    lib: &Library,
+    variant: &Variant<'_>,
+) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+    let (mut module, _) = lib.naga_module(variant)?;
+    naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
+    let info = validator().validate(&module).map_err(|e| VariantError {
+        variant: variant.label(),
+        stage: Stage::Validate,
+        message: format!("after compaction: {}", e.as_inner()),
+        labels: Vec::new(),
+        notes: Vec::new(),
     })?;
     Ok((module, info))
 }
@@ -343,7 +370,7 @@ pub fn validate_pass_with(
         distinct += fresh.len() as u64;
         let results: Vec<Option<VariantError>> = fresh
             .par_iter()
-            .map_init(new_validator, |validator, &j| {
+            .map_init(validator, |validator, &j| {
                 let (hash, text) = &composed[j];
                 if cache.is_some_and(|c| c.contains(hash)) {
                     return None;

@@ -2,7 +2,6 @@
 //! with naga_oil itself (the release on naga 30, 0.23) and validated by naga.
 
 use std::collections::{BTreeSet, HashMap};
-use std::process::Command;
 use std::time::Instant;
 
 use naga_oil::compose::{
@@ -17,12 +16,9 @@ use wgsl_variants::snapshot::covering_set;
 use wgsl_variants::{Library, Space, Variant};
 
 fn validate(module: &naga::Module) -> naga::valid::ModuleInfo {
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(module)
-    .unwrap_or_else(|e| panic!("invalid: {e:?}"))
+    wgsl_variants::validate::validator()
+        .validate(module)
+        .unwrap_or_else(|e| panic!("invalid: {e:?}"))
 }
 
 fn parse_and_validate(wgsl: &str) -> (naga::Module, naga::valid::ModuleInfo) {
@@ -247,12 +243,9 @@ fn naga_oil_export_composes_standard_variants_like_the_variants_themselves() {
                     );
                     let module = compose(composer, &lighting, "standard/my_lighting.wgsl", &defs)
                         .map_err(|e| format!("{}: {e}", variant.label()))?;
-                    let info = naga::valid::Validator::new(
-                        naga::valid::ValidationFlags::all(),
-                        naga::valid::Capabilities::default(),
-                    )
-                    .validate(&module)
-                    .map_err(|e| format!("{}: invalid: {e:?}", variant.label()))?;
+                    let info = wgsl_variants::validate::validator()
+                        .validate(&module)
+                        .map_err(|e| format!("{}: invalid: {e:?}", variant.label()))?;
                     let theirs = reflect_module(&module, &info);
                     let ours = lib.reflect(&variant).map_err(|e| e.to_string())?;
                     if theirs.entry_points != ours.entry_points
@@ -432,85 +425,4 @@ fn f() -> i32 { return 4; }
             .to_string()
             .contains("naga_oil import path")
     );
-}
-
-// ---------------------------------------------------------------- command line
-
-fn cli(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
-        .args(args)
-        .output()
-        .expect("run wgsl-variants")
-}
-
-#[test]
-fn export_command_line() {
-    let out = cli(&[
-        "export",
-        "deferred/gbuffer",
-        "--prefix",
-        "wv_",
-        "--keywords",
-        "UNITY_HDR_ON",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("fn wv_gbuffer_pack("));
-    parse_and_validate(&text);
-
-    let dir = tempfile::tempdir().unwrap();
-    let out = cli(&[
-        "export",
-        "standard/my_lighting",
-        "--dialect",
-        "naga-oil",
-        "--prefix",
-        "wv",
-        "--out",
-        dir.path().to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    for module in ["standard/my_lighting", "standard/surface", "deferred/ldr"] {
-        let text = std::fs::read_to_string(dir.path().join(format!("{module}.wgsl"))).unwrap();
-        assert!(text.contains(&format!(
-            "#define_import_path wv::{}",
-            module.replace('/', "::")
-        )));
-    }
-
-    for (args, message) in [
-        (vec!["export", "deferred/gbuffer"], "needs --prefix"),
-        (
-            vec!["export", "standard", "--prefix", "p_"],
-            "is a shader file",
-        ),
-        (
-            vec!["export", "deferred/ldr", "--prefix", "9"],
-            "is not the start of a WGSL identifier",
-        ),
-        (
-            vec![
-                "export",
-                "deferred/gbuffer",
-                "--dialect",
-                "naga-oil",
-                "--keywords",
-                "UNITY_HDR_ON",
-            ],
-            "shader defs",
-        ),
-    ] {
-        let out = cli(&args);
-        assert_eq!(out.status.code(), Some(1), "{args:?}");
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(stderr.contains(message), "{args:?}: {stderr}");
-    }
 }

@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 
 use crate::library::{Library, Variant};
-use crate::validate::{Stage as FailingStage, VariantError};
+use crate::validate::VariantError;
 
 use super::reflect::{BindingKind, EntryPoint, Stage, bindings, entry_points};
 
@@ -289,35 +289,13 @@ pub enum TranslateError {
     },
 }
 
-/// Composes, validates and compacts a variant: the module every back end writes.
-pub fn compile(
-    lib: &Library,
-    variant: &Variant<'_>,
-) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-    let (mut module, _) = lib.naga_module(variant)?;
-    naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .map_err(|e| VariantError {
-        variant: variant.label(),
-        stage: FailingStage::Validate,
-        message: format!("after compaction: {}", e.as_inner()),
-        labels: Vec::new(),
-        notes: Vec::new(),
-    })?;
-    Ok((module, info))
-}
-
-/// [`compile`], then [`translate`] with default [`Options`].
+/// [`compile`](crate::validate::compile), then [`translate`] with default [`Options`].
 pub fn translate_variant(
     lib: &Library,
     variant: &Variant<'_>,
     target: &Target,
 ) -> Result<Vec<Output>, TranslateError> {
-    let (module, info) = compile(lib, variant)?;
+    let (module, info) = crate::validate::compile(lib, variant)?;
     translate(&module, &info, target, &Options::default()).map_err(|error| {
         TranslateError::Backend {
             variant: variant.label(),

@@ -45,9 +45,10 @@ use crate::library::{Library, Variant};
 use crate::materials;
 use crate::validate::ValidateOptions;
 
-use super::backends::{Contents, Options, Target, TranslateError, compile, translate};
+use super::backends::{Contents, Options, Target, TranslateError, translate};
 use super::reflect::{Stage, entry_points};
 use super::set::select;
+use crate::validate::compile;
 
 /// What to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

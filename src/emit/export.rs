@@ -243,12 +243,9 @@ pub fn export_prefixed(
     let label = format!("module {path} {{{}}}", keywords.join(", "));
     let (mut module, _) = validate_composed(&composed, &label)?;
     prefix_names(&mut module, prefix);
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .map_err(|e| ExportError::Writer(format!("after renaming: {}", e.as_inner())))?;
+    let info = crate::validate::validator()
+        .validate(&module)
+        .map_err(|e| ExportError::Writer(format!("after renaming: {}", e.as_inner())))?;
     let body =
         naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
             .map_err(|e| ExportError::Writer(e.to_string()))?;

@@ -20,8 +20,9 @@ use crate::shader::Pass;
 use crate::validate::{ValidateError, ValidateOptions, select_passes, variants_to_build};
 use crate::variants::Choice;
 
-use super::backends::{Options, Output, Slot, Target, TranslateError, compile, slots, translate};
+use super::backends::{Options, Output, Slot, Target, TranslateError, slots, translate};
 use super::reflect::{EntryPoint, Stage, entry_points};
+use crate::validate::compile;
 
 /// The variants to emit, pass by pass.
 pub type Selection<'l> = Vec<(&'l Pass, Vec<Choice>)>;

@@ -23,15 +23,8 @@
 //! they and the times are merged into `target/bench-summary.json` under `wesl_*` keys and
 //! `ratio_vs_wesl` (ours / WESL, lower is faster).
 
-// The timing helpers every bench shares; this bench uses a subset of them.
-#[allow(dead_code)]
-#[path = "../../common/timing.rs"]
-mod timing;
-// The workload and the naga floor, as benches/build.rs measures them.
-#[allow(dead_code)]
-#[path = "../../common/workload.rs"]
-mod workload;
-
+// The timing helpers and the workload every bench shares (crates/test-support).
+use test_support::{timing, workload};
 use workload::{naga_floor, validator};
 
 use std::borrow::Cow;

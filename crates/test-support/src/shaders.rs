@@ -1,0 +1,27 @@
+//! Synthetic keyword shaders for the audit's tests (API and CLI) and its bench.
+
+/// `n` two-way multi_compile sets K0..K{n-1}. With `grouped`, keywords come in fours: K4g
+/// guards code of its own, K4g+1 and K4g+2 guard code only together, K4g+3 is never read.
+/// Otherwise every keyword guards a function of its own.
+pub fn keyword_shader(n: usize, grouped: bool) -> Vec<(String, String)> {
+    let mut pass = String::from("#shader synth\n#pass P\n");
+    for i in 0..n {
+        pass.push_str(&format!("#pragma multi_compile _ K{i}\n"));
+    }
+    pass.push_str("#import lib/features\n#endpass\n");
+    let mut lib = String::new();
+    for i in 0..n {
+        let condition = match (grouped, i % 4) {
+            (false, _) | (true, 0) => format!("defined(K{i})"),
+            (true, 1) => format!("defined(K{i}) && defined(K{})", i + 1),
+            (true, _) => continue,
+        };
+        lib.push_str(&format!(
+            "#if {condition}\nfn feature_{i}() -> f32 {{ return {i}.0; }}\n#endif\n"
+        ));
+    }
+    vec![
+        ("synth.wgsl".to_string(), pass),
+        ("lib/features.wgsl".to_string(), lib),
+    ]
+}

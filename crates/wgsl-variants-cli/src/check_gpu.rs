@@ -1,0 +1,57 @@
+//! `wgsl-variants check-gpu`: the GPU proof of the bundled library (see
+//! [`wgsl_variants_gpu::check`]): every variant of the standard passes, the deferred
+//! reflection and final passes, and the compute kernels, compared with the CPU reference.
+
+use std::process::ExitCode;
+
+use wgsl_variants_gpu::check::{self, CheckOptions};
+
+use super::output::print_json;
+use super::{Context, Failed};
+
+/// `check-gpu` arguments.
+#[derive(clap::Args, Debug)]
+pub struct CheckGpuArgs {
+    /// Only this shader (standard, deferred_reflections, deferred_final; kernels for the
+    /// compute kernels).
+    #[arg(long, value_name = "SHADER")]
+    shader: Option<String>,
+    /// Only passes (or kernels) with this name.
+    #[arg(long, value_name = "PASS")]
+    pass: Option<String>,
+    /// Use the first adapter whose name contains NAME (case-insensitive).
+    #[arg(long, value_name = "NAME")]
+    adapter: Option<String>,
+    /// GPU workers, each with its own device (default: one per core, at most 4).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    workers: usize,
+    /// Check only every N-th variant of the standard passes (a quick look; keyword coverage
+    /// is then not judged).
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    sample: usize,
+    /// Only shard K of N of each standard pass's variants (`K/N`), for a CI job matrix.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<wgsl_variants::variants::Shard>,
+}
+
+pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
+    let options = CheckOptions {
+        shader: args.shader.clone(),
+        pass: args.pass.clone(),
+        adapter: args.adapter.clone(),
+        threads: args.workers,
+        sample: args.sample,
+        shard: args.shard,
+    };
+    let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
+    if ctx.json {
+        print_json(&report)?;
+    } else {
+        println!("{report}");
+    }
+    Ok(if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

@@ -1,0 +1,372 @@
+//! `wgsl-variants emit`: one variant to stdout, or (with `--out DIR`) a variant or a whole
+//! build set written to a folder with `manifest.json`, through any of naga's back ends.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::ValueEnum;
+use serde::Serialize;
+
+use wgsl_variants::emit::backends::{
+    self, Options, Target, TargetKind, TranslateError, parse_glsl_version, parse_msl_version,
+    parse_shader_model,
+};
+use wgsl_variants::emit::reflect::Stage;
+use wgsl_variants::emit::set::{self, SetError};
+use wgsl_variants::validate::{ValidateOptions, validate_composed};
+
+use super::output::print_json;
+use super::{BuildArgs, Context, Failed, load_materials};
+
+/// A naga back end, on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TargetArg {
+    /// WGSL (default).
+    Wgsl,
+    /// SPIR-V binary (needs --out).
+    Spirv,
+    /// GLSL, one file per entry point (--glsl-version).
+    Glsl,
+    /// HLSL (--shader-model).
+    Hlsl,
+    /// Metal Shading Language (--msl-version).
+    Msl,
+}
+
+/// `emit` arguments.
+#[derive(clap::Args, Debug)]
+pub struct EmitArgs {
+    /// Shader name. Without SHADER and PASS, --out writes the whole build set.
+    #[arg(value_name = "SHADER")]
+    shader_name: Option<String>,
+    /// Pass name.
+    #[arg(value_name = "PASS")]
+    pass_name: Option<String>,
+    /// Keywords that are on, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "A,B")]
+    keywords: Vec<String>,
+    /// If the exact variant is not built, use the closest one (Unity without strict matching).
+    #[arg(long)]
+    closest: bool,
+    /// Print the composed WGSL even if naga rejects it (WGSL to stdout only).
+    #[arg(long)]
+    no_validate: bool,
+    /// Back end(s), repeated or comma-separated: wgsl (default), spirv, glsl, hlsl, msl.
+    #[arg(
+        long = "target",
+        value_enum,
+        value_delimiter = ',',
+        value_name = "TARGET"
+    )]
+    targets: Vec<TargetArg>,
+    /// GLSL version: 450 (desktop core: 140 … 460) or 300es, 310es, 320es.
+    #[arg(long, value_name = "VERSION", default_value = "450")]
+    glsl_version: String,
+    /// HLSL shader model: 5_0, 5_1, 6_0 … 6_9.
+    #[arg(long, value_name = "MODEL", default_value = "5_1")]
+    shader_model: String,
+    /// Metal Shading Language version, e.g. 2.0.
+    #[arg(long, value_name = "VERSION", default_value = "2.0")]
+    msl_version: String,
+    /// Keep WGSL's coordinate space in SPIR-V and GLSL (no Y flip / depth remap).
+    #[arg(long)]
+    keep_coordinate_space: bool,
+    /// WGSL to stdout: naga's canonical WGSL (validated, compacted) instead of the composed text.
+    #[arg(long)]
+    canonical: bool,
+    /// GLSL to stdout: only this entry point.
+    #[arg(long, value_name = "NAME")]
+    entry_point: Option<String>,
+    /// Write files and manifest.json into DIR instead of printing.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// With --out and no SHADER/PASS: the full space of every pass, not the build set.
+    #[arg(long)]
+    all: bool,
+    /// With --out: only shard K of N of the variants (numbered across passes; `K/N`).
+    #[arg(long, value_name = "K/N")]
+    shard: Option<wgsl_variants::variants::Shard>,
+    #[command(flatten)]
+    build: BuildArgs,
+}
+
+#[derive(Serialize)]
+struct EmitOut<'a> {
+    shader: &'a str,
+    #[serde(rename = "pass")]
+    pass_name: &'a str,
+    keywords: Vec<&'a str>,
+    wgsl: &'a str,
+}
+
+#[derive(Serialize)]
+struct TargetOut<'a> {
+    shader: &'a str,
+    #[serde(rename = "pass")]
+    pass_name: &'a str,
+    keywords: Vec<&'a str>,
+    outputs: Vec<OutputOut>,
+}
+
+#[derive(Serialize)]
+struct OutputOut {
+    target: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    entry_point: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stage: Option<Stage>,
+    text: String,
+}
+
+#[derive(Serialize)]
+struct WrittenOut {
+    out: String,
+    variants: usize,
+    files: usize,
+    targets: Vec<String>,
+}
+
+fn targets(args: &EmitArgs) -> Result<Vec<Target>, Failed> {
+    let mut out: Vec<Target> = Vec::new();
+    let kinds = if args.targets.is_empty() {
+        vec![TargetArg::Wgsl]
+    } else {
+        args.targets.clone()
+    };
+    for kind in kinds {
+        let target = match kind {
+            TargetArg::Wgsl => Target::Wgsl,
+            TargetArg::Spirv => Target::SpirV,
+            TargetArg::Glsl => {
+                Target::Glsl(parse_glsl_version(&args.glsl_version).map_err(Failed::from)?)
+            }
+            TargetArg::Hlsl => {
+                Target::Hlsl(parse_shader_model(&args.shader_model).map_err(Failed::from)?)
+            }
+            TargetArg::Msl => {
+                let (major, minor) = parse_msl_version(&args.msl_version).map_err(Failed::from)?;
+                Target::Msl(major, minor)
+            }
+        };
+        if !out.contains(&target) {
+            out.push(target);
+        }
+    }
+    Ok(out)
+}
+
+fn render_failure(ctx: &Context, e: &TranslateError) -> String {
+    match e {
+        TranslateError::Invalid(v) => ctx.render(&v.diagnostic()),
+        other => format!("error: {other}\n"),
+    }
+}
+
+pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
+    let targets = targets(args)?;
+    let options = Options {
+        keep_coordinate_space: args.keep_coordinate_space,
+    };
+    let (shader, pass) = match (&args.shader_name, &args.pass_name) {
+        (Some(s), Some(p)) => (s, p),
+        (Some(_), None) => {
+            return Err(Failed(
+                "error: give SHADER and PASS (one variant), or neither with --out DIR (the build set)"
+                    .into(),
+            ));
+        }
+        (None, _) => return write_build_set(ctx, args, &targets, &options),
+    };
+    if args.build.shader.is_some() || args.build.pass.is_some() || args.all {
+        return Err(Failed(
+            "error: --shader, --pass and --all select passes of the build set; with SHADER PASS one variant is emitted"
+                .into(),
+        ));
+    }
+    let materials = load_materials(&args.build.materials)?;
+    let pass = ctx.lib.pass(shader, pass)?;
+    let variant = ctx.find_variant(pass, materials.as_deref(), &args.keywords, args.closest)?;
+
+    if let Some(dir) = &args.out {
+        let selection = vec![(pass, vec![variant.choice.clone()])];
+        return write_selection(ctx, &selection, &targets, &options, dir);
+    }
+
+    // The composed text, as written (the default).
+    if targets == [Target::Wgsl] && !args.canonical {
+        let composed = ctx.lib.compose(&variant);
+        if !args.no_validate
+            && let Err(e) = validate_composed(&composed, &variant.label())
+        {
+            eprint!("{}", ctx.render(&e.diagnostic()));
+            return Ok(ExitCode::from(1));
+        }
+        if ctx.json {
+            print_json(&EmitOut {
+                shader: &pass.shader,
+                pass_name: &pass.name,
+                keywords: variant.keywords(),
+                wgsl: &composed.text,
+            })?;
+        } else {
+            print!("{}", composed.text);
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    if args.no_validate {
+        return Err(Failed(
+            "error: --no-validate applies to the composed WGSL only: the back ends need a valid module".into(),
+        ));
+    }
+    if targets.contains(&Target::SpirV) {
+        return Err(Failed(
+            "error: SPIR-V is binary: write it into a folder with --out DIR".into(),
+        ));
+    }
+    let (module, info) = match wgsl_variants::validate::compile(&ctx.lib, &variant) {
+        Ok(m) => m,
+        Err(e) => {
+            eprint!("{}", ctx.render(&e.diagnostic()));
+            return Ok(ExitCode::from(1));
+        }
+    };
+    let mut outputs = Vec::new();
+    for target in &targets {
+        let written = backends::translate(&module, &info, target, &options).map_err(|e| {
+            Failed(render_failure(
+                ctx,
+                &TranslateError::Backend {
+                    variant: variant.label(),
+                    error: e,
+                },
+            ))
+        })?;
+        for output in written {
+            if let (Some(want), Some(ep)) = (&args.entry_point, &output.entry_point)
+                && &ep.name != want
+            {
+                continue;
+            }
+            outputs.push(OutputOut {
+                target: target.to_string(),
+                entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
+                stage: output.entry_point.as_ref().map(|e| e.stage),
+                text: output.contents.as_text().unwrap_or_default().to_string(),
+            });
+        }
+    }
+    if let Some(want) = &args.entry_point
+        && !outputs
+            .iter()
+            .any(|o| o.entry_point.as_deref() == Some(want.as_str()))
+        && targets.iter().any(|t| t.kind() == TargetKind::Glsl)
+    {
+        let names: Vec<&str> = module
+            .entry_points
+            .iter()
+            .map(|e| e.name.as_str())
+            .collect();
+        return Err(Failed(format!(
+            "error: no entry point `{want}` in {} (entry points: {})",
+            variant.label(),
+            names.join(", ")
+        )));
+    }
+    if ctx.json {
+        print_json(&TargetOut {
+            shader: &pass.shader,
+            pass_name: &pass.name,
+            keywords: variant.keywords(),
+            outputs,
+        })?;
+    } else {
+        let single = outputs.len() == 1;
+        let mut stdout = std::io::stdout().lock();
+        for o in &outputs {
+            if !single {
+                let what = match (&o.entry_point, o.stage) {
+                    (Some(ep), Some(stage)) => format!("{}: {ep} ({stage})", o.target),
+                    _ => o.target.clone(),
+                };
+                writeln!(stdout, "// ===== {what} =====")?;
+            }
+            write!(stdout, "{}", o.text)?;
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_build_set(
+    ctx: &Context,
+    args: &EmitArgs,
+    targets: &[Target],
+    options: &Options,
+) -> Result<ExitCode, Failed> {
+    let Some(dir) = &args.out else {
+        return Err(Failed(
+            "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
+        ));
+    };
+    let materials = load_materials(&args.build.materials)?;
+    let selection = set::select(
+        &ctx.lib,
+        &ValidateOptions {
+            all: args.all,
+            materials,
+            budget: args.build.max_variants,
+            shader: args.build.shader.clone(),
+            pass: args.build.pass.clone(),
+        },
+    )?;
+    let selection = match args.shard {
+        Some(shard) => shard.select(selection),
+        None => selection,
+    };
+    write_selection(ctx, &selection, targets, options, dir)
+}
+
+fn write_selection(
+    ctx: &Context,
+    selection: &set::Selection<'_>,
+    targets: &[Target],
+    options: &Options,
+    dir: &std::path::Path,
+) -> Result<ExitCode, Failed> {
+    match set::write_set(&ctx.lib, selection, targets, options, dir) {
+        Ok(manifest) => {
+            let files: usize = manifest.variants.iter().map(|v| v.files.len()).sum();
+            let target_names: Vec<String> = targets.iter().map(|t| t.to_string()).collect();
+            if ctx.json {
+                print_json(&WrittenOut {
+                    out: dir.display().to_string(),
+                    variants: manifest.variants.len(),
+                    files,
+                    targets: target_names,
+                })?;
+            } else {
+                for (pass, choices) in selection {
+                    println!("{}/{}: {} variants", pass.shader, pass.name, choices.len());
+                }
+                println!(
+                    "wrote {files} files for {} variants ({}) and manifest.json to {}",
+                    manifest.variants.len(),
+                    target_names.join(", "),
+                    dir.display()
+                );
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(SetError::Failed(failures)) => {
+            for f in &failures {
+                eprint!("{}", render_failure(ctx, f));
+            }
+            eprintln!(
+                "error: {} variant(s) failed; nothing was written",
+                failures.len()
+            );
+            Ok(ExitCode::from(1))
+        }
+        Err(e) => Err(Failed::from(e)),
+    }
+}

@@ -1,0 +1,269 @@
+//! The `wgsl-variants` command line: argument parsing and dispatch. Each command lives in its
+//! own file and turns its flags into the library's options.
+
+mod audit;
+#[cfg(feature = "gpu")]
+mod check_gpu;
+mod emit;
+mod export;
+mod list;
+mod output;
+mod reflect;
+#[cfg(feature = "gpu")]
+mod render;
+mod validate;
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+use wgsl_variants::materials::{self, Material};
+use wgsl_variants::{Library, LoadOptions};
+
+/// Unity-style shader variants for WGSL module trees, every variant validated by naga.
+#[derive(Parser, Debug)]
+#[command(name = "wgsl-variants", version, about, long_about = None)]
+pub struct Cli {
+    /// Library root (a folder of .wgsl modules). Default: the bundled library.
+    #[arg(long, global = true, value_name = "DIR")]
+    root: Option<PathBuf>,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+    /// Colours in diagnostics.
+    #[arg(long, global = true, value_enum, default_value_t = Color::Auto)]
+    color: Color,
+    #[command(flatten)]
+    limits: Limits,
+    /// Worker threads (default: one per core). Output does not depend on it.
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<usize>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// Load limits: each has a clear error when passed.
+#[derive(clap::Args, Debug, Clone)]
+struct Limits {
+    /// Deepest `#if` nesting in a module.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().parse.if_depth)]
+    max_if_depth: usize,
+    /// Deepest expression nesting (parentheses and operators).
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().parse.expr_depth)]
+    max_expr_depth: usize,
+    /// Longest chain of imports.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().max_import_depth)]
+    max_import_depth: usize,
+    /// Most module files in the library.
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::default().max_files)]
+    max_files: usize,
+    /// Most bytes of source in total.
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = LoadOptions::default().max_total_bytes)]
+    max_source_bytes: usize,
+}
+
+impl Limits {
+    fn options(&self) -> LoadOptions {
+        let mut o = LoadOptions::default();
+        o.parse.if_depth = self.max_if_depth;
+        o.parse.expr_depth = self.max_expr_depth;
+        o.max_import_depth = self.max_import_depth;
+        o.max_files = self.max_files;
+        o.max_total_bytes = self.max_source_bytes;
+        o
+    }
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Color {
+    Auto,
+    Always,
+    Never,
+}
+
+/// Options shared by commands that build variants.
+#[derive(clap::Args, Debug, Clone)]
+pub struct BuildArgs {
+    /// Materials file (JSON or TOML) restricting shader_feature combinations.
+    #[arg(long, value_name = "FILE")]
+    materials: Option<PathBuf>,
+    /// Most variants built per pass; past it the command fails (counting stays exact).
+    #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+    max_variants: u64,
+    /// Only this shader.
+    #[arg(long, value_name = "SHADER")]
+    shader: Option<String>,
+    /// Only passes with this name.
+    #[arg(long, value_name = "PASS")]
+    pass: Option<String>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Shaders, passes, tags, keyword sets and variant counts.
+    List {
+        /// Materials file for the build-set count.
+        #[arg(long, value_name = "FILE")]
+        materials: Option<PathBuf>,
+    },
+    /// Build and validate every variant of the build set (or, with --all, the full space).
+    Validate {
+        /// Validate the full space, not only the build set.
+        #[arg(long)]
+        all: bool,
+        #[command(flatten)]
+        build: BuildArgs,
+        #[command(flatten)]
+        run: validate::RunArgs,
+    },
+    /// Print one variant (validated first) as WGSL, GLSL, HLSL or MSL, or write a variant or
+    /// the whole build set through any back end (SPIR-V too) into --out DIR with manifest.json.
+    Emit(emit::EmitArgs),
+    /// The bind groups and bindings a variant uses: kind, size, stage visibility.
+    Reflect(reflect::ReflectArgs),
+    /// One module with its imports on its own: prefixed self-contained WGSL, or naga_oil's dialect.
+    Export(export::ExportArgs),
+    /// Variant counts per pass (full space, after skip_variants, build set, distinct), dead
+    /// keywords, a multiplier table per keyword set, budgets (--budget) and a chart (--chart).
+    Audit(audit::AuditArgs),
+    /// Render every variant of the bundled passes on the GPU (lavapipe is enough) and compare
+    /// every pixel, and compute kernels of the library's functions, with the CPU reference.
+    #[cfg(feature = "gpu")]
+    CheckGpu(check_gpu::CheckGpuArgs),
+    /// Render the GPU check's test scene and write PNG pictures (G-buffer, light, final frame).
+    #[cfg(feature = "gpu")]
+    Render(render::RenderArgs),
+}
+
+/// Everything a command needs: the library and how to print.
+pub struct Context {
+    lib: Library,
+    json: bool,
+    color: bool,
+}
+
+impl Context {
+    fn render(&self, d: &wgsl_variants::Diagnostic) -> String {
+        d.render(self.lib.files(), self.color)
+    }
+
+    /// The variant of `pass` with `keywords` on, in the build set of `materials`: strict, or
+    /// the closest one with `closest` (with a note on stderr when it differs).
+    fn find_variant<'l>(
+        &'l self,
+        pass: &'l wgsl_variants::Pass,
+        materials: Option<&[Material]>,
+        keywords: &[String],
+        closest: bool,
+    ) -> Result<wgsl_variants::Variant<'l>, Failed> {
+        // Neighbour search for error messages and `--closest` looks at most this many variants.
+        const NEIGHBOUR_BUDGET: u64 = 1_000_000;
+        let space = self.lib.build_set(pass, materials)?;
+        let keywords: Vec<&str> = keywords
+            .iter()
+            .map(|k| k.trim())
+            .filter(|k| !k.is_empty())
+            .collect();
+        let found = if closest {
+            wgsl_variants::lookup::lookup_closest(&space, &keywords, NEIGHBOUR_BUDGET)
+        } else {
+            wgsl_variants::lookup::lookup_strict(&space, &keywords, NEIGHBOUR_BUDGET)
+        };
+        let choice = found.map_err(|e| self.pass_failure(pass, format!("{e}")))?;
+        let variant = wgsl_variants::Variant { pass, choice };
+        if closest && variant.keywords() != keywords {
+            eprintln!(
+                "note: no exact variant; using the closest, {}",
+                variant.label()
+            );
+        }
+        Ok(variant)
+    }
+
+    /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
+    fn pass_failure(&self, pass: &wgsl_variants::Pass, message: String) -> Failed {
+        let mut d = wgsl_variants::Diagnostic::new(message).at(pass.span, "pass declared here");
+        for set in &pass.sets {
+            d = d.note(format!("{set}"));
+        }
+        Failed(self.render(&d))
+    }
+}
+
+/// A command's failure: printed to stderr, exit code 1.
+pub struct Failed(pub String);
+
+impl<E: std::fmt::Display> From<E> for Failed {
+    fn from(e: E) -> Failed {
+        Failed(format!("error: {e}"))
+    }
+}
+
+/// Reads a materials file if one was given.
+fn load_materials(path: &Option<PathBuf>) -> Result<Option<Vec<Material>>, Failed> {
+    Ok(match path {
+        Some(p) => Some(materials::load(p)?),
+        None => None,
+    })
+}
+
+/// Parses arguments, runs the command, and returns the process exit code.
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+    {
+        eprintln!("error: cannot set up {n} threads: {e}");
+        return ExitCode::from(1);
+    }
+    let color = match cli.color {
+        Color::Auto => std::io::stderr().is_terminal(),
+        Color::Always => true,
+        Color::Never => false,
+    };
+    let options = cli.limits.options();
+    let loaded = match &cli.root {
+        Some(root) => Library::from_dir_with(root, &options),
+        None => Library::from_raw(wgsl_variants::source::bundled_files(), &options),
+    };
+    let lib = match loaded {
+        Ok(lib) => lib,
+        Err(e) => {
+            eprint!("{}", e.render(color));
+            eprintln!(
+                "error: the library could not be loaded ({} problem{})",
+                e.diagnostics.len(),
+                if e.diagnostics.len() == 1 { "" } else { "s" }
+            );
+            return ExitCode::from(1);
+        }
+    };
+    let ctx = Context {
+        lib,
+        json: cli.json,
+        color,
+    };
+    let result = match cli.command {
+        Command::List { materials } => list::run(&ctx, &materials),
+        Command::Validate { all, build, run } => validate::run(&ctx, all, &build, &run),
+        Command::Emit(args) => emit::run(&ctx, &args),
+        Command::Reflect(args) => reflect::run(&ctx, &args),
+        Command::Export(args) => export::run(&ctx, &args),
+        Command::Audit(args) => audit::run(&ctx, &args),
+        #[cfg(feature = "gpu")]
+        Command::CheckGpu(args) => check_gpu::run(&ctx, &args),
+        #[cfg(feature = "gpu")]
+        Command::Render(args) => render::run(&ctx, &args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(Failed(message)) => {
+            eprintln!("{message}");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,85 @@
+//! `wgsl-variants render`: the GPU check's test scene as PNG pictures (G-buffer contents, the
+//! light in RT3, the final frame).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use serde::Serialize;
+use wgsl_variants_gpu::GpuContext;
+use wgsl_variants_gpu::check::{TestScene, pictures};
+
+use super::output::print_json;
+use super::{Context, Failed};
+
+/// `render` arguments.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// Shader name (default: standard).
+    #[arg(requires = "pass")]
+    shader: Option<String>,
+    /// Pass name: Deferred or ForwardBase (default: Deferred).
+    pass: Option<String>,
+    /// Keywords that are on, comma-separated (default for standard/Deferred: every map and
+    /// UNITY_ENABLE_REFLECTION_BUFFERS).
+    #[arg(long, value_delimiter = ',', value_name = "A,B")]
+    keywords: Option<Vec<String>>,
+    /// Folder to write the PNG files into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Each scene pixel becomes SCALE × SCALE image pixels (nearest neighbour).
+    #[arg(long, value_name = "SCALE", default_value_t = 16)]
+    scale: u32,
+    /// Use the first adapter whose name contains NAME (case-insensitive).
+    #[arg(long, value_name = "NAME")]
+    adapter: Option<String>,
+}
+
+#[derive(Serialize)]
+struct Written {
+    name: String,
+    description: String,
+    path: String,
+}
+
+pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
+    let shader = args.shader.as_deref().unwrap_or("standard");
+    let pass = args.pass.as_deref().unwrap_or("Deferred");
+    let keywords: Vec<&str> = match &args.keywords {
+        Some(k) => k
+            .iter()
+            .map(|k| k.trim())
+            .filter(|k| !k.is_empty())
+            .collect(),
+        None if (shader, pass) == ("standard", "Deferred") => pictures::DEFAULT_KEYWORDS.to_vec(),
+        None => Vec::new(),
+    };
+    let gpu = GpuContext::new(args.adapter.as_deref())?;
+    let scene = TestScene::default();
+    let pictures = pictures::render_pictures(&gpu, &ctx.lib, &scene, shader, pass, &keywords)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| Failed(format!("error: cannot create {}: {e}", args.out.display())))?;
+    let mut written = Vec::new();
+    for p in &pictures {
+        let path = p
+            .write_png(&args.out, args.scale)
+            .map_err(|e| Failed(format!("error: {e}")))?;
+        written.push(Written {
+            name: p.name.clone(),
+            description: p.description.clone(),
+            path: path.display().to_string(),
+        });
+    }
+    if ctx.json {
+        print_json(&written)?;
+    } else {
+        println!(
+            "{shader}/{pass} {{{}}} on {}:",
+            keywords.join(", "),
+            gpu.adapter_name()
+        );
+        for w in &written {
+            println!("  {}  {}", w.path, w.description);
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,45 @@
+//! Comparing a target texel read back from the GPU with the reference value, through
+//! [`wgsl_variants::reference::tolerance`] (and nothing else).
+
+use glam::Vec4;
+
+use crate::TargetFormat;
+use wgsl_variants::reference::gbuffer::{RGB10A2, RGBA8};
+use wgsl_variants::reference::tolerance::{f16x4_within, unorm4_within, vec4_within};
+
+/// Whether the raw texel `raw` of a `format` target is acceptable for the reference value
+/// `expected` (what the shader wrote, before the target stored it): 1 LSB on unorm channels
+/// (either correct rounding), 1 f16 ULP on `Rgba16Float`, the `f32` bound on `Rgba32Float`.
+pub fn texel_within(format: TargetFormat, raw: [u32; 4], expected: Vec4) -> bool {
+    match format {
+        TargetFormat::Rgba8Unorm => unorm4_within(raw, expected, RGBA8),
+        TargetFormat::Rgb10a2Unorm => unorm4_within(raw, expected, RGB10A2),
+        // The channels hold 16-bit patterns.
+        TargetFormat::Rgba16Float => f16x4_within(raw.map(|h| h as u16), expected),
+        TargetFormat::Rgba32Float => {
+            vec4_within(Vec4::from_array(raw.map(f32::from_bits)), expected)
+        }
+    }
+}
+
+/// The clear colour as the shader-side value a cleared texel is compared with.
+pub fn clear_value(clear: [f64; 4]) -> Vec4 {
+    Vec4::from_array(clear.map(|c| c as f32))
+}
+
+/// One decoded pixel of a tightly packed image: raw channel values and floats.
+pub fn pixel(format: TargetFormat, bytes: &[u8], index: usize) -> ([u32; 4], [f32; 4]) {
+    let size = format.bytes_per_pixel();
+    let px = &bytes[index * size..(index + 1) * size];
+    (format.decode_pixel(px), format.decode_pixel_f32(px))
+}
+
+/// A short name of a format, for reports.
+pub fn format_name(format: TargetFormat) -> &'static str {
+    match format {
+        TargetFormat::Rgba8Unorm => "Rgba8Unorm",
+        TargetFormat::Rgb10a2Unorm => "Rgb10a2Unorm",
+        TargetFormat::Rgba16Float => "Rgba16Float",
+        TargetFormat::Rgba32Float => "Rgba32Float",
+    }
+}

@@ -1,0 +1,187 @@
+//! The GPU proof of the bundled library: every variant of the standard shader's passes, the
+//! deferred reflection and final passes, and compute kernels over the library's pure
+//! functions, each compared with [`wgsl_variants::reference`] through [`wgsl_variants::reference::tolerance`].
+//!
+//! [`run`] is shared by the `check-gpu` command and the GPU tests:
+//!
+//! ```no_run
+//! use wgsl_variants::gpu::check::{run, CheckOptions};
+//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let report = run(&lib, &CheckOptions::default()).unwrap();
+//! assert!(report.passed(), "{report}");
+//! ```
+//!
+//! | part | what runs |
+//! |---|---|
+//! | [`passes`] | `standard/Deferred` (3072 variants) and `standard/ForwardBase` (1536) on [`scene::TestScene`] |
+//! | [`deferred`] | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
+//! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
+//! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
+
+pub mod compare;
+pub mod deferred;
+pub mod kernels;
+pub mod passes;
+pub mod pictures;
+pub mod report;
+pub mod scene;
+
+use std::time::Instant;
+
+pub use passes::Worker;
+pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
+pub use scene::TestScene;
+
+use super::{GpuContext, GpuError, GpuResources};
+use wgsl_variants::Library;
+
+/// What to check.
+#[derive(Clone, Debug, Default)]
+pub struct CheckOptions {
+    /// Only this shader (`standard`, `deferred_reflections`, `deferred_final`, or `kernels`
+    /// for the compute kernels alone).
+    pub shader: Option<String>,
+    /// Only passes (or kernels) with this name.
+    pub pass: Option<String>,
+    /// The first adapter whose name contains this (case-insensitive); default: the first one.
+    pub adapter: Option<String>,
+    /// GPU workers, each with its own device (0: one per available core, at most 4).
+    pub threads: usize,
+    /// Check every n-th variant of the standard passes only (0 or 1: all of them). Keyword
+    /// coverage is judged on the full space only.
+    pub sample: usize,
+    /// Only this shard of each standard pass's variants (variant i of a pass is in shard
+    /// `i % N`); with `sample`, both apply. Keyword coverage is judged on the full space only.
+    pub shard: Option<wgsl_variants::variants::Shard>,
+}
+
+/// The passes the check knows, as `(shader, pass)`.
+pub const PASSES: [(&str, &str); 5] = [
+    ("standard", "Deferred"),
+    ("standard", "ForwardBase"),
+    ("deferred_reflections", "Reflections"),
+    ("deferred_reflections", "Add"),
+    ("deferred_final", "Final"),
+];
+
+/// The pseudo-shader name that selects the compute kernels.
+pub const KERNELS: &str = "kernels";
+
+impl CheckOptions {
+    fn wants(&self, shader: &str, pass: &str) -> bool {
+        self.shader.as_deref().is_none_or(|s| s == shader)
+            && self.pass.as_deref().is_none_or(|p| p == pass)
+    }
+
+    fn threads(&self) -> usize {
+        if self.threads > 0 {
+            self.threads
+        } else {
+            std::thread::available_parallelism()
+                .map_or(1, |n| n.get())
+                .min(4)
+        }
+    }
+}
+
+/// Runs the GPU check on the adapter `options.adapter` selects: every selected pass and kernel,
+/// each compared with the CPU reference.
+///
+/// Mismatches are part of the report ([`CheckReport::passed`]); an `Err` means the check could
+/// not run: no adapter, a variant that failed to compile or render (the error names it), a
+/// shader or pass that does not exist, or a selection that matches nothing.
+pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuError> {
+    let start = Instant::now();
+    let selected: Vec<(&str, &str)> = PASSES
+        .iter()
+        .copied()
+        .filter(|(s, p)| options.wants(s, p))
+        .collect();
+    let kernel_selection = kernels::KERNELS
+        .iter()
+        .filter(|k| options.wants(KERNELS, k.name))
+        .collect::<Vec<_>>();
+    if selected.is_empty() && kernel_selection.is_empty() {
+        let known: Vec<String> = PASSES
+            .iter()
+            .map(|(s, p)| format!("{s}/{p}"))
+            .chain(
+                kernels::KERNELS
+                    .iter()
+                    .map(|k| format!("{KERNELS}/{}", k.name)),
+            )
+            .collect();
+        return Err(GpuError::Check(format!(
+            "nothing matches shader {:?} pass {:?}; the check knows {}",
+            options.shader.as_deref().unwrap_or("*"),
+            options.pass.as_deref().unwrap_or("*"),
+            known.join(", ")
+        )));
+    }
+    for (shader, pass) in &selected {
+        lib.pass(shader, pass)
+            .map_err(|e| GpuError::Check(format!("{shader}/{pass}: {e}")))?;
+    }
+
+    let ctx = GpuContext::new(options.adapter.as_deref())?;
+    let info = ctx.adapter_info();
+    let mut report = CheckReport {
+        adapter: ctx.adapter_name().to_owned(),
+        driver: format!("{:?}, {} {}", info.backend, info.driver, info.driver_info),
+        passes: Vec::new(),
+        kernels: Vec::new(),
+        seconds: 0.0,
+    };
+    let scene = TestScene::default();
+    let threads = options.threads();
+
+    let standard: Vec<&str> = selected
+        .iter()
+        .filter(|(s, _)| *s == "standard")
+        .map(|(_, p)| *p)
+        .collect();
+    if !standard.is_empty() {
+        let mut contexts = Vec::new();
+        for _ in 1..threads {
+            contexts.push(GpuContext::new(options.adapter.as_deref())?);
+        }
+        let resources = scene.standard_resources();
+        let workers = std::iter::once(&ctx)
+            .chain(&contexts)
+            .map(|c| {
+                Ok(Worker {
+                    ctx: c,
+                    resources: GpuResources::upload(c, "test scene", &resources)?,
+                })
+            })
+            .collect::<Result<Vec<_>, GpuError>>()?;
+        for pass in standard {
+            let pass = lib
+                .pass("standard", pass)
+                .map_err(|e| GpuError::Check(e.to_string()))?;
+            report.passes.push(passes::check_standard_pass(
+                &workers,
+                lib,
+                &scene,
+                pass,
+                options.sample,
+                options.shard,
+            )?);
+        }
+    }
+    let chain: Vec<(&str, &str)> = selected
+        .iter()
+        .copied()
+        .filter(|(s, _)| *s != "standard")
+        .collect();
+    if !chain.is_empty() {
+        report
+            .passes
+            .extend(deferred::check_deferred_chain(&ctx, lib, &scene, &chain)?);
+    }
+    if !kernel_selection.is_empty() {
+        report.kernels = kernels::check_kernels(&ctx, lib, &kernel_selection)?;
+    }
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}

@@ -1,0 +1,348 @@
+//! The standard shader's passes (`Deferred`, `ForwardBase`) over their full variant space:
+//! every variant rendered (each distinct composed text once), read back and compared pixel by
+//! pixel with the CPU reference of its keyword set; then, per keyword, whether toggling it
+//! changed any output.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+
+use glam::Vec4;
+
+use super::compare::{clear_value, format_name, pixel, texel_within};
+use super::report::{KeywordCoverage, Mismatch, PassReport};
+use super::scene::TestScene;
+use crate::{
+    ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat, render_with,
+};
+use wgsl_variants::reference::surface::{Keywords, shade_deferred, shade_forward};
+use wgsl_variants::shader::Pass;
+use wgsl_variants::variants::{Choice, Space};
+use wgsl_variants::{Library, Variant};
+
+/// The clear colours of the G-buffer targets RT0..RT3 (and of the forward target: RT0's):
+/// values no lit pixel of the scene produces, so a discarded pixel that was written shows.
+pub const CLEAR: [[f64; 4]; 4] = [
+    [0.25, 0.5, 0.75, 0.125],
+    [0.875, 0.625, 0.375, 0.25],
+    [0.125, 0.25, 0.375, 0.0],
+    [0.0625, 0.75, 0.5, 0.0],
+];
+
+/// The most variants any check enumerates in one pass.
+const MAX_VARIANTS: u64 = 100_000;
+
+/// The colour targets a standard pass renders into for a keyword set: RT0..RT3 for
+/// `Deferred` (RT3 `Rgba16Float` with `UNITY_HDR_ON`, else `Rgb10a2Unorm`), one
+/// `Rgba8Unorm` for `ForwardBase`.
+pub fn standard_targets(deferred: bool, hdr: bool) -> Vec<(String, ColorTarget)> {
+    if deferred {
+        let rt3 = if hdr {
+            TargetFormat::Rgba16Float
+        } else {
+            TargetFormat::Rgb10a2Unorm
+        };
+        [
+            TargetFormat::Rgba8Unorm,
+            TargetFormat::Rgba8Unorm,
+            TargetFormat::Rgb10a2Unorm,
+            rt3,
+        ]
+        .into_iter()
+        .enumerate()
+        .map(|(i, format)| {
+            (
+                format!("RT{i} {}", format_name(format)),
+                ColorTarget::new(format).with_clear(CLEAR[i]),
+            )
+        })
+        .collect()
+    } else {
+        vec![(
+            String::from("out Rgba8Unorm"),
+            ColorTarget::new(TargetFormat::Rgba8Unorm).with_clear(CLEAR[0]),
+        )]
+    }
+}
+
+/// Whether `pass` is the standard shader's G-buffer pass (else its forward base pass).
+fn is_deferred(pass: &Pass) -> bool {
+    pass.name == "Deferred"
+}
+
+/// The reference outputs of a standard pass at pixel `(x, y)`, one per target; `None` where
+/// the pixel is discarded.
+pub fn reference_outputs(
+    scene: &TestScene,
+    deferred: bool,
+    kw: &Keywords,
+    x: u32,
+    y: u32,
+) -> Option<Vec<Vec4>> {
+    let texels = scene.texels(x, y);
+    let geometry = scene.geometry(x, y);
+    if deferred {
+        shade_deferred(kw, &scene.material, &texels, &geometry, &scene.scene)
+            .map(|g| vec![g.rt0, g.rt1, g.rt2, g.rt3])
+    } else {
+        shade_forward(kw, &scene.material, &texels, &geometry, &scene.scene).map(|c| vec![c])
+    }
+}
+
+/// The render job of one variant's composed text.
+pub fn standard_job(
+    scene: &TestScene,
+    label: &str,
+    wgsl: &str,
+    deferred: bool,
+    hdr: bool,
+) -> RenderJob {
+    let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
+    job.width = scene.width;
+    job.height = scene.height;
+    job.targets = standard_targets(deferred, hdr)
+        .into_iter()
+        .map(|(_, t)| t)
+        .collect();
+    job.vertex_buffers = vec![scene.quad()];
+    job.vertex_count = 6;
+    job
+}
+
+/// One GPU worker: a context (its own device and queue) and the resources its jobs bind,
+/// uploaded to that device.
+///
+/// Lavapipe compiles a pipeline's shaders when the first draw executes, on the queue's thread
+/// of the device; one device per worker is what lets several cores compile at once.
+#[derive(Debug)]
+pub struct Worker<'c> {
+    /// The worker's context.
+    pub ctx: &'c GpuContext,
+    /// Resources uploaded to `ctx`'s device.
+    pub resources: GpuResources,
+}
+
+/// Renders `jobs` on `workers`, one thread per worker (wgpu error scopes are per thread, so
+/// each job's errors stay its own). The first error stops the remaining jobs and is returned.
+pub fn render_all(
+    workers: &[Worker<'_>],
+    jobs: &[RenderJob],
+) -> Result<Vec<Vec<Vec<u8>>>, GpuError> {
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    type Slot = Option<Result<Vec<Vec<u8>>, GpuError>>;
+    let results: Mutex<Vec<Slot>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
+    let work = |worker: &Worker<'_>| loop {
+        let i = next.fetch_add(1, Ordering::Relaxed);
+        if i >= jobs.len() || failed.load(Ordering::Relaxed) {
+            break;
+        }
+        let out = render_with(worker.ctx, &jobs[i], &worker.resources);
+        if out.is_err() {
+            failed.store(true, Ordering::Relaxed);
+        }
+        results
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)[i] = Some(out);
+    };
+    std::thread::scope(|s| {
+        for worker in workers.iter().skip(1) {
+            s.spawn(move || work(worker));
+        }
+        if let Some(first) = workers.first() {
+            work(first);
+        }
+    });
+    let results = results
+        .into_inner()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let mut out = Vec::with_capacity(jobs.len());
+    let mut first_error = None;
+    for r in results {
+        match r {
+            Some(Ok(v)) => out.push(v),
+            Some(Err(e)) => {
+                first_error.get_or_insert(e);
+            }
+            None => {}
+        }
+    }
+    match (first_error, out.len() == jobs.len()) {
+        (Some(e), _) => Err(e),
+        (None, true) => Ok(out),
+        (None, false) => Err(GpuError::Check(String::from("no GPU worker to render on"))),
+    }
+}
+
+/// Checks every variant of a standard pass (`Deferred` or `ForwardBase`).
+pub fn check_standard_pass(
+    workers: &[Worker<'_>],
+    lib: &Library,
+    scene: &TestScene,
+    pass: &Pass,
+    sample: usize,
+    shard: Option<wgsl_variants::variants::Shard>,
+) -> Result<PassReport, GpuError> {
+    let start = Instant::now();
+    let deferred = is_deferred(pass);
+    let mut report = PassReport::new(&pass.shader, &pass.name);
+    let all = Space::full(pass)
+        .enumerate(MAX_VARIANTS)
+        .map_err(|e| GpuError::Check(format!("{}/{}: {e}", pass.shader, pass.name)))?;
+    let every = sample.max(1);
+    let choices: Vec<Choice> = all
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| i % every == 0 && shard.is_none_or(|s| s.contains(*i as u64)))
+        .map(|(_, c)| c)
+        .collect();
+
+    // Compose every variant; render each distinct text once.
+    let mut distinct: HashMap<String, usize> = HashMap::new();
+    let mut jobs = Vec::new();
+    let mut text_of = Vec::with_capacity(choices.len());
+    let mut keywords = Vec::with_capacity(choices.len());
+    for choice in &choices {
+        let variant = Variant {
+            pass,
+            choice: choice.clone(),
+        };
+        let names = variant.keywords();
+        let kw = Keywords::from_names(&names).map_err(|e| {
+            GpuError::Check(format!(
+                "{}: the reference does not know this keyword set: {e}",
+                variant.label()
+            ))
+        })?;
+        let text = lib.wgsl(&variant);
+        let index = match distinct.get(&text) {
+            Some(&index) => index,
+            None => {
+                let index = jobs.len();
+                jobs.push(standard_job(
+                    scene,
+                    &variant.label(),
+                    &text,
+                    deferred,
+                    kw.hdr,
+                ));
+                distinct.insert(text, index);
+                index
+            }
+        };
+        text_of.push(index);
+        keywords.push(kw);
+    }
+    report.distinct_shaders = jobs.len();
+    report.draws = jobs.len();
+    let outputs = render_all(workers, &jobs)?;
+
+    // Compare every variant with its own reference.
+    for (v, choice) in choices.iter().enumerate() {
+        let kw = &keywords[v];
+        let label = choice.label(pass);
+        let targets = standard_targets(deferred, kw.hdr);
+        let bytes = &outputs[text_of[v]];
+        for (i, (x, y)) in scene.pixels().enumerate() {
+            let expected = reference_outputs(scene, deferred, kw, x, y);
+            if expected.is_none() {
+                report.discarded_compared += targets.len();
+            }
+            for (t, (name, target)) in targets.iter().enumerate() {
+                let want = match &expected {
+                    Some(values) => values[t],
+                    None => clear_value(target.clear),
+                };
+                let (raw, got) = pixel(target.format, &bytes[t], i);
+                let ok = texel_within(target.format, raw, want);
+                report.record(ok, || Mismatch {
+                    shader: pass.shader.clone(),
+                    pass: pass.name.clone(),
+                    keywords: label.clone(),
+                    target: if expected.is_none() {
+                        format!("{name} (discarded: clear colour)")
+                    } else {
+                        name.clone()
+                    },
+                    pixel: [x, y],
+                    expected: want.to_array().to_vec(),
+                    got: got.to_vec(),
+                    got_raw: raw.to_vec(),
+                });
+            }
+        }
+        report.variants_run += 1;
+    }
+
+    // Keyword coverage: each keyword against its set's first option.
+    let decoded: Vec<Vec<Vec<[f32; 4]>>> = outputs
+        .iter()
+        .zip(&jobs)
+        .map(|(targets, job)| {
+            targets
+                .iter()
+                .zip(&job.targets)
+                .map(|(bytes, t)| t.format.decode_image_f32(bytes))
+                .collect()
+        })
+        .collect();
+    report.keywords = keyword_coverage(pass, &choices, |a, b| {
+        decoded[text_of[a]] != decoded[text_of[b]]
+    });
+    if every == 1 && shard.is_none() {
+        report.untested_keywords = report
+            .keywords
+            .iter()
+            .filter(|k| k.pairs_changed == 0)
+            .map(|k| k.keyword.clone())
+            .collect();
+    } else {
+        report.notes.push(format!(
+            "sampled every {every}th variant{}: keyword coverage is judged on the full space only",
+            shard.map(|s| format!(" of shard {s}")).unwrap_or_default()
+        ));
+    }
+    report.notes.push(format!(
+        "{}x{} pixels, {} targets per variant; discarded pixels compared with the clear colour",
+        scene.width,
+        scene.height,
+        if deferred { 4 } else { 1 }
+    ));
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// For each keyword of `pass`: the variant pairs that differ only in that keyword's set (the
+/// keyword on, against the set's first option), and how many of them `differs` says changed.
+pub fn keyword_coverage(
+    pass: &Pass,
+    choices: &[Choice],
+    differs: impl Fn(usize, usize) -> bool,
+) -> Vec<KeywordCoverage> {
+    let index: HashMap<&Choice, usize> = choices.iter().enumerate().map(|(i, c)| (c, i)).collect();
+    let mut out = Vec::new();
+    for (s, set) in pass.sets.iter().enumerate() {
+        for (o, name) in set.options.iter().enumerate().skip(1) {
+            let Some(name) = name else { continue };
+            let mut coverage = KeywordCoverage {
+                keyword: name.clone(),
+                pairs: 0,
+                pairs_changed: 0,
+            };
+            for (v, choice) in choices.iter().enumerate() {
+                if usize::from(choice.0[s]) != o {
+                    continue;
+                }
+                let mut partner = choice.0.clone();
+                partner[s] = 0;
+                if let Some(&p) = index.get(&Choice(partner)) {
+                    coverage.pairs += 1;
+                    coverage.pairs_changed += usize::from(differs(v, p));
+                }
+            }
+            out.push(coverage);
+        }
+    }
+    out
+}

@@ -1,0 +1,256 @@
+//! The GPU proof of the bundled passes: every variant of `standard/Deferred` (3072) and
+//! `standard/ForwardBase` (1536) rendered on the test scene and compared pixel by pixel with the
+//! CPU reference, then the deferred reflection, add and final passes (`check::run`).
+//!
+//! They need a wgpu adapter (Mesa's lavapipe is enough: `apt-get install mesa-vulkan-drivers`).
+//! Without one they print a loud SKIPPED line and pass, unless `CI=true` or
+//! `WGSL_VARIANTS_REQUIRE_GPU=1`, in which case they fail. `WGSL_VARIANTS_ADAPTER=<substring>`
+//! selects an adapter by name.
+//!
+//! The full spaces take a few minutes on lavapipe with a cold Mesa shader cache (compiling 4608
+//! pipelines dominates) and well under a minute with a warm one. For a quick local look,
+//! `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th variant only (keyword coverage is then not
+//! judged).
+
+mod common;
+
+use wgsl_variants::Library;
+use wgsl_variants::source::{RawFile, bundled_files};
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, TestScene, pictures};
+
+/// Every n-th variant of the standard passes (`WGSL_VARIANTS_GPU_SAMPLE`, default 1: all).
+fn sample() -> usize {
+    std::env::var("WGSL_VARIANTS_GPU_SAMPLE")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(1usize)
+        .max(1)
+}
+
+/// Runs the check; `None` (after a loud message) when there is no adapter and none is required.
+fn run(
+    lib: &Library,
+    shader: Option<&str>,
+    pass: Option<&str>,
+    sample: usize,
+) -> Option<CheckReport> {
+    run_shard(lib, shader, pass, sample, None)
+}
+
+/// [`run`] for one shard of the variants.
+fn run_shard(
+    lib: &Library,
+    shader: Option<&str>,
+    pass: Option<&str>,
+    sample: usize,
+    shard: Option<wgsl_variants::variants::Shard>,
+) -> Option<CheckReport> {
+    let options = CheckOptions {
+        shader: shader.map(str::to_owned),
+        pass: pass.map(str::to_owned),
+        adapter: common::gpu::adapter_filter(),
+        threads: 0,
+        sample,
+        shard,
+    };
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+/// Asserts a passing report with the expected variant count and prints what it compared.
+fn assert_pass(report: &CheckReport, shader: &str, pass: &str, variants: usize) {
+    let p = report
+        .passes
+        .iter()
+        .find(|p| p.shader == shader && p.pass == pass)
+        .unwrap_or_else(|| panic!("no report for {shader}/{pass}:\n{report}"));
+    eprintln!(
+        "{shader}/{pass} on {}: compared {} pixels over {} variants ({} draws, {} discarded pixels) in {:.1} s",
+        report.adapter, p.pixels_compared, p.variants_run, p.draws, p.discarded_compared, p.seconds
+    );
+    assert!(p.passed(), "{report}");
+    assert_eq!(p.mismatches, 0, "{report}");
+    assert_eq!(p.variants_run, variants, "{report}");
+    assert!(p.pixels_compared > 0 && p.draws > 0, "{report}");
+}
+
+#[test]
+fn deferred_every_variant_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let n = sample();
+    let Some(report) = run(&lib, Some("standard"), Some("Deferred"), n) else {
+        return;
+    };
+    let variants = 3072usize.div_ceil(n);
+    assert_pass(&report, "standard", "Deferred", variants);
+    let p = &report.passes[0];
+    // 16 × 16 pixels × 4 targets per variant; cutout discards some pixels.
+    assert_eq!(p.pixels_compared, variants * 256 * 4);
+    assert!(p.discarded_compared > 0);
+    assert_eq!(p.keywords.len(), 12, "every keyword of the pass is covered");
+    assert!(p.untested_keywords.is_empty(), "{report}");
+}
+
+#[test]
+fn forward_base_every_variant_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let n = sample();
+    let Some(report) = run(&lib, Some("standard"), Some("ForwardBase"), n) else {
+        return;
+    };
+    let variants = 1536usize.div_ceil(n);
+    assert_pass(&report, "standard", "ForwardBase", variants);
+    let p = &report.passes[0];
+    assert_eq!(p.pixels_compared, variants * 256);
+    assert_eq!(p.keywords.len(), 12, "every keyword of the pass is covered");
+    assert!(p.untested_keywords.is_empty(), "{report}");
+}
+
+#[test]
+fn deferred_reflections_add_and_final_match_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let Some(report) = run(&lib, Some("deferred_reflections"), None, 1) else {
+        return;
+    };
+    assert_pass(&report, "deferred_reflections", "Reflections", 1);
+    assert_pass(&report, "deferred_reflections", "Add", 2);
+    let add = &report.passes[1];
+    assert!(add.keywords.iter().all(|k| k.pairs_changed > 0), "{report}");
+    let Some(report) = run(&lib, Some("deferred_final"), None, 1) else {
+        return;
+    };
+    assert_pass(&report, "deferred_final", "Final", 1);
+    // The 32 × 32 ramp of every 10-bit value plus the scene's RT3.
+    assert!(report.passes[0].pixels_compared >= 1024 + 256);
+}
+
+/// The check is not vacuous: a library whose BRDF is off by a little (dielectric specular 0.05
+/// instead of 0.04) fails it, and the mismatch names the shader, pass, keyword set, target and
+/// pixel.
+#[test]
+fn a_wrong_library_fails_the_check() {
+    let raw: Vec<RawFile> = bundled_files()
+        .into_iter()
+        .map(|mut f| {
+            if f.path == "lighting/brdf.wgsl" {
+                let text = String::from_utf8(f.bytes).unwrap();
+                let wrong = text.replace(
+                    "const BRDF_DIELECTRIC_SPEC: f32 = 0.04;",
+                    "const BRDF_DIELECTRIC_SPEC: f32 = 0.05;",
+                );
+                assert_ne!(text, wrong, "the mutation applies");
+                f.bytes = wrong.into_bytes();
+            }
+            f
+        })
+        .collect();
+    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let Some(report) = run(&lib, Some("standard"), Some("ForwardBase"), 97) else {
+        return;
+    };
+    assert!(!report.passed());
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0);
+    let m = &p.first_mismatches[0];
+    assert_eq!(
+        (m.shader.as_str(), m.pass.as_str()),
+        ("standard", "ForwardBase")
+    );
+    assert!(
+        m.keywords.starts_with('{') && m.target.contains("Rgba8Unorm"),
+        "{m}"
+    );
+    let text = m.to_string();
+    assert!(
+        text.contains("pixel (") && text.contains("expected"),
+        "{text}"
+    );
+    eprintln!(
+        "a wrong library is caught: {} mismatches, e.g. {m}",
+        p.mismatches
+    );
+}
+
+#[test]
+fn pictures_are_written() {
+    let ctx = match wgsl_variants_gpu::GpuContext::new(
+        std::env::var("WGSL_VARIANTS_ADAPTER").ok().as_deref(),
+    ) {
+        Ok(ctx) => ctx,
+        Err(e) => {
+            let required = std::env::var("CI").is_ok_and(|v| v == "true")
+                || std::env::var("WGSL_VARIANTS_REQUIRE_GPU").is_ok_and(|v| v == "1");
+            assert!(!required, "a GPU adapter is required: {e}");
+            eprintln!("SKIPPED: no GPU adapter: {e}");
+            return;
+        }
+    };
+    let lib = Library::bundled().unwrap();
+    let scene = TestScene::default();
+    let dir = tempfile::tempdir().unwrap();
+    let pics = pictures::render_pictures(
+        &ctx,
+        &lib,
+        &scene,
+        "standard",
+        "Deferred",
+        pictures::DEFAULT_KEYWORDS,
+    )
+    .unwrap();
+    let names: Vec<&str> = pics.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "albedo",
+            "occlusion",
+            "specular",
+            "smoothness",
+            "normal",
+            "emission",
+            "reflections",
+            "final"
+        ]
+    );
+    for p in &pics {
+        let path = p.write_png(dir.path(), 4).unwrap();
+        let image = image::open(&path).unwrap();
+        assert_eq!(
+            (image.width(), image.height()),
+            (scene.width * 4, scene.height * 4)
+        );
+    }
+    let forward = pictures::render_pictures(
+        &ctx,
+        &lib,
+        &scene,
+        "standard",
+        "ForwardBase",
+        &["_NORMAL_MAP"],
+    )
+    .unwrap();
+    assert_eq!(forward.len(), 2);
+    assert!(pictures::render_pictures(&ctx, &lib, &scene, "deferred_final", "Final", &[]).is_err());
+}
+
+#[test]
+fn shards_of_the_gpu_check_add_up_to_the_whole() {
+    let lib = Library::bundled().unwrap();
+    let variants = |shard: Option<&str>| -> Option<u64> {
+        let report = run_shard(
+            &lib,
+            Some("standard"),
+            Some("ForwardBase"),
+            128,
+            shard.map(|s| s.parse().unwrap()),
+        )?;
+        let p = report.passes.iter().find(|p| p.pass == "ForwardBase")?;
+        assert_eq!(p.mismatches, 0);
+        Some(p.variants_run as u64)
+    };
+    let Some(whole) = variants(None) else { return };
+    let parts: u64 = ["1/3", "2/3", "3/3"]
+        .iter()
+        .map(|s| variants(Some(s)).unwrap_or(0))
+        .sum();
+    assert_eq!(whole, 1536 / 128);
+    assert_eq!(parts, whole);
+}

@@ -1,0 +1,95 @@
+//! Layouts built from reflection are accepted by wgpu for real pipelines.
+
+mod common;
+
+use common::gpu::{adapter_filter, or_skip};
+use wgsl_variants::snapshot::covering_set;
+use wgsl_variants::{Library, Variant};
+use wgsl_variants_gpu::{GpuContext, create_bind_group_layouts, create_pipeline_layout};
+
+/// wgpu checks a pipeline against an explicit layout: every binding the shader uses must
+/// be in it with a compatible type and visibility. Layouts built from the reflection pass
+/// for the covering set of every bundled pass.
+#[test]
+fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
+    let Some(ctx) = or_skip(GpuContext::new(adapter_filter().as_deref()), "GPU context") else {
+        return;
+    };
+    let lib = Library::bundled().unwrap();
+    let mut pipelines = 0;
+    for pass in lib.passes() {
+        for (which, choice) in covering_set(pass) {
+            let v = Variant { pass, choice };
+            let label = format!("{} ({which})", v.label());
+            let reflection = lib.reflect(&v).unwrap();
+            let wgsl = lib.wgsl(&v);
+            let deferred = pass.name == "Deferred";
+            let hdr = v.keywords().contains(&"UNITY_HDR_ON");
+            let formats: Vec<wgpu::TextureFormat> = if deferred {
+                vec![
+                    wgpu::TextureFormat::Rgba8Unorm,
+                    wgpu::TextureFormat::Rgba8Unorm,
+                    wgpu::TextureFormat::Rgb10a2Unorm,
+                    if hdr {
+                        wgpu::TextureFormat::Rgba16Float
+                    } else {
+                        wgpu::TextureFormat::Rgb10a2Unorm
+                    },
+                ]
+            } else {
+                vec![wgpu::TextureFormat::Rgba16Float]
+            };
+            let standard = pass.shader == "standard";
+            let (_, error) = ctx.capture(|| {
+                let layouts = create_bind_group_layouts(&ctx.device, &reflection, &label).unwrap();
+                let layout = create_pipeline_layout(&ctx.device, &layouts, &label);
+                let module = ctx
+                    .device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&label),
+                        source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
+                    });
+                let attributes = wgpu::vertex_attr_array![
+                    0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
+                ];
+                let buffers = [Some(wgpu::VertexBufferLayout {
+                    array_stride: 48,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attributes,
+                })];
+                let targets: Vec<Option<wgpu::ColorTargetState>> =
+                    formats.iter().map(|&f| Some(f.into())).collect();
+                ctx.device
+                    .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                        label: Some(&label),
+                        layout: Some(&layout),
+                        vertex: wgpu::VertexState {
+                            module: &module,
+                            entry_point: Some("vs_main"),
+                            compilation_options: Default::default(),
+                            buffers: if standard { &buffers } else { &[] },
+                        },
+                        fragment: Some(wgpu::FragmentState {
+                            module: &module,
+                            entry_point: Some("fs_main"),
+                            compilation_options: Default::default(),
+                            targets: &targets,
+                        }),
+                        primitive: Default::default(),
+                        depth_stencil: None,
+                        multisample: Default::default(),
+                        multiview_mask: None,
+                        cache: None,
+                    })
+            });
+            assert!(
+                error.is_none(),
+                "{label}: {}",
+                error.map(|e| e.to_string()).unwrap_or_default()
+            );
+            pipelines += 1;
+        }
+    }
+    println!("wgpu accepted {pipelines} pipelines with layouts from reflection");
+    assert!(pipelines > 30);
+}

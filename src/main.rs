@@ -1,7 +1,0 @@
-//! The `wgsl-variants` command line.
-
-mod cli;
-
-fn main() -> std::process::ExitCode {
-    cli::main()
-}
