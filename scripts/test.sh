@@ -27,13 +27,14 @@ fi
 # Mesa's device-select layer complains about XDG_RUNTIME_DIR on headless machines; harmless.
 export NODEVICE_SELECT=1
 
-# --nocapture: the GPU tests print how much they compared.
-cargo test --release -- --nocapture
+# Every crate of the workspace (library, command line, GPU harness). --nocapture: the GPU tests
+# print how much they compared.
+cargo test --release --workspace -- --nocapture
 
 # The examples (README "Using the shaders in your renderer"): a wgpu program that builds its
 # layouts from reflection and writes a PNG, and a crate whose build.rs bakes the library. The
 # crate has its own workspace; it shares this target folder.
 echo "== example: render_variant"
-cargo run --release --example render_variant -- target/render_variant.png
+cargo run --release -p wgsl-variants-gpu --example render_variant -- target/render_variant.png
 echo "== example crate: examples/baked"
 CARGO_TARGET_DIR="$PWD/target" cargo run --release --manifest-path examples/baked/Cargo.toml

@@ -124,9 +124,69 @@ pub fn covering_snapshots(lib: &Library) -> Result<Vec<Snapshot>, VariantError> 
 
 /// A manifest of every variant of every pass's full space: one line per variant with its
 /// keyword set and a content hash of its canonical WGSL (BLAKE3, 16 hex digits), so a change to
-/// any variant shows in review. `budget` bounds the variants per pass.
+/// any variant shows in review. `budget` bounds the variants per pass. `wgsl-variants manifest`
+/// prints it; [`manifest_summary`] is the short form that snapshots hold.
 pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
     let mut out = String::new();
+    for pass in manifest_passes(lib, budget)? {
+        out.push_str(&format!(
+            "# {}/{}: {} variants\n",
+            pass.shader,
+            pass.pass,
+            pass.lines.len()
+        ));
+        for line in &pass.lines {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    Ok(out)
+}
+
+/// The reviewable form of [`manifest`]: per pass, the number of variants, of distinct canonical
+/// texts, and a digest of the pass's manifest lines (BLAKE3 of the lines in enumeration order,
+/// 16 hex digits). Any change to any variant's canonical WGSL changes the digest; `wgsl-variants
+/// manifest` prints the full list to see which.
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let summary = wgsl_variants::snapshot::manifest_summary(&lib, 1_000_000).unwrap();
+/// assert!(summary.contains("standard/Deferred: 3072 variants, 2688 distinct"));
+/// ```
+pub fn manifest_summary(lib: &Library, budget: u64) -> Result<String, ManifestError> {
+    let mut out = String::from(
+        "# shader/pass: variants, distinct canonical texts, digest of the full manifest lines\n\
+         # (print the full list with `wgsl-variants manifest`)\n",
+    );
+    for pass in manifest_passes(lib, budget)? {
+        let mut hasher = blake3::Hasher::new();
+        let mut distinct = std::collections::HashSet::new();
+        for line in &pass.lines {
+            hasher.update(line.as_bytes());
+            hasher.update(b"\n");
+            distinct.insert(line.split(' ').next().unwrap_or_default());
+        }
+        out.push_str(&format!(
+            "{}/{}: {} variants, {} distinct, digest {}\n",
+            pass.shader,
+            pass.pass,
+            pass.lines.len(),
+            distinct.len(),
+            &hasher.finalize().to_hex()[..16]
+        ));
+    }
+    Ok(out)
+}
+
+/// One pass's manifest lines (`hash {KEYWORDS}`), in enumeration order.
+struct PassManifest {
+    shader: String,
+    pass: String,
+    lines: Vec<String>,
+}
+
+fn manifest_passes(lib: &Library, budget: u64) -> Result<Vec<PassManifest>, ManifestError> {
+    let mut passes = Vec::new();
     for pass in lib.passes() {
         let choices = Space::full(pass)
             .enumerate(budget)
@@ -162,18 +222,21 @@ pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
             .collect::<Result<_, VariantError>>()?;
         let by_index: std::collections::HashMap<usize, &str> =
             hashes.iter().map(|(i, h)| (*i, h.as_str())).collect();
-        out.push_str(&format!(
-            "# {}/{}: {} variants\n",
-            pass.shader,
-            pass.name,
-            choices.len()
-        ));
-        for (choice, text) in choices.iter().zip(&composed) {
-            let hash = by_index[&first[text.as_str()]];
-            out.push_str(&format!("{hash} {}\n", choice.label(pass)));
-        }
+        let lines = choices
+            .iter()
+            .zip(&composed)
+            .map(|(choice, text)| {
+                let hash = by_index[&first[text.as_str()]];
+                format!("{hash} {}", choice.label(pass))
+            })
+            .collect();
+        passes.push(PassManifest {
+            shader: pass.shader.clone(),
+            pass: pass.name.clone(),
+            lines,
+        });
     }
-    Ok(out)
+    Ok(passes)
 }
 
 /// Why a manifest could not be made.
@@ -188,7 +251,7 @@ pub enum ManifestError {
 }
 
 /// Asserts insta snapshots of a library: the canonical WGSL of every pass's covering set
-/// ([`covering_set`]) and a manifest of every variant ([`manifest`]). Needs `insta` as a
+/// ([`covering_set`]) and the summary of a manifest of every variant ([`manifest_summary`]). Needs `insta` as a
 /// dev-dependency of the calling crate; snapshots land where insta puts them for that test.
 #[macro_export]
 macro_rules! assert_variant_snapshots {
@@ -199,7 +262,8 @@ macro_rules! assert_variant_snapshots {
         {
             ::insta::assert_snapshot!(snapshot.name, snapshot.text);
         }
-        let manifest = $crate::snapshot::manifest(lib, 1_000_000).unwrap_or_else(|e| panic!("{e}"));
+        let manifest =
+            $crate::snapshot::manifest_summary(lib, 1_000_000).unwrap_or_else(|e| panic!("{e}"));
         ::insta::assert_snapshot!("manifest", manifest);
     }};
 }

@@ -8,10 +8,9 @@ use rayon::prelude::*;
 use crate::cache::{Hash, ValidCache};
 use crate::diagnostic::{Diagnostic, Location, SourceFiles, Span};
 use crate::library::{Library, Variant};
-use crate::materials::{Material, MaterialsError};
 use crate::preprocess::Composed;
 use crate::shader::Pass;
-use crate::variants::{BudgetError, Choice, Space};
+use crate::variants::{Choice, Space};
 
 /// Which naga stage rejected a variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -181,33 +180,6 @@ impl Library {
     }
 }
 
-/// What to validate.
-#[derive(Clone, Debug)]
-pub struct ValidateOptions {
-    /// The full space of every pass instead of the build set.
-    pub all: bool,
-    /// Materials restricting `shader_feature` combinations (ignored with `all`).
-    pub materials: Option<Vec<Material>>,
-    /// Most variants built per pass.
-    pub budget: u64,
-    /// Only this shader.
-    pub shader: Option<String>,
-    /// Only passes of this name.
-    pub pass: Option<String>,
-}
-
-impl Default for ValidateOptions {
-    fn default() -> Self {
-        ValidateOptions {
-            all: false,
-            materials: None,
-            budget: 1_000_000,
-            shader: None,
-            pass: None,
-        }
-    }
-}
-
 /// A distinct composed text that naga rejected, with every keyword set that produces it.
 #[derive(Clone, Debug)]
 pub struct Failure {
@@ -236,71 +208,6 @@ pub struct PassReport {
     pub invalid: u64,
     /// The failures, one per distinct failing text.
     pub failures: Vec<Failure>,
-}
-
-/// Why validation could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum ValidateError {
-    /// A pass's space is past the budget.
-    #[error("{shader}/{pass}: {error}")]
-    Budget {
-        /// Shader.
-        shader: String,
-        /// Pass.
-        pass: String,
-        /// The budget error.
-        error: BudgetError,
-    },
-    /// The materials do not fit the library.
-    #[error(transparent)]
-    Materials(#[from] MaterialsError),
-    /// No pass matched the filters.
-    #[error("no pass matches {0}")]
-    NoMatch(String),
-}
-
-/// The passes selected by `shader`/`pass` filters.
-pub fn select_passes<'l>(
-    lib: &'l Library,
-    shader: Option<&str>,
-    pass: Option<&str>,
-) -> Result<Vec<&'l Pass>, ValidateError> {
-    if let Some(s) = shader {
-        lib.shader(s)
-            .map_err(|e| ValidateError::NoMatch(e.to_string()))?;
-    }
-    let passes: Vec<&Pass> = lib
-        .passes()
-        .filter(|p| shader.is_none_or(|s| p.shader == s) && pass.is_none_or(|n| p.name == n))
-        .collect();
-    if passes.is_empty() {
-        return Err(ValidateError::NoMatch(format!(
-            "shader {:?} pass {:?}",
-            shader.unwrap_or("*"),
-            pass.unwrap_or("*")
-        )));
-    }
-    Ok(passes)
-}
-
-/// The variants to build for a pass under `options`, in enumeration order.
-pub fn variants_to_build(
-    lib: &Library,
-    pass: &Pass,
-    options: &ValidateOptions,
-) -> Result<Vec<Choice>, ValidateError> {
-    let space = if options.all {
-        Space::full(pass)
-    } else {
-        lib.build_set(pass, options.materials.as_deref())?
-    };
-    space
-        .enumerate(options.budget)
-        .map_err(|error| ValidateError::Budget {
-            shader: pass.shader.clone(),
-            pass: pass.name.clone(),
-            error,
-        })
 }
 
 /// Validates one pass's variants; `progress(n)` is called as each batch of `n` variants is done.

@@ -2,37 +2,14 @@
 //! diagnostic it must produce (`expect.toml`: stage, `file:line:col`, message). Each case is
 //! checked through the API here, and through the command line in the CLI crate's tests.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use serde::Deserialize;
+use test_support::bad::Expect;
+
 use wgsl_variants::lookup::lookup_strict;
-use wgsl_variants::validate::{
-    ValidateError, ValidateOptions, select_passes, validate_pass, variants_to_build,
-};
+use wgsl_variants::plan::{PlanError, PlanOptions, select_passes, variants_to_build};
+use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space};
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Expect {
-    stage: String,
-    location: String,
-    message: String,
-    shader: Option<String>,
-    pass: Option<String>,
-    #[serde(default)]
-    keywords: Vec<String>,
-}
-
-fn cases() -> Vec<PathBuf> {
-    let mut dirs: Vec<PathBuf> =
-        std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad"))
-            .expect("tests/bad")
-            .map(|e| e.expect("entry").path())
-            .filter(|p| p.join("expect.toml").exists())
-            .collect();
-    dirs.sort();
-    dirs
-}
 
 /// Checks one case through the API; returns a description of what went wrong, if anything.
 fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
@@ -55,10 +32,8 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
     let lib = loaded.map_err(|err| format!("unexpected load error:\n{err}"))?;
     match e.stage.as_str() {
         "validate" => {
-            let options = ValidateOptions {
-                all: true,
-                ..ValidateOptions::default()
-            };
+            let mut options = PlanOptions::default();
+            options.all = true;
             for pass in select_passes(&lib, None, None).map_err(|x| x.to_string())? {
                 let choices = variants_to_build(&lib, pass, &options).map_err(|x| x.to_string())?;
                 let report = validate_pass(&lib, pass, &choices, &|_| {});
@@ -109,10 +84,8 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
         }
         "budget" => {
             let pass = lib.passes().next().ok_or("no pass")?;
-            match variants_to_build(&lib, pass, &ValidateOptions::default()) {
-                Err(ValidateError::Budget { error, .. })
-                    if error.to_string().contains(&e.message) =>
-                {
+            match variants_to_build(&lib, pass, &PlanOptions::default()) {
+                Err(PlanError::Budget { error, .. }) if error.to_string().contains(&e.message) => {
                     Ok(())
                 }
                 Err(other) => Err(format!("got {other}")),
@@ -125,33 +98,5 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
 
 #[test]
 fn every_bad_input_is_diagnosed_at_its_location() {
-    let cases = cases();
-    assert!(cases.len() >= 25, "the corpus has {} cases", cases.len());
-    let mut failures = Vec::new();
-    for dir in &cases {
-        let name = dir
-            .file_name()
-            .unwrap_or_default()
-            .to_string_lossy()
-            .into_owned();
-        let text = std::fs::read_to_string(dir.join("expect.toml")).expect("expect.toml");
-        let expect: Expect =
-            toml::from_str(&text).unwrap_or_else(|err| panic!("{name}/expect.toml: {err}"));
-        if let Err(why) = check_api(dir, &expect) {
-            failures.push(format!(
-                "{name}: expected {} `{}`\n  {why}",
-                expect.location, expect.message
-            ));
-        }
-    }
-    println!(
-        "bad-input corpus: {} cases checked through the API",
-        cases.len()
-    );
-    assert!(
-        failures.is_empty(),
-        "{} case(s) failed:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    test_support::bad::check_all("the API", check_api);
 }

@@ -305,9 +305,23 @@ fn outputs_do_not_depend_on_the_build_or_run() {
         let (m, i) = compile(&lib, &v).unwrap();
         translate(&m, &i, t, &Options::default()).unwrap()
     };
-    for t in targets() {
-        assert_eq!(once(&t), once(&t), "{t}");
-    }
+    // A digest of every target's outputs, checked against a committed snapshot: a hash-map
+    // order or an address leaking into an output would differ between processes (std's
+    // hashers are seeded per process) and fail here. Regenerate with `cargo insta review`
+    // when naga changes its output.
+    let digests: String = targets()
+        .iter()
+        .map(|t| {
+            let mut hasher = blake3::Hasher::new();
+            for output in once(t) {
+                hasher.update(&output.contents.to_bytes());
+            }
+            format!("{t}: {}\n", hasher.finalize().to_hex())
+        })
+        .collect();
+    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
+        insta::assert_snapshot!("backend_digests", digests);
+    });
     // The canonical WGSL is the snapshot text (snapshots/…), written by the same back end.
     let canonical = wgsl_variants::snapshot::canonical_wgsl(&lib, &v).unwrap();
     assert_eq!(

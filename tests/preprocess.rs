@@ -46,8 +46,8 @@ fn nesting_is_respected() {
 }
 
 #[test]
-fn seed_expression_works_as_written() {
-    // The seed's `#if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS`.
+fn tutorial_expression_works_as_written() {
+    // Catlike Coding Rendering 13's `#if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS`.
     let body =
         "#define DEFERRED_PASS\n#if defined(DEFERRED_PASS) && A\nbuffers\n#else\nprobes\n#endif";
     assert_eq!(lines(&compose(body, &[], &["A"])), ["buffers"]);

@@ -69,10 +69,11 @@ fn reflection_json_snapshots() {
     }
 }
 
-/// The reflection of every variant of every bundled pass, computed once for the tests.
-fn reflect_all(lib: &Library) -> &'static [Reflection] {
+/// The reflection of every variant of every bundled pass, computed once for the tests (the
+/// bundled library is loaded inside, so the cache cannot hold another library's result).
+fn reflect_all() -> &'static [Reflection] {
     static ALL: std::sync::OnceLock<Vec<Reflection>> = std::sync::OnceLock::new();
-    ALL.get_or_init(|| compute_all(lib))
+    ALL.get_or_init(|| compute_all(&Library::bundled().unwrap()))
 }
 
 fn compute_all(lib: &Library) -> Vec<Reflection> {
@@ -95,8 +96,7 @@ fn compute_all(lib: &Library) -> Vec<Reflection> {
 /// space of every bundled pass (4612 variants).
 #[test]
 fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
-    let lib = Library::bundled().unwrap();
-    let all = reflect_all(&lib);
+    let all = reflect_all();
     assert_eq!(all.len(), 4612);
     // (shader, pass, group, binding) -> (name, kind)
     type Slot = (String, String, u32, u32);
@@ -133,8 +133,7 @@ fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
 /// A keyword that is off removes its texture; one that is on brings it (with the same slot).
 #[test]
 fn keywords_add_and_remove_bindings() {
-    let lib = Library::bundled().unwrap();
-    let all = reflect_all(&lib);
+    let all = reflect_all();
     let maps = [
         ("_METALLIC_MAP", "metallic_map", (1, 3)),
         ("_NORMAL_MAP", "normal_map", (1, 4)),

@@ -1,5 +1,5 @@
 #shader standard
-// The seed's "My First Lighting Shader" (Catlike Coding, Rendering 13), metallic workflow:
+// Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow:
 // a forward base pass (1536 variants) and a G-buffer pass for the deferred path (3072 variants).
 // The program is standard/my_lighting; the passes differ only in their keyword sets and in
 // which of FORWARD_BASE_PASS / DEFERRED_PASS they define.

@@ -43,11 +43,10 @@ use rayon::prelude::*;
 
 use crate::library::{Library, Variant};
 use crate::materials;
-use crate::validate::ValidateOptions;
+use crate::plan::{PlanOptions, plan};
 
 use super::backends::{Contents, Options, Target, TranslateError, translate};
 use super::reflect::{Stage, entry_points};
-use super::set::select;
 use crate::validate::compile;
 
 /// What to bake.
@@ -212,12 +211,12 @@ impl Bake {
             }
             None => None,
         };
-        let options = ValidateOptions {
+        let options = PlanOptions {
             materials,
             budget: self.budget,
-            ..ValidateOptions::default()
+            ..PlanOptions::default()
         };
-        let selection = select(&lib, &options).map_err(|e| BakeError(format!("error: {e}")))?;
+        let selection = plan(&lib, &options).map_err(|e| BakeError(format!("error: {e}")))?;
         let targets = if self.targets.is_empty() {
             vec![BakeTarget::Wgsl]
         } else {
@@ -341,7 +340,7 @@ fn generate(
     out_dir: &Path,
     file_name: &str,
     origin: &str,
-    selection: &super::set::Selection<'_>,
+    selection: &crate::plan::Plan<'_>,
     jobs: &[Variant<'_>],
     baked: &[BakedVariant],
 ) -> Result<usize, BakeError> {

@@ -17,27 +17,12 @@ use serde::Serialize;
 
 use crate::library::{Library, Variant};
 use crate::shader::Pass;
-use crate::validate::{ValidateError, ValidateOptions, select_passes, variants_to_build};
 use crate::variants::Choice;
 
 use super::backends::{Options, Output, Slot, Target, TranslateError, slots, translate};
 use super::reflect::{EntryPoint, Stage, entry_points};
+use crate::plan::Plan;
 use crate::validate::compile;
-
-/// The variants to emit, pass by pass.
-pub type Selection<'l> = Vec<(&'l Pass, Vec<Choice>)>;
-
-/// The build set of every pass that `options` selects (shader/pass filters, materials,
-/// budget; `options.all` takes the full space instead).
-pub fn select<'l>(
-    lib: &'l Library,
-    options: &ValidateOptions,
-) -> Result<Selection<'l>, ValidateError> {
-    select_passes(lib, options.shader.as_deref(), options.pass.as_deref())?
-        .into_iter()
-        .map(|pass| Ok((pass, variants_to_build(lib, pass, options)?)))
-        .collect()
-}
 
 /// One back end's name and version in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -197,7 +182,7 @@ fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), SetError> {
 /// manifest. Nothing is written when any variant fails: every failure is returned.
 pub fn write_set(
     lib: &Library,
-    selection: &Selection<'_>,
+    selection: &Plan<'_>,
     targets: &[Target],
     options: &Options,
     dir: &Path,

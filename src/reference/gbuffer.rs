@@ -1,5 +1,5 @@
 //! The G-buffer: what the deferred pass writes, quantized as the targets store it, and decoded
-//! back to surface values (docs/shading.md §1, §2, §7; REFERENCE.md §2).
+//! back to surface values (docs/shading.md §1, §2, §7: Unity's built-in deferred G-buffer).
 //!
 //! | target | format | contents |
 //! |---|---|---|

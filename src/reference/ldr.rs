@@ -1,4 +1,4 @@
-//! The LDR encoding of RT3 (docs/shading.md §3, REFERENCE.md §3).
+//! The LDR encoding of RT3 (docs/shading.md §3: Unity's `exp2(-c)` / `-log2` pair).
 //!
 //! Without `UNITY_HDR_ON`, RT3 is a 10-bit unorm target and the G-buffer pass stores
 //! `2^(−c)` per channel instead of the light `c ≥ 0`. Light passes multiply into it
@@ -105,7 +105,7 @@ mod tests {
         // 1023 · 2^-c, rounded: recomputed by hand.
         assert_eq!(stored(0.0, 10), 1023);
         assert_eq!(stored(0.5, 10), 723); // 1023/√2 = 723.37
-        // c = 1: 511.5, a tie; this reference rounds up (REFERENCE.md's 512), 511 is also right.
+        // c = 1: 511.5, a tie; this reference rounds up to 512, and 511 is also right (Vulkan).
         assert_eq!(stored(1.0, 10), 512);
         assert!(unorm_within(511, ldr_encode1(1.0), 10));
         assert_eq!(stored(2.0, 10), 256); // 255.75

@@ -1,5 +1,5 @@
 //! The CPU reference of the bundled deferred-shading library: the math of `docs/shading.md`
-//! (and `REFERENCE.md` §2–4) in plain Rust with `glam`.
+//! (which names the Unity and tutorial sources of each formula) in plain Rust with `glam`.
 //!
 //! It has two uses:
 //!

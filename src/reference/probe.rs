@@ -1,5 +1,5 @@
 //! Reflection probes: box projection, mip selection, RGBM decoding, the forward two-probe
-//! blend and the deferred per-pixel probes (docs/shading.md §6, REFERENCE.md §4).
+//! blend and the deferred per-pixel probes (docs/shading.md §6, Reflection probes).
 //!
 //! ```
 //! use glam::Vec3;

@@ -1,5 +1,5 @@
 //! Storing values in render-target formats: unorm channels, half floats and the packed
-//! `Rgb10a2Unorm` word (docs/shading.md §1, REFERENCE.md §2).
+//! `Rgb10a2Unorm` word (docs/shading.md §1, Target formats and quantization).
 //!
 //! These are the conversions a GPU performs when a fragment shader writes to a target, done the
 //! way Vulkan describes them. Where Vulkan leaves a choice (which way a unorm tie rounds), this

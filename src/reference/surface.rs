@@ -217,9 +217,9 @@ impl Keywords {
     }
 }
 
-/// The material's uniform values (Unity's material properties). `Default` is Unity's defaults
-/// for the seed shader: white tint, no emission, metallic 0, smoothness 0.5, cutoff 0.5,
-/// occlusion strength 1, bump scales 1.
+/// The material's uniform values (Unity's material properties). `Default` is the property
+/// defaults of Unity's Standard shader: white tint, no emission, metallic 0, smoothness 0.5,
+/// cutoff 0.5, occlusion strength 1, bump scales 1 (docs/shading.md §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// `_Color`: albedo tint rgb and alpha.

@@ -1,4 +1,4 @@
-// deferred/probe: reflection probes (docs/shading.md §6; REFERENCE.md §4).
+// deferred/probe: reflection probes (docs/shading.md §6, Reflection probes).
 //
 // Pure functions, no bindings, so compute kernels can call them. The probe record is laid out
 // for a uniform buffer (5 × vec4f = 80 bytes):
@@ -108,7 +108,7 @@ fn probe_forward_blend(e0: vec3f, e1: vec3f, t: f32) -> vec3f {
 // Deferred per-pixel weight of a probe at world position p:
 //   dist = max(p - box_max, box_min - p, 0) per axis (the un-grown box);
 //   falloff = saturate(1 - length(dist) / b), b = params.y.
-// b <= 0: 1 inside or on the box (dist == 0), 0 outside (REFERENCE.md's 0/0 case).
+// b <= 0: 1 inside or on the box (dist == 0), 0 outside (our rule; Unity's shader divides by b).
 fn probe_falloff(p: vec3f, probe: Probe) -> f32 {
     let dist = max(max(p - probe.box_max.xyz, probe.box_min.xyz - p), vec3f(0.0));
     let b = probe.params.y;

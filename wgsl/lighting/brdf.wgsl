@@ -1,4 +1,4 @@
-// lighting/brdf: the metallic workflow and the lighting terms of the seed's "My Lighting"
+// lighting/brdf: the metallic workflow and the lighting terms of Catlike Coding's "My Lighting"
 // (docs/shading.md §5). Pure functions, no bindings; callable from any stage.
 //
 // Provides:

@@ -1,4 +1,4 @@
-// standard/my_lighting: the seed's "My Lighting" program for the standard shader's
+// standard/my_lighting: Catlike Coding's "My Lighting" program for the standard shader's
 // ForwardBase (FORWARD_BASE_PASS) and Deferred (DEFERRED_PASS) passes (docs/shading.md §4-§7).
 //
 // Provides the entry points:

@@ -1,4 +1,4 @@
-// standard/surface: the surface inputs of the seed's "My Lighting" (docs/shading.md §4),
+// standard/surface: the surface inputs of Catlike Coding's "My Lighting" (docs/shading.md §4),
 // metallic workflow. Every map keyword switches a real texture sample; the functions sample
 // with material_sampler and so belong to fragment shaders.
 //
@@ -61,7 +61,7 @@ fn surface_metallic(uv: vec2f) -> f32 {
 
 #if defined(_SMOOTHNESS_METALLIC)
 // The smoothness source of _SMOOTHNESS_METALLIC: metallic_map.a, which exists only with
-// _METALLIC_MAP; without the map the source is 1 (as in the seed's GetSmoothness).
+// _METALLIC_MAP; without the map the source is 1 (as in the tutorial's GetSmoothness).
 fn surface_smoothness_metallic_source(uv: vec2f) -> f32 {
 #if defined(_METALLIC_MAP)
     return textureSample(metallic_map, material_sampler, uv).a;

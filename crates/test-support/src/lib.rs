@@ -2,6 +2,7 @@
 //! shaders, timing, machine description, the summary file, memory. Not published.
 #![allow(dead_code)] // each bench uses a subset
 
+pub mod bad;
 pub mod shaders;
 pub mod timing;
 pub mod workload;

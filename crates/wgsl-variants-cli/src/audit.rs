@@ -13,7 +13,7 @@ use serde_json::value::RawValue;
 
 use wgsl_variants::audit::budget::{Budgets, Verdict, verdict};
 use wgsl_variants::audit::{self, AuditOptions, CodeGroup, Method, PassAudit, SetAudit};
-use wgsl_variants::validate::select_passes;
+use wgsl_variants::plan::select_passes;
 
 use super::output::{count, print_json};
 use super::{BuildArgs, Context, Failed, load_materials};

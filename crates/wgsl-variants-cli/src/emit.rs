@@ -14,7 +14,7 @@ use wgsl_variants::emit::backends::{
 };
 use wgsl_variants::emit::reflect::Stage;
 use wgsl_variants::emit::set::{self, SetError};
-use wgsl_variants::validate::{ValidateOptions, validate_composed};
+use wgsl_variants::validate::validate_composed;
 
 use super::output::print_json;
 use super::{BuildArgs, Context, Failed, load_materials};
@@ -308,27 +308,13 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let materials = load_materials(&args.build.materials)?;
-    let selection = set::select(
-        &ctx.lib,
-        &ValidateOptions {
-            all: args.all,
-            materials,
-            budget: args.build.max_variants,
-            shader: args.build.shader.clone(),
-            pass: args.build.pass.clone(),
-        },
-    )?;
-    let selection = match args.shard {
-        Some(shard) => shard.select(selection),
-        None => selection,
-    };
+    let selection = ctx.plan(&args.build, args.all, args.shard)?;
     write_selection(ctx, &selection, targets, options, dir)
 }
 
 fn write_selection(
     ctx: &Context,
-    selection: &set::Selection<'_>,
+    selection: &wgsl_variants::plan::Plan<'_>,
     targets: &[Target],
     options: &Options,
     dir: &std::path::Path,

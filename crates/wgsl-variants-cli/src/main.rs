@@ -125,6 +125,13 @@ enum Command {
     Reflect(reflect::ReflectArgs),
     /// One module with its imports on its own: prefixed self-contained WGSL, or naga_oil's dialect.
     Export(export::ExportArgs),
+    /// Every variant of every pass's full space with a content hash of its canonical WGSL
+    /// (the list that the `manifest` snapshot summarizes).
+    Manifest {
+        /// Only print the summary (variants, distinct texts, digest per pass).
+        #[arg(long)]
+        summary: bool,
+    },
     /// Variant counts per pass (full space, after skip_variants, build set, distinct), dead
     /// keywords, a multiplier table per keyword set, budgets (--budget) and a chart (--chart).
     Audit(audit::AuditArgs),
@@ -135,6 +142,18 @@ enum Command {
     /// Render the GPU check's test scene and write PNG pictures (G-buffer, light, final frame).
     #[cfg(feature = "gpu")]
     Render(render::RenderArgs),
+}
+
+/// `wgsl-variants manifest [--summary]`.
+fn manifest(ctx: &Context, summary: bool) -> Result<ExitCode, Failed> {
+    let make = if summary {
+        wgsl_variants::snapshot::manifest_summary
+    } else {
+        wgsl_variants::snapshot::manifest
+    };
+    let text = make(&ctx.lib, 1_000_000).map_err(|e| Failed(format!("error: {e}")))?;
+    print!("{text}");
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Everything a command needs: the library and how to print.
@@ -183,6 +202,32 @@ impl Context {
     }
 
     /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
+    /// The plan of `build` (the full space with `all`, one shard with `shard`). A pass over its
+    /// budget is reported at its declaration.
+    pub fn plan(
+        &self,
+        build: &BuildArgs,
+        all: bool,
+        shard: Option<wgsl_variants::variants::Shard>,
+    ) -> Result<wgsl_variants::plan::Plan<'_>, Failed> {
+        let mut options = wgsl_variants::plan::PlanOptions::default();
+        options.all = all;
+        options.materials = load_materials(&build.materials)?;
+        options.budget = build.max_variants;
+        options.shader = build.shader.clone();
+        options.pass = build.pass.clone();
+        options.shard = shard;
+        wgsl_variants::plan::plan(&self.lib, &options).map_err(|e| match &e {
+            wgsl_variants::plan::PlanError::Budget { shader, pass, .. } => {
+                match self.lib.pass(shader, pass) {
+                    Ok(p) => self.pass_failure(p, e.to_string()),
+                    Err(_) => Failed::from(e),
+                }
+            }
+            _ => Failed::from(e),
+        })
+    }
+
     fn pass_failure(&self, pass: &wgsl_variants::Pass, message: String) -> Failed {
         let mut d = wgsl_variants::Diagnostic::new(message).at(pass.span, "pass declared here");
         for set in &pass.sets {
@@ -254,6 +299,7 @@ fn main() -> ExitCode {
         Command::Reflect(args) => reflect::run(&ctx, &args),
         Command::Export(args) => export::run(&ctx, &args),
         Command::Audit(args) => audit::run(&ctx, &args),
+        Command::Manifest { summary } => manifest(&ctx, summary),
         #[cfg(feature = "gpu")]
         Command::CheckGpu(args) => check_gpu::run(&ctx, &args),
         #[cfg(feature = "gpu")]

@@ -6,15 +6,13 @@ use std::process::ExitCode;
 use serde::Serialize;
 use serde_json::value::RawValue;
 
-use wgsl_variants::validate::{
-    PassReport, ValidateOptions, select_passes, validate_pass_with, variants_to_build,
-};
+use wgsl_variants::validate::{PassReport, validate_pass_with};
 
 use wgsl_variants::cache::ValidCache;
 use wgsl_variants::variants::Shard;
 
 use super::output::{count, print_json, progress};
-use super::{BuildArgs, Context, Failed, load_materials};
+use super::{BuildArgs, Context, Failed};
 
 #[derive(Serialize)]
 pub struct FailureOut {
@@ -66,27 +64,7 @@ pub fn build_reports_with(
     shard: Option<Shard>,
     cache: Option<&ValidCache>,
 ) -> Result<Vec<PassReport>, Failed> {
-    let options = ValidateOptions {
-        all,
-        materials: load_materials(&build.materials)?,
-        budget: build.max_variants,
-        shader: build.shader.clone(),
-        pass: build.pass.clone(),
-    };
-    let passes = select_passes(&ctx.lib, options.shader.as_deref(), options.pass.as_deref())?;
-    let mut plans = Vec::new();
-    for pass in passes {
-        let choices = variants_to_build(&ctx.lib, pass, &options).map_err(|e| match e {
-            wgsl_variants::validate::ValidateError::Budget { error, .. } => {
-                ctx.pass_failure(pass, format!("{}/{}: {error}", pass.shader, pass.name))
-            }
-            other => Failed::from(other),
-        })?;
-        plans.push((pass, choices));
-    }
-    if let Some(shard) = shard {
-        plans = shard.select(plans);
-    }
+    let plans = ctx.plan(build, all, shard)?;
     let total: u64 = plans.iter().map(|p| p.1.len() as u64).sum();
     let bar = progress(total, "validating");
     let reports = plans

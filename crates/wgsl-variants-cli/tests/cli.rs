@@ -176,13 +176,11 @@ fn materials_restrict_the_build_set() {
 
 #[test]
 fn shards_partition_the_build_exactly() {
-    use wgsl_variants::validate::{ValidateOptions, variants_to_build};
+    use wgsl_variants::plan::{PlanOptions, variants_to_build};
     use wgsl_variants::variants::Shard;
     let lib = wgsl_variants::Library::bundled().unwrap();
-    let options = ValidateOptions {
-        all: true,
-        ..ValidateOptions::default()
-    };
+    let mut options = PlanOptions::default();
+    options.all = true;
     let plans: Vec<_> = lib
         .passes()
         .map(|p| {
@@ -251,4 +249,33 @@ fn the_cache_changes_speed_not_output() {
     // A damaged cache is ignored record by record, never trusted blindly.
     std::fs::write(&files[0], b"garbage").unwrap();
     assert_eq!(run(&args).stdout, first.stdout);
+}
+
+/// The cache is read: a cache entry for a text that does NOT validate makes `validate` report
+/// it valid (only a read cache can do that), and `--no-cache` shows the same tree fails.
+#[test]
+fn a_cache_entry_is_a_hit() {
+    let tree = tempfile::tempdir().unwrap();
+    let shader = "#shader s\n#pass P\n#pragma multi_compile _ BAD\n\
+                  #ifdef BAD\nfn f() -> f32 { return vec2f(1.0); }\n#endif\n\
+                  @fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }\n#endpass\n";
+    std::fs::write(tree.path().join("s.wgsl"), shader).unwrap();
+    let lib = wgsl_variants::Library::from_dir(tree.path()).unwrap();
+    let bad = lib.variant("s", "P", &["BAD"]).unwrap();
+    let key = wgsl_variants::cache::hash(&lib.wgsl(&bad));
+
+    let cache = tempfile::tempdir().unwrap();
+    let root = tree.path().to_str().unwrap();
+    let dir = cache.path().to_str().unwrap();
+    let without = run(&["--root", root, "validate", "--all", "--no-cache"]);
+    assert_eq!(without.status.code(), Some(1), "the BAD variant is invalid");
+
+    std::fs::write(cache.path().join(wgsl_variants::cache::file_name()), key).unwrap();
+    let with = run(&["--root", root, "validate", "--all", "--cache", dir]);
+    assert_eq!(
+        with.status.code(),
+        Some(0),
+        "the planted entry was not read: {}",
+        String::from_utf8_lossy(&with.stderr)
+    );
 }

@@ -77,7 +77,7 @@ impl VertexBuffer {
     /// each vertex in that order.
     ///
     /// ```
-    /// use wgsl_variants::gpu::VertexBuffer;
+    /// use wgsl_variants_gpu::VertexBuffer;
     /// // position vec3f at @location(0), uv vec2f at @location(1): 5 floats per vertex.
     /// let vb = VertexBuffer::from_f32(&[(0, 3), (1, 2)], &[[0.0, 0.0, 0.0, 0.0, 1.0]]);
     /// assert_eq!((vb.stride, vb.data.len()), (20, 20));

@@ -5,7 +5,7 @@
 //! [`run`] is shared by the `check-gpu` command and the GPU tests:
 //!
 //! ```no_run
-//! use wgsl_variants::gpu::check::{run, CheckOptions};
+//! use wgsl_variants_gpu::check::{run, CheckOptions};
 //! let lib = wgsl_variants::Library::bundled().unwrap();
 //! let report = run(&lib, &CheckOptions::default()).unwrap();
 //! assert!(report.passed(), "{report}");
