@@ -112,11 +112,35 @@ pub fn naga_outcome(text: &str) -> Result<String, String> {
     )
     .validate(&module)
     .map_err(|e| e.as_inner().to_string())?;
-    // A module naga accepts but cannot write back is still accepted: keep it `Ok`.
-    Ok(
+    // naga 30's WGSL writer panics on a few valid modules (an `unreachable!` in constant
+    // expressions): that module is then compared as SPIR-V, which carries no spans either.
+    let wgsl = quietly(|| {
         naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
-            .unwrap_or_else(|e| format!("<wgsl-out failed: {e}>")),
-    )
+    });
+    Ok(match wgsl {
+        Some(Ok(wgsl)) => wgsl,
+        Some(Err(e)) => format!("<wgsl-out failed: {e}>"),
+        None => {
+            let options = naga::back::spv::Options::default();
+            match quietly(|| naga::back::spv::write_vec(&module, &info, &options, None)) {
+                Some(Ok(words)) => format!("<SPIR-V {words:x?}>"),
+                Some(Err(e)) => format!("<wgsl-out panicked, spv-out failed: {e}>"),
+                None => "<wgsl-out and spv-out panicked>".to_string(),
+            }
+        }
+    })
+}
+
+/// Runs `f`, turning a panic into `None` without printing it (and without the fuzzer's
+/// abort-on-panic hook). Hooks are process-wide, so swaps are serialised.
+fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
+    static HOOK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _guard = HOOK.lock().unwrap_or_else(|e| e.into_inner());
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok();
+    std::panic::set_hook(hook);
+    result
 }
 
 /// For every variant (up to 64 per pass): naga gives the same outcome for the lean text
