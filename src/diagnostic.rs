@@ -196,11 +196,16 @@ impl<'a> Files<'a> for SourceFiles {
 }
 
 /// `range` widened to character boundaries of `text` and clipped to it, so a label that a
-/// byte-based mapping put inside a multi-byte line break still renders.
+/// byte-based mapping put inside a multi-byte line break still renders; empty when it starts
+/// on a line break.
 fn char_range(text: &str, range: Range<usize>) -> Range<usize> {
     let mut start = range.start.min(text.len());
     while !text.is_char_boundary(start) {
         start -= 1;
+    }
+    if crate::preprocess::lines::next_break(text, start).is_some_and(|b| b.start == start) {
+        // A label on a line break marks the end of its line (one caret), not two lines.
+        return start..start;
     }
     let mut end = range.end.clamp(start, text.len());
     while !text.is_char_boundary(end) {

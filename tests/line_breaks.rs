@@ -180,6 +180,22 @@ fn crlf_is_one_break_and_offsets_stay_those_of_the_file() {
     assert_eq!(lib.compose(&v).text.matches('\n').count(), 3);
 }
 
+#[test]
+fn an_error_at_the_end_points_after_the_last_code_whatever_the_break() {
+    for brk in ["", "\n", "\r\n", "\u{2028}", "\n#if A\n#endif\n"] {
+        let lib = library(&format!("fn f() -> f32 {{{brk}"));
+        let v = variant(&lib, &[]);
+        assert_eq!(agree(&lib, &v).as_deref(), Some("m.wgsl:1:16"), "{brk:?}");
+        let rendered = lib
+            .naga_module(&v)
+            .unwrap_err()
+            .diagnostic()
+            .render(lib.files(), false);
+        // One caret on line 1, not a label running into the next line.
+        assert!(!rendered.contains("2 │"), "{brk:?}\n{rendered}");
+    }
+}
+
 // ---- Generated corpus -----------------------------------------------------------------------
 
 /// SplitMix64: small, seeded, and the same on every platform.
