@@ -131,6 +131,22 @@ fn only_wgsl_blankspace_is_blank() {
 }
 
 #[test]
+fn a_shader_file_holds_only_blankspace_and_comments_outside_passes() {
+    // LRM and a comment ended by LS are fine between passes; NBSP is code, so it is refused.
+    let ok = "#shader s\u{2028}\u{200e}\n// x\u{2028}#pass P\n#endpass\n";
+    assert!(Library::from_sources([("main.wgsl", ok)]).is_ok());
+    let bad = "#shader s\n\u{a0}\n#pass P\n#endpass\n";
+    let err = Library::from_sources([("main.wgsl", bad)]).unwrap_err();
+    let at: Vec<String> = err
+        .diagnostics
+        .iter()
+        .filter_map(|d| d.location(&err.files))
+        .map(|l| l.to_string())
+        .collect();
+    assert_eq!(at, ["main.wgsl:2:1"]);
+}
+
+#[test]
 fn diagnostics_count_every_wgsl_break() {
     let mut m = String::new();
     for (i, brk) in BREAKS.iter().enumerate() {
