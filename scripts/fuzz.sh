@@ -3,7 +3,8 @@
 #
 # Targets (fuzz/fuzz_targets/, properties in fuzz/src/checks.rs): preprocess (directives of any
 # module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
-# imports). Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
+# imports), lean (naga gives the lean and the emitted text of every variant the same outcome).
+# Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
 # saved under fuzz/artifacts/<target>/; copy it to fuzz/regressions/<target>/ and fix the bug:
 # `cargo test --test fuzz_regressions` replays every saved input.
 #
@@ -14,11 +15,11 @@ seconds="${1:-60}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 summary=""
-for target in preprocess expr pragmas loader; do
+for target in preprocess expr pragmas loader lean; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
     cp -n fuzz/seeds/"$target"/* "$corpus"/ 2>/dev/null || true
-    if [ "$target" = preprocess ]; then
+    if [ "$target" = preprocess ] || [ "$target" = lean ]; then
         # The bundled modules are seeds too (shader files are pass bodies, not modules).
         for m in $(grep -rL '^#shader' wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
     fi

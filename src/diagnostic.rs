@@ -2,13 +2,15 @@
 //!
 //! Every error of every stage carries a [`Span`] into an *original* module file (never into
 //! composed output), so a report always names `file:line:col` of what the author wrote.
-//! Reports are rendered with `codespan-reporting`, as naga renders its own.
+//! Reports are rendered with `codespan-reporting`, as naga renders its own. Lines are counted
+//! at WGSL's line breaks (LF, VT, FF, CR, CR LF as one, NEL, LS, PS), as naga's lexer ends
+//! them.
 
 use std::fmt;
 use std::ops::Range;
 
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
-use codespan_reporting::files::{Files, SimpleFiles};
+use codespan_reporting::files::{Error as FilesError, Files, column_index};
 use codespan_reporting::term::{self, termcolor};
 
 /// Index of a file in [`SourceFiles`].
@@ -60,12 +62,48 @@ impl fmt::Display for Location {
 
 /// The text of every file of a library, addressed by [`FileId`].
 ///
-/// Texts are stored as loaded after BOM removal and CRLF normalisation; neither changes a
-/// line or a character column, so locations match what an editor shows.
+/// Texts are stored as loaded, after BOM removal only, so byte offsets are those of the file
+/// on disk (less the BOM). Lines end at every WGSL line break (CR LF is one), so locations
+/// match what naga and an editor that follows WGSL show.
 #[derive(Default)]
 pub struct SourceFiles {
-    files: SimpleFiles<String, String>,
-    count: usize,
+    files: Vec<SourceFile>,
+}
+
+struct SourceFile {
+    path: String,
+    text: String,
+    /// Byte offset of each line's start (see [`crate::preprocess::lines::line_starts`]).
+    line_starts: Vec<usize>,
+}
+
+impl SourceFile {
+    fn line_index(&self, byte: usize) -> usize {
+        self.line_starts
+            .partition_point(|&s| s <= byte)
+            .saturating_sub(1)
+    }
+
+    /// The line's bytes with its break when that break is LF, CR or CR LF (which
+    /// codespan trims when it prints the line, as its own files do), without it otherwise
+    /// (so VT, FF, NEL, LS and PS are not printed into a terminal).
+    fn line_range(&self, line: usize) -> Option<Range<usize>> {
+        let start = *self.line_starts.get(line)?;
+        let next = self
+            .line_starts
+            .get(line + 1)
+            .copied()
+            .unwrap_or(self.text.len());
+        let end = match crate::preprocess::lines::next_break(&self.text, start) {
+            Some(brk)
+                if brk.end == next && !matches!(self.text.as_bytes()[brk.start], b'\n' | b'\r') =>
+            {
+                brk.start
+            }
+            _ => next,
+        };
+        Some(start..end)
+    }
 }
 
 impl SourceFiles {
@@ -76,52 +114,104 @@ impl SourceFiles {
 
     /// Adds a file and returns its id.
     pub fn add(&mut self, path: String, text: String) -> FileId {
-        self.count += 1;
-        self.files.add(path, text)
+        let line_starts = crate::preprocess::lines::line_starts(&text);
+        self.files.push(SourceFile {
+            path,
+            text,
+            line_starts,
+        });
+        self.files.len() - 1
     }
 
     /// Number of files.
     pub fn len(&self) -> usize {
-        self.count
+        self.files.len()
     }
 
     /// Whether there are no files.
     pub fn is_empty(&self) -> bool {
-        self.count == 0
+        self.files.is_empty()
     }
 
     /// Library-relative path of a file.
     pub fn path(&self, file: FileId) -> &str {
         self.files
             .get(file)
-            .map(|f| f.name().as_str())
-            .unwrap_or("<unknown>")
+            .map_or("<unknown>", |f| f.path.as_str())
     }
 
     /// Text of a file.
     pub fn text(&self, file: FileId) -> &str {
-        self.files
-            .get(file)
-            .map(|f| f.source().as_str())
-            .unwrap_or("")
+        self.files.get(file).map_or("", |f| f.text.as_str())
     }
 
-    /// Resolves the start of a span to `path:line:col`.
+    /// Resolves the start of a span to `path:line:col` (lines counted at WGSL line breaks,
+    /// columns in characters).
     pub fn location(&self, span: Span) -> Location {
-        let line = self
-            .files
-            .line_index(span.file, span.start as usize)
-            .unwrap_or(0);
-        let column = self
-            .files
-            .column_number(span.file, line, span.start as usize)
-            .unwrap_or(1);
+        let (line, column) = match self.files.get(span.file) {
+            Some(f) => {
+                let line = f.line_index(span.start as usize);
+                let range = f.line_range(line).unwrap_or(0..0);
+                (line, column_index(&f.text, range, span.start as usize) + 1)
+            }
+            None => (0, 1),
+        };
         Location {
             path: self.path(span.file).to_string(),
             line: line + 1,
             column,
         }
     }
+
+    fn file(&self, id: FileId) -> Result<&SourceFile, FilesError> {
+        self.files.get(id).ok_or(FilesError::FileMissing)
+    }
+}
+
+/// What `codespan-reporting` renders from: the same files, with WGSL line starts.
+impl<'a> Files<'a> for SourceFiles {
+    type FileId = FileId;
+    type Name = &'a str;
+    type Source = &'a str;
+
+    fn name(&'a self, id: FileId) -> Result<&'a str, FilesError> {
+        Ok(self.file(id)?.path.as_str())
+    }
+
+    fn source(&'a self, id: FileId) -> Result<&'a str, FilesError> {
+        Ok(self.file(id)?.text.as_str())
+    }
+
+    fn line_index(&'a self, id: FileId, byte_index: usize) -> Result<usize, FilesError> {
+        Ok(self.file(id)?.line_index(byte_index))
+    }
+
+    fn line_range(&'a self, id: FileId, line_index: usize) -> Result<Range<usize>, FilesError> {
+        let file = self.file(id)?;
+        file.line_range(line_index).ok_or(FilesError::LineTooLarge {
+            given: line_index,
+            max: file.line_starts.len() - 1,
+        })
+    }
+}
+
+/// `range` widened to character boundaries of `text` and clipped to it, so a label that a
+/// byte-based mapping put inside a multi-byte line break still renders; empty when it starts
+/// on a line break.
+fn char_range(text: &str, range: Range<usize>) -> Range<usize> {
+    let mut start = range.start.min(text.len());
+    while !text.is_char_boundary(start) {
+        start -= 1;
+    }
+    if crate::preprocess::lines::next_break(text, start).is_some_and(|b| b.start == start) {
+        // A label on a line break marks the end of its line (one caret), not two lines.
+        return start..start;
+    }
+    let mut end = range.end.clamp(start, text.len());
+    while !text.is_char_boundary(end) {
+        end += 1;
+    }
+    start..end
 }
 
 /// A report ready to render: a message, where it happened, and what else is known.
@@ -177,10 +267,12 @@ impl Diagnostic {
         let mut cs = CsDiagnostic::error().with_message(&self.message);
         let mut labels = Vec::new();
         if let Some((span, label)) = &self.primary {
-            labels.push(Label::primary(span.file, span.range()).with_message(label));
+            let range = char_range(files.text(span.file), span.range());
+            labels.push(Label::primary(span.file, range).with_message(label));
         }
         for (span, label) in &self.secondary {
-            labels.push(Label::secondary(span.file, span.range()).with_message(label));
+            let range = char_range(files.text(span.file), span.range());
+            labels.push(Label::secondary(span.file, range).with_message(label));
         }
         cs = cs.with_labels(labels).with_notes(self.notes.clone());
         let config = term::Config::default();
@@ -189,7 +281,7 @@ impl Diagnostic {
         } else {
             termcolor::Buffer::no_color()
         };
-        if term::emit_to_write_style(&mut buffer, &config, &files.files, &cs).is_err() {
+        if term::emit_to_write_style(&mut buffer, &config, files, &cs).is_err() {
             // codespan only fails on a span outside its file: fall back to the plain message.
             return format!("error: {}\n", self.message);
         }

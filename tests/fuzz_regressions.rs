@@ -32,16 +32,17 @@ type Target = (&'static str, fn(&[u8]));
 
 #[test]
 fn fuzz_seeds_and_regressions_replay_cleanly() {
-    let targets: [Target; 4] = [
+    let targets: [Target; 5] = [
         ("preprocess", checks::preprocess),
         ("expr", checks::expr),
         ("pragmas", checks::pragmas),
         ("loader", checks::loader),
+        ("lean", checks::lean),
     ];
     let mut total = 0;
     for (name, check) in targets {
         let mut seeds = inputs("seeds", name);
-        if name == "preprocess" {
+        if name == "preprocess" || name == "lean" {
             // The bundled modules are seeds too, as scripts/fuzz.sh gives them to the fuzzer.
             let lib = wgsl_variants::Library::bundled().expect("bundled library");
             let modules = (0..lib.module_paths().len())

@@ -2,7 +2,10 @@
 //! The properties each fuzz target checks, shared with `tests/fuzz_regressions.rs` so every
 //! saved input is replayed through exactly the same code.
 
+use std::collections::HashSet;
+
 use wgsl_variants::preprocess::expr::parse;
+use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space, Variant};
 
 /// Any text as a module: parsing its directives never panics, and composing what parses stays
@@ -82,4 +85,111 @@ pub fn loader(data: &[u8]) {
             }
         }
     }
+}
+
+/// Any text as a module, imported by a pass with keywords `A` and `B`: see
+/// [`lean_matches_emitted`]. Inputs past 16 KiB are skipped to keep naga's share bounded.
+pub fn lean(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if text.len() > 16 * 1024 {
+        return;
+    }
+    let main = "#shader s\n#pass P\n#pragma multi_compile _ A\n#pragma shader_feature _ B\n#import m\n#endpass\n";
+    if let Ok(lib) = Library::from_sources([("m.wgsl", text), ("main.wgsl", main)]) {
+        lean_matches_emitted(&lib);
+    }
+}
+
+/// naga's verdict on a WGSL text, comparable across texts whose spans differ: the validated
+/// module written back to WGSL, or the error message (`Err`).
+pub fn naga_outcome(text: &str) -> Result<String, String> {
+    let module = naga::front::wgsl::parse_str(text).map_err(|e| e.message().to_string())?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|e| e.as_inner().to_string())?;
+    // naga 30's WGSL writer panics on a few valid modules (an `unreachable!` in constant
+    // expressions): that module is then compared as SPIR-V, which carries no spans either.
+    let wgsl = quietly(|| {
+        naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
+    });
+    Ok(match wgsl {
+        Some(Ok(wgsl)) => wgsl,
+        Some(Err(e)) => format!("<wgsl-out failed: {e}>"),
+        None => {
+            let options = naga::back::spv::Options::default();
+            match quietly(|| naga::back::spv::write_vec(&module, &info, &options, None)) {
+                Some(Ok(words)) => format!("<SPIR-V {words:x?}>"),
+                Some(Err(e)) => format!("<wgsl-out panicked, spv-out failed: {e}>"),
+                None => "<wgsl-out and spv-out panicked>".to_string(),
+            }
+        }
+    })
+}
+
+/// Whether two naga outcomes are the same program: the same module written back, or both
+/// rejected. Messages are not compared: naga quotes the rest of the text in some (an
+/// unterminated block comment), and that rest loses its blank lines in the lean text.
+pub fn same_outcome(a: &Result<String, String>, b: &Result<String, String>) -> bool {
+    match (a, b) {
+        (Ok(a), Ok(b)) => a == b,
+        (Err(_), Err(_)) => true,
+        _ => false,
+    }
+}
+
+/// Runs `f`, turning a panic into `None` without printing it (and without the fuzzer's
+/// abort-on-panic hook). Hooks are process-wide, so swaps are serialised.
+fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
+    static HOOK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _guard = HOOK.lock().unwrap_or_else(|e| e.into_inner());
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok();
+    std::panic::set_hook(hook);
+    result
+}
+
+/// For every variant (up to 64 per pass): naga gives the same outcome for the lean text
+/// (`Library::compose_text`, what is hashed and validated) as for the emitted text
+/// (`Library::compose`), and `validate` reports a variant invalid exactly when naga rejects
+/// its emitted text. Returns the number of variants compared.
+pub fn lean_matches_emitted(lib: &Library) -> usize {
+    let mut compared = 0;
+    for pass in lib.passes() {
+        let Ok(choices) = Space::full(pass).enumerate(64) else {
+            continue;
+        };
+        let report = validate_pass(lib, pass, &choices, &|_| {});
+        let failing: HashSet<Vec<String>> = report
+            .failures
+            .iter()
+            .flat_map(|f| f.keyword_sets.iter().cloned())
+            .collect();
+        for choice in choices {
+            let variant = Variant { pass, choice };
+            let full = lib.compose(&variant).text;
+            let lean = lib.compose_text(&variant).text;
+            let emitted = naga_outcome(&full);
+            let lean_outcome = naga_outcome(&lean);
+            assert!(
+                same_outcome(&emitted, &lean_outcome),
+                "naga differs on the lean and the emitted text of {}: {emitted:?} vs {lean_outcome:?}\nemitted: {full:?}\nlean: {lean:?}",
+                variant.label()
+            );
+            let keywords: Vec<String> = variant.keywords().into_iter().map(String::from).collect();
+            assert_eq!(
+                failing.contains(&keywords),
+                emitted.is_err(),
+                "validate and naga disagree on {}: {emitted:?}\nemitted: {full:?}",
+                variant.label()
+            );
+            compared += 1;
+        }
+    }
+    compared
 }

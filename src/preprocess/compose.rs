@@ -33,8 +33,11 @@ pub struct Composed {
 ///
 /// With `with_map` false the composition is *lean*: blank and comment-only lines are left out
 /// and no line map is kept. The program is the same (half the bytes for naga to lex in the
-/// bundled library); a caller that hashes or validates the lean text composes again, with the
-/// map, to locate an error.
+/// bundled library): both texts copy the same lines, each ended with `\n`, and a line is left
+/// out only when [`super::lines::scan`] found it blank or a `//` comment at block-comment depth
+/// 0, with WGSL's own line breaks and blankspace, so removing it cannot join or split tokens or
+/// comments. A caller that hashes or validates the lean text composes again, with the map, to
+/// locate an error.
 pub fn compose(
     graph: &ModuleGraph<'_>,
     module: usize,

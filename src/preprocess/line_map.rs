@@ -38,7 +38,9 @@ impl LineMap {
         let line_end = output[out as usize..]
             .find('\n')
             .map_or(output.len(), |n| out as usize + n);
-        let delta = start - out as usize;
+        // Past the line's `\n` (only at the end of the output): the end of the original
+        // line, not into its line break (which may be CR LF or a multi-byte NEL/LS/PS).
+        let delta = (start - out as usize).min(line_end - out as usize);
         let len = end.clamp(start, line_end.max(start + 1)) - start;
         let begin = src as usize + delta;
         Some(Span::new(file, begin..begin + len.max(1)))

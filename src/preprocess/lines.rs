@@ -1,20 +1,101 @@
 //! Splitting a module into lines and finding its directive lines.
 //!
-//! A directive is a line whose first non-blank character is `#`, outside a `/* */` block
-//! comment (WGSL block comments nest). WGSL itself has no `#` token, so nothing else is taken.
+//! Lines are WGSL's: a line break is LF, VT, FF, CR, CR LF (one break), NEL (U+0085), LS
+//! (U+2028) or PS (U+2029), and blank is WGSL blankspace — exactly what naga's lexer uses, so a
+//! `//` comment ends where naga ends it. A directive is a line whose first non-blank character
+//! is `#`, outside a `/* */` block comment (WGSL block comments nest). WGSL itself has no `#`
+//! token, so nothing else is taken.
 
 use std::ops::Range;
+
+/// WGSL blankspace (Unicode Pattern_White_Space): space, tab, the line breaks, and the
+/// left-to-right / right-to-left marks. Unlike [`char::is_whitespace`], NBSP (U+00A0) and the
+/// other Unicode spaces are *not* blank: naga rejects them.
+pub fn is_blank(c: char) -> bool {
+    matches!(
+        c,
+        ' ' | '\t' | '\u{000a}'
+            ..='\u{000d}' | '\u{0085}' | '\u{200e}' | '\u{200f}' | '\u{2028}' | '\u{2029}'
+    )
+}
+
+/// Whether `c` is a WGSL line break character (CR LF counts as one break, made of two).
+pub fn is_line_break(c: char) -> bool {
+    matches!(
+        c,
+        '\u{000a}'..='\u{000d}' | '\u{0085}' | '\u{2028}' | '\u{2029}'
+    )
+}
+
+/// `s` without leading WGSL blankspace.
+pub fn trim_blank_start(s: &str) -> &str {
+    s.trim_start_matches(is_blank)
+}
+
+/// `s` without trailing WGSL blankspace.
+pub fn trim_blank_end(s: &str) -> &str {
+    s.trim_end_matches(is_blank)
+}
+
+/// The first line break at or after byte `from`: its byte range (two bytes for CR LF).
+pub fn next_break(text: &str, from: usize) -> Option<Range<usize>> {
+    let bytes = text.as_bytes();
+    let mut i = from;
+    while i < bytes.len() {
+        // Every break starts with one of these bytes; UTF-8 continuation bytes never match.
+        match bytes[i] {
+            b'\r' if bytes.get(i + 1) == Some(&b'\n') => return Some(i..i + 2),
+            0x0a..=0x0d => return Some(i..i + 1),
+            0xc2 if bytes.get(i + 1) == Some(&0x85) => return Some(i..i + 2),
+            0xe2 if bytes.get(i + 1) == Some(&0x80)
+                && matches!(bytes.get(i + 2), Some(0xa8 | 0xa9)) =>
+            {
+                return Some(i..i + 3);
+            }
+            _ => i += 1,
+        }
+    }
+    None
+}
+
+/// The lines of `text`: for each, the byte range of its content and of its line break (empty
+/// for a last line without one). A final break does not start another line; empty text has
+/// no lines.
+pub fn split(text: &str) -> impl Iterator<Item = (Range<usize>, Range<usize>)> + '_ {
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        if start >= text.len() {
+            return None;
+        }
+        let brk = next_break(text, start).unwrap_or(text.len()..text.len());
+        let line = (start..brk.start, brk.clone());
+        start = brk.end;
+        Some(line)
+    })
+}
+
+/// The byte offset where each line starts, as an editor numbers lines: 0, then the end of
+/// every line break (so text ending in a break has an empty last line).
+pub fn line_starts(text: &str) -> Vec<usize> {
+    let mut starts = vec![0];
+    let mut at = 0;
+    while let Some(brk) = next_break(text, at) {
+        starts.push(brk.end);
+        at = brk.end;
+    }
+    starts
+}
 
 /// One line of a module.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Line {
-    /// Byte range of the line in the file, without its `\n`.
+    /// Byte range of the line in the file, without its line break.
     pub range: Range<usize>,
     /// For a directive line: byte range of the directive text after `#`, without a trailing
     /// `//` comment or blanks.
     pub directive: Option<Range<usize>>,
-    /// A WGSL line that holds nothing but blanks or a `//` comment (outside block comments):
-    /// dropping it changes no program.
+    /// A WGSL line that holds nothing but blankspace or a `//` comment (outside block
+    /// comments): dropping it, with its line break, changes no program.
     pub comment_only: bool,
 }
 
@@ -22,32 +103,33 @@ pub struct Line {
 pub fn scan(text: &str) -> Vec<Line> {
     let mut lines = Vec::new();
     let mut depth = 0usize; // block-comment nesting at the start of the current line
-    let mut start = 0;
-    for piece in text.split_inclusive('\n') {
-        let end = start + piece.strip_suffix('\n').map_or(piece.len(), str::len);
-        let line = &text[start..end];
-        let trimmed = line.trim_start();
+    for (range, _) in split(text) {
+        let line = &text[range.clone()];
+        let trimmed = trim_blank_start(line);
         let comment_only = trimmed.is_empty() || (depth == 0 && trimmed.starts_with("//"));
         let directive = if depth == 0 && trimmed.starts_with('#') {
-            let body_start = end - trimmed.len() + 1;
-            let body = &text[body_start..end];
+            let body_start = range.end - trimmed.len() + 1;
+            let body = &text[body_start..range.end];
             let body = body.find("//").map_or(body, |i| &body[..i]);
-            Some(body_start..body_start + body.trim_end().len())
+            Some(body_start..body_start + trim_blank_end(body).len())
         } else {
             depth = comment_depth_after(line, depth);
             None
         };
         lines.push(Line {
-            range: start..end,
+            range,
             comment_only: comment_only && directive.is_none(),
             directive,
         });
-        start += piece.len();
     }
     lines
 }
 
 /// Block-comment nesting after scanning `line`, starting at nesting `depth`.
+///
+/// Two-byte tokens are matched left to right without overlap, as naga's lexer matches them:
+/// `/*/` opens one comment, `*/*` closes one, and `//` outside a comment hides the rest of
+/// the line (which is where naga ends that comment too, since lines end at WGSL breaks).
 fn comment_depth_after(line: &str, mut depth: usize) -> usize {
     let bytes = line.as_bytes();
     let mut i = 0;
@@ -95,6 +177,36 @@ mod tests {
     fn line_comment_hides_block_opener() {
         let text = "let a = 1; // /* not a comment\n#define X\n";
         assert_eq!(directives(text), vec!["define X"]);
+    }
+
+    #[test]
+    fn every_wgsl_break_ends_a_line_and_crlf_is_one() {
+        let text = "a\nb\rc\r\nd\u{b}e\u{c}f\u{85}g\u{2028}h\u{2029}i";
+        let lines: Vec<&str> = scan(text).iter().map(|l| &text[l.range.clone()]).collect();
+        assert_eq!(lines, ["a", "b", "c", "d", "e", "f", "g", "h", "i"]);
+        assert_eq!(line_starts("a\r\nb\r").len(), 3);
+        assert_eq!(scan("a\u{2028}").len(), 1);
+        assert!(scan("").is_empty());
+    }
+
+    #[test]
+    fn line_comment_ends_at_any_break() {
+        for brk in ["\r", "\u{b}", "\u{c}", "\u{85}", "\u{2028}", "\u{2029}"] {
+            let text = format!("// note{brk}fn f() {{}}{brk}#define X{brk}/*{brk}#if 0{brk}*/");
+            let lines = scan(&text);
+            assert!(lines[0].comment_only);
+            assert!(!lines[1].comment_only, "{brk:?}");
+            assert_eq!(directives(&text), vec!["define X"], "{brk:?}");
+        }
+    }
+
+    #[test]
+    fn blank_is_wgsl_blankspace_not_unicode_white_space() {
+        assert!(scan("\u{200e}\u{200f} \t").iter().all(|l| l.comment_only));
+        assert!(!scan("\u{a0}").iter().any(|l| l.comment_only));
+        assert!(!scan("\u{3000}// x").iter().any(|l| l.comment_only));
+        assert_eq!(directives("\u{200e}#define X\u{200f}"), vec!["define X"]);
+        assert!(directives("\u{a0}#define X").is_empty());
     }
 
     #[test]

@@ -131,7 +131,9 @@ impl<'a> ModuleParser<'a> {
     }
 
     fn text_line(&mut self, index: u32, line: &Line) {
-        let content = self.text[line.range.clone()].trim();
+        // WGSL blankspace, as naga would see it (a line of NBSP is code).
+        let content =
+            lines::trim_blank_start(lines::trim_blank_end(&self.text[line.range.clone()]));
         let is_comment = content.is_empty()
             || content.starts_with("//")
             || content.starts_with("/*")
@@ -140,7 +142,7 @@ impl<'a> ModuleParser<'a> {
             if !is_comment {
                 let start = line.range.start
                     + (self.text[line.range.clone()].len()
-                        - self.text[line.range.clone()].trim_start().len());
+                        - lines::trim_blank_start(&self.text[line.range.clone()]).len());
                 self.errors.push(ParseError::Misplaced {
                     directive: "shader",
                     message: "files hold only comments outside `#pass … #endpass` blocks; move this WGSL into a module and `#import` it",

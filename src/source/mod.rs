@@ -1,8 +1,10 @@
 //! Reading a library's module files: the bundled tree, a folder on disk, or in-memory texts.
 //!
-//! Loading turns bytes into text once (UTF-8 required; a BOM is dropped and CRLF becomes LF —
-//! neither moves a line or column) and records every file in [`SourceFiles`]. Paths are
-//! library-relative with `/` separators and are sorted, so loading is deterministic.
+//! Loading turns bytes into text once (UTF-8 required; a BOM is dropped, which moves no line
+//! or column) and records every file in [`SourceFiles`]. Line breaks are kept as written: the
+//! preprocessor and [`SourceFiles`] split lines at every WGSL line break (CR LF as one), so
+//! byte offsets stay those of the file. Paths are library-relative with `/` separators and
+//! are sorted, so loading is deterministic.
 
 mod bundled;
 mod dir;
@@ -53,13 +55,13 @@ pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<D
             .strip_prefix(b"\xEF\xBB\xBF")
             .unwrap_or(&file.bytes);
         match std::str::from_utf8(bytes) {
-            Ok(text) => ids.push(files.add(file.path, normalize_newlines(text))),
+            Ok(text) => ids.push(files.add(file.path, text.to_string())),
             Err(e) => {
                 let good = e.valid_up_to();
                 // Keep the valid prefix so the snippet shows the line up to the bad byte.
-                let text = normalize_newlines(&String::from_utf8_lossy(bytes));
-                let prefix = normalize_newlines(std::str::from_utf8(&bytes[..good]).unwrap_or(""));
-                let at = prefix.len();
+                let text = String::from_utf8_lossy(bytes).into_owned();
+                // The lossy text keeps the valid prefix byte for byte.
+                let at = good;
                 let id = files.add(file.path.clone(), text);
                 errors.push(
                     Diagnostic::new(format!("`{}` is not valid UTF-8", file.path))
@@ -70,12 +72,4 @@ pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<D
         }
     }
     (ids, errors)
-}
-
-fn normalize_newlines(text: &str) -> String {
-    if text.contains('\r') {
-        text.replace("\r\n", "\n")
-    } else {
-        text.to_string()
-    }
 }
