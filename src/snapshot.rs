@@ -188,9 +188,14 @@ struct PassManifest {
 fn manifest_passes(lib: &Library, budget: u64) -> Result<Vec<PassManifest>, ManifestError> {
     let mut passes = Vec::new();
     for pass in lib.passes() {
-        let choices = Space::full(pass)
-            .enumerate(budget)
-            .map_err(|e| ManifestError::Budget(format!("{}/{}: {e}", pass.shader, pass.name)))?;
+        let choices =
+            Space::full(pass)
+                .enumerate(budget)
+                .map_err(|error| ManifestError::Budget {
+                    shader: pass.shader.clone(),
+                    pass: pass.name.clone(),
+                    error,
+                })?;
         // Identical composed texts have identical canonical texts: hash each distinct one once.
         let composed: Vec<String> = choices
             .par_iter()
@@ -243,8 +248,15 @@ fn manifest_passes(lib: &Library, budget: u64) -> Result<Vec<PassManifest>, Mani
 #[derive(Debug, thiserror::Error)]
 pub enum ManifestError {
     /// A pass's full space is past the budget.
-    #[error("{0}")]
-    Budget(String),
+    #[error("{shader}/{pass}: {error}")]
+    Budget {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The budget error.
+        error: crate::variants::BudgetError,
+    },
     /// A variant is invalid.
     #[error(transparent)]
     Invalid(#[from] VariantError),

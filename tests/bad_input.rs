@@ -6,10 +6,50 @@ use std::path::Path;
 
 use test_support::bad::Expect;
 
+use wgsl_variants::keywords::KeywordError;
+use wgsl_variants::library::{LinkError, LoadProblem};
 use wgsl_variants::lookup::lookup_strict;
 use wgsl_variants::plan::{PlanError, PlanOptions, select_passes, variants_to_build};
+use wgsl_variants::preprocess::ParseError;
+use wgsl_variants::source::{DirError, SourceError};
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space};
+
+/// The kind of a load problem, as `expect.toml` names it: the error enums matched exhaustively,
+/// so a new variant must be named here.
+fn kind(problem: &LoadProblem) -> &'static str {
+    match problem {
+        LoadProblem::Dir(DirError::Io { .. }) => "dir::io",
+        LoadProblem::Dir(DirError::TooManyFiles { .. }) => "dir::too_many_files",
+        LoadProblem::Source(SourceError::NotUtf8 { .. }) => "source::not_utf8",
+        LoadProblem::Parse(e) => match e {
+            ParseError::UnknownDirective { .. } => "parse::unknown_directive",
+            ParseError::Malformed { .. } => "parse::malformed",
+            ParseError::Expression { .. } => "parse::expression",
+            ParseError::Unmatched { .. } => "parse::unmatched",
+            ParseError::AfterElse { .. } => "parse::after_else",
+            ParseError::Unterminated { .. } => "parse::unterminated",
+            ParseError::Misplaced { .. } => "parse::misplaced",
+            ParseError::TooDeep { .. } => "parse::too_deep",
+        },
+        LoadProblem::Link(e) => match e {
+            LinkError::MissingImport { .. } => "link::missing_import",
+            LinkError::LeavesRoot { .. } => "link::leaves_root",
+            LinkError::Cycle { .. } => "link::cycle",
+            LinkError::TooDeep { .. } => "link::too_deep",
+            LinkError::DuplicateShader { .. } => "link::duplicate_shader",
+            LinkError::DuplicatePass { .. } => "link::duplicate_pass",
+            LinkError::TooLarge { .. } => "link::too_large",
+        },
+        LoadProblem::Keyword(e) => match e {
+            KeywordError::DuplicateInSet { .. } => "keyword::duplicate_in_set",
+            KeywordError::TwoPlaceholders { .. } => "keyword::two_placeholders",
+            KeywordError::InTwoSets { .. } => "keyword::in_two_sets",
+            KeywordError::UnknownSkip { .. } => "keyword::unknown_skip",
+        },
+        _ => "other",
+    }
+}
 
 /// Checks one case through the API; returns a description of what went wrong, if anything.
 fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
@@ -19,13 +59,19 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
             Ok(_) => return Err("library loaded, expected a load error".into()),
             Err(err) => err,
         };
-        let first = err.diagnostics.first().ok_or("no diagnostic")?;
-        let location = first
+        // The first problem, matched on its type; its location and message from its report.
+        let first = err.problems.first().ok_or("no problem reported")?;
+        let got_kind = kind(first);
+        let report = first.diagnostic();
+        let location = report
             .location(&err.files)
             .map(|l| l.to_string())
             .unwrap_or_default();
-        if location != e.location || !first.message.contains(&e.message) {
-            return Err(format!("got {location}: {}", first.message));
+        if e.kind.as_deref() != Some(got_kind)
+            || location != e.location
+            || !report.message.contains(&e.message)
+        {
+            return Err(format!("got {got_kind} at {location}: {}", report.message));
         }
         return Ok(());
     }

@@ -18,10 +18,10 @@ fn shader(body: &str) -> (String, String) {
 fn ten_thousand_deep_if_nesting_is_one_clear_error() {
     let text = "#if A\n".repeat(10_000) + &"#endif\n".repeat(10_000);
     let err = load(vec![("m.wgsl".into(), text)]).unwrap_err();
-    assert_eq!(err.diagnostics.len(), 1, "{err}");
+    assert_eq!(err.problems.len(), 1, "{err}");
     assert_eq!(err.locations(), ["m.wgsl:257:1"]);
     assert!(
-        err.diagnostics[0]
+        err.diagnostics()[0]
             .message
             .contains("`#if` nested deeper than the limit of 256")
     );
@@ -54,11 +54,11 @@ fn pathological_expressions_are_bounded() {
         let text = format!("#if {expr}\n#endif\n");
         let err = load(vec![("m.wgsl".into(), text)]).unwrap_err();
         assert!(
-            err.diagnostics[0]
+            err.diagnostics()[0]
                 .message
                 .contains("nested deeper than the limit"),
             "{}",
-            err.diagnostics[0].message
+            err.diagnostics()[0].message
         );
         assert_eq!(err.locations()[0].split(':').nth(1), Some("1"));
     }
@@ -109,7 +109,7 @@ fn ten_thousand_modules_load_and_a_long_import_chain_is_limited() {
     chain.push(("c100.wgsl".into(), "fn end() {}\n".into()));
     let err = load(chain).unwrap_err();
     assert!(
-        err.diagnostics[0]
+        err.diagnostics()[0]
             .message
             .contains("import chain deeper than the limit of 64"),
         "{err}"

@@ -138,7 +138,7 @@ fn a_shader_file_holds_only_blankspace_and_comments_outside_passes() {
     let bad = "#shader s\n\u{a0}\n#pass P\n#endpass\n";
     let err = Library::from_sources([("main.wgsl", bad)]).unwrap_err();
     let at: Vec<String> = err
-        .diagnostics
+        .diagnostics()
         .iter()
         .filter_map(|d| d.location(&err.files))
         .map(|l| l.to_string())
@@ -173,7 +173,7 @@ fn diagnostics_count_every_wgsl_break() {
     let bad = format!("{m}#bogus\n");
     let err = Library::from_sources([("main.wgsl", MAIN), ("m.wgsl", bad.as_str())]).unwrap_err();
     let locations: Vec<String> = err
-        .diagnostics
+        .diagnostics()
         .iter()
         .filter_map(|d| d.location(&err.files))
         .map(|l| l.to_string())
@@ -558,7 +558,7 @@ fn generated_modules_lean_emitted_and_expected_agree_in_naga() {
             .unwrap_or_else(|e| {
                 panic!(
                     "case {case}: generated module does not load: {:?}\n{text:?}",
-                    e.diagnostics
+                    e.diagnostics()
                         .iter()
                         .map(|d| d.render(&e.files, false))
                         .collect::<Vec<_>>()

@@ -99,7 +99,7 @@ impl Figures {
         let lib = match Library::from_sources([("m.wgsl", text.as_str()), ("t.wgsl", SHADER)]) {
             Ok(lib) => lib,
             Err(e) => {
-                let first = e.diagnostics.first().map(|d| d.render(&e.files, false));
+                let first = e.diagnostics().first().map(|d| d.render(&e.files, false));
                 self.differing
                     .push(format!("{}: does not load: {first:?}", path.display()));
                 return;

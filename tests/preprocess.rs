@@ -170,11 +170,33 @@ fn nesting_limit_gives_a_clear_error_not_a_crash() {
     let deep = "#if A\n".repeat(300) + &"#endif\n".repeat(300);
     let err = Library::from_sources([("m.wgsl", deep)]).unwrap_err();
     assert!(
-        err.diagnostics[0]
+        err.diagnostics()[0]
             .message
             .contains("nested deeper than the limit of 256"),
         "{}",
         err
     );
     assert_eq!(err.locations()[0], "m.wgsl:257:1");
+}
+
+/// A malformed `#pass` or `#shader` line is one error: the block is opened all the same, so its
+/// pragmas, body and `#endpass` are not reported again.
+#[test]
+fn a_malformed_pass_or_shader_name_is_one_error() {
+    for main in [
+        "#shader s\n#pass Forward Base\n#pragma multi_compile _ A\nfn f() {}\n#endpass\n",
+        "#shader ../x\n#pass P\n#pragma multi_compile _ A\nfn f() {}\n#endpass\n",
+        "#shader s\n#pass a/../b\n#tag LightMode Deferred\nfn f() {}\n#endpass\n",
+    ] {
+        let err = Library::from_sources([("main.wgsl", main)]).unwrap_err();
+        assert_eq!(err.problems.len(), 1, "{main:?}:\n{err}");
+        assert!(err.to_string().contains("expected a name"), "{err}");
+    }
+    // Unity's own shader names have `/` and `-`: they follow the rule.
+    let lib = Library::from_sources([(
+        "main.wgsl",
+        "#shader Hidden/Internal-DeferredShading\n#pass LIGHTING_PASS\n#endpass\n",
+    )])
+    .unwrap();
+    assert_eq!(lib.shaders()[0].name, "Hidden/Internal-DeferredShading");
 }

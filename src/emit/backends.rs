@@ -150,6 +150,27 @@ impl TargetKind {
     }
 }
 
+/// A language version that a back end does not know, as given on a command line or in a
+/// build script.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum VersionError {
+    /// Not a GLSL version at all.
+    #[error("`{0}` is not a GLSL version (e.g. 450, 330, 300es, 310es)")]
+    NotGlsl(String),
+    /// A GLSL version naga does not write.
+    #[error(
+        "GLSL {0} is not supported by naga (desktop: 140, 150, 330, 400, 410, 420, 430, 440, 450, 460; ES: 300es, 310es, 320es)"
+    )]
+    UnsupportedGlsl(String),
+    /// Not an HLSL shader model naga knows.
+    #[error("`{0}` is not a shader model (5_0, 5_1, 6_0 … 6_9)")]
+    NotShaderModel(String),
+    /// Not an MSL version naga knows.
+    #[error("`{0}` is not an MSL version (e.g. 2.0, 2.4, 3.0)")]
+    NotMsl(String),
+}
+
 /// Parses a GLSL version: `450` (desktop core: 140 to 460) or `300es` / `310es` / `320es`.
 ///
 /// ```
@@ -157,7 +178,7 @@ impl TargetKind {
 /// assert!(parse_glsl_version("300es").unwrap().is_es());
 /// assert!(parse_glsl_version("451").is_err());
 /// ```
-pub fn parse_glsl_version(text: &str) -> Result<naga::back::glsl::Version, String> {
+pub fn parse_glsl_version(text: &str) -> Result<naga::back::glsl::Version, VersionError> {
     let t = text.trim().to_ascii_lowercase();
     let t = t.strip_suffix("core").unwrap_or(&t).trim();
     let (digits, es) = match t.strip_suffix("es") {
@@ -166,22 +187,20 @@ pub fn parse_glsl_version(text: &str) -> Result<naga::back::glsl::Version, Strin
     };
     let number: u16 = digits
         .parse()
-        .map_err(|_| format!("`{text}` is not a GLSL version (e.g. 450, 330, 300es, 310es)"))?;
+        .map_err(|_| VersionError::NotGlsl(text.to_string()))?;
     let version = if es {
         naga::back::glsl::Version::new_gles(number)
     } else {
         naga::back::glsl::Version::Desktop(number)
     };
     if !version.is_supported() {
-        return Err(format!(
-            "GLSL {text} is not supported by naga (desktop: 140, 150, 330, 400, 410, 420, 430, 440, 450, 460; ES: 300es, 310es, 320es)"
-        ));
+        return Err(VersionError::UnsupportedGlsl(text.to_string()));
     }
     Ok(version)
 }
 
 /// Parses an HLSL shader model: `5_0`, `5_1`, `6_0` … `6_9` (`5.0` works too).
-pub fn parse_shader_model(text: &str) -> Result<naga::back::hlsl::ShaderModel, String> {
+pub fn parse_shader_model(text: &str) -> Result<naga::back::hlsl::ShaderModel, VersionError> {
     use naga::back::hlsl::ShaderModel as Sm;
     Ok(match text.trim().replace('.', "_").as_str() {
         "5_0" => Sm::V5_0,
@@ -197,16 +216,14 @@ pub fn parse_shader_model(text: &str) -> Result<naga::back::hlsl::ShaderModel, S
         "6_8" => Sm::V6_8,
         "6_9" => Sm::V6_9,
         _ => {
-            return Err(format!(
-                "`{text}` is not a shader model (5_0, 5_1, 6_0 … 6_9)"
-            ));
+            return Err(VersionError::NotShaderModel(text.to_string()));
         }
     })
 }
 
 /// Parses a Metal Shading Language version `MAJOR.MINOR` (1.0 to 3.x).
-pub fn parse_msl_version(text: &str) -> Result<(u8, u8), String> {
-    let bad = || format!("`{text}` is not an MSL version (e.g. 2.0, 2.4, 3.0)");
+pub fn parse_msl_version(text: &str) -> Result<(u8, u8), VersionError> {
+    let bad = || VersionError::NotMsl(text.to_string());
     let (major, minor) = text.trim().split_once('.').ok_or_else(bad)?;
     let major: u8 = major.parse().map_err(|_| bad())?;
     let minor: u8 = minor.parse().map_err(|_| bad())?;

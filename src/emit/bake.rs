@@ -41,9 +41,9 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
-use crate::library::{Library, Variant};
-use crate::materials;
-use crate::plan::{PlanOptions, plan};
+use crate::library::{Library, LoadError, Variant};
+use crate::materials::{self, MaterialsError};
+use crate::plan::{PlanError, PlanOptions, plan};
 
 use super::backends::{Contents, Options, Target, TranslateError, translate};
 use super::reflect::{Stage, entry_points};
@@ -88,11 +88,39 @@ pub struct Baked {
     pub rerun_if_changed: Vec<PathBuf>,
 }
 
-/// A bake failed: the rendered diagnostics (every failing variant, with its file, line and
-/// keyword set).
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct BakeError(pub String);
+/// A bake failed. Its `Display` is the report a build script prints: every diagnostic
+/// rendered with its file, line and keyword set.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BakeError {
+    /// The library could not be loaded.
+    #[error("{}error: the shader library could not be loaded ({} problem(s))", .0.render(false), .0.problems.len())]
+    Load(LoadError),
+    /// The materials file could not be read.
+    #[error("error: {0}")]
+    Materials(#[from] MaterialsError),
+    /// The build set could not be planned (e.g. a pass over the budget).
+    #[error("error: {0}")]
+    Plan(Box<PlanError>),
+    /// Variants failed to build; nothing was baked.
+    #[error("{rendered}error: {} of {variants} variants failed to build; nothing was baked", .failures.len())]
+    Failed {
+        /// Every failure, in build order.
+        failures: Vec<TranslateError>,
+        /// How many variants were built.
+        variants: usize,
+        /// The failures rendered against the library's sources.
+        rendered: String,
+    },
+    /// An output could not be written.
+    #[error("error: cannot write `{}`: {message}", .path.display())]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The OS error.
+        message: String,
+    },
+}
 
 impl Bake {
     /// Bakes the library in the folder `root` (relative paths are relative to the build
@@ -191,13 +219,7 @@ impl Bake {
             Source::Dir(root) => Library::from_dir(root),
             Source::Bundled => Library::bundled(),
         }
-        .map_err(|e| {
-            BakeError(format!(
-                "{}error: the shader library could not be loaded ({} problem(s))",
-                e.render(false),
-                e.diagnostics.len()
-            ))
-        })?;
+        .map_err(BakeError::Load)?;
         if let Source::Dir(root) = &self.source {
             for module in lib.module_paths() {
                 let path = root.join(format!("{module}.wgsl"));
@@ -206,9 +228,7 @@ impl Bake {
             }
         }
         let materials = match &self.materials {
-            Some(path) => {
-                Some(materials::load(path).map_err(|e| BakeError(format!("error: {e}")))?)
-            }
+            Some(path) => Some(materials::load(path)?),
             None => None,
         };
         let options = PlanOptions {
@@ -216,7 +236,7 @@ impl Bake {
             budget: self.budget,
             ..PlanOptions::default()
         };
-        let selection = plan(&lib, &options).map_err(|e| BakeError(format!("error: {e}")))?;
+        let selection = plan(&lib, &options).map_err(|e| BakeError::Plan(Box::new(e)))?;
         let targets = if self.targets.is_empty() {
             vec![BakeTarget::Wgsl]
         } else {
@@ -237,26 +257,24 @@ impl Bake {
             .par_iter()
             .map(|variant| bake_variant(&lib, variant, &targets, &self.options))
             .collect();
-        let failures: Vec<String> = results
-            .iter()
-            .filter_map(|r| r.as_ref().err())
-            .map(|e| match e {
-                TranslateError::Invalid(v) => v.diagnostic().render(lib.files(), false),
-                other => format!("error: {other}\n"),
-            })
-            .collect();
+        let (baked, failures): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
         if !failures.is_empty() {
-            return Err(BakeError(format!(
-                "{}error: {} of {} variants failed to build; nothing was baked",
-                failures.concat(),
-                failures.len(),
-                jobs.len()
-            )));
+            let failures: Vec<TranslateError> =
+                failures.into_iter().filter_map(Result::err).collect();
+            let rendered = failures
+                .iter()
+                .map(|e| match e {
+                    TranslateError::Invalid(v) => v.diagnostic().render(lib.files(), false),
+                    other => format!("error: {other}\n"),
+                })
+                .collect();
+            return Err(BakeError::Failed {
+                failures,
+                variants: jobs.len(),
+                rendered,
+            });
         }
-        let baked: Vec<BakedVariant> = results
-            .into_iter()
-            .map(|r| r.expect("no failures"))
-            .collect();
+        let baked: Vec<BakedVariant> = baked.into_iter().filter_map(Result::ok).collect();
         let origin = match &self.source {
             Source::Dir(root) => root.display().to_string(),
             Source::Bundled => "the bundled library".to_string(),
@@ -316,7 +334,10 @@ fn bake_variant(
 const PRELUDE: &str = include_str!("bake_prelude.rs");
 
 fn io(path: &Path, e: std::io::Error) -> BakeError {
-    BakeError(format!("error: cannot write `{}`: {e}", path.display()))
+    BakeError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
 }
 
 fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), BakeError> {

@@ -3,6 +3,8 @@
 use std::fmt;
 
 use crate::diagnostic::{Diagnostic, SourceFiles, Span};
+use crate::keywords::KeywordError;
+use crate::preprocess::ParseError;
 
 /// A problem linking modules together (imports) or assembling shaders.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -106,27 +108,74 @@ impl LinkError {
     }
 }
 
-/// Loading a library failed. Holds every problem found and the sources, so each can be
-/// rendered with a snippet of the original file.
+/// One problem found while loading a library, as the stage that found it reported it.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LoadProblem {
+    /// The library's folder could not be read.
+    #[error(transparent)]
+    Dir(#[from] crate::source::DirError),
+    /// A file could not be decoded.
+    #[error(transparent)]
+    Source(#[from] crate::source::SourceError),
+    /// A directive is malformed.
+    #[error(transparent)]
+    Parse(#[from] ParseError),
+    /// Imports or shader declarations do not fit together.
+    #[error(transparent)]
+    Link(#[from] LinkError),
+    /// A pass's keyword pragmas are inconsistent.
+    #[error(transparent)]
+    Keyword(#[from] KeywordError),
+}
+
+impl LoadProblem {
+    /// A renderable report.
+    pub fn diagnostic(&self) -> Diagnostic {
+        match self {
+            LoadProblem::Dir(e) => Diagnostic::new(e.to_string()),
+            LoadProblem::Source(e) => e.diagnostic(),
+            LoadProblem::Parse(e) => e.diagnostic(),
+            LoadProblem::Link(e) => e.diagnostic(),
+            LoadProblem::Keyword(e) => e.diagnostic(),
+        }
+    }
+}
+
+/// Loading a library failed. Holds every problem found, typed, and the sources, so each can
+/// be matched on and rendered with a snippet of the original file.
+///
+/// ```
+/// use wgsl_variants::library::{LinkError, LoadProblem};
+///
+/// let err = wgsl_variants::Library::from_sources([("a.wgsl", "#import b")]).unwrap_err();
+/// assert!(matches!(err.problems[0], LoadProblem::Link(LinkError::MissingImport { .. })));
+/// assert_eq!(err.locations(), ["a.wgsl:1:9"]);
+/// ```
 pub struct LoadError {
     /// The files that were read.
     pub files: SourceFiles,
-    /// One report per problem, in file order.
-    pub diagnostics: Vec<Diagnostic>,
+    /// Every problem, in file order.
+    pub problems: Vec<LoadProblem>,
 }
 
 impl LoadError {
-    /// Renders every diagnostic (ANSI colours when `color`).
+    /// One report per problem, in file order.
+    pub fn diagnostics(&self) -> Vec<Diagnostic> {
+        self.problems.iter().map(LoadProblem::diagnostic).collect()
+    }
+
+    /// Renders every problem (ANSI colours when `color`).
     pub fn render(&self, color: bool) -> String {
-        self.diagnostics
+        self.diagnostics()
             .iter()
             .map(|d| d.render(&self.files, color))
             .collect()
     }
 
-    /// `path:line:col` of each diagnostic that has a location.
+    /// `path:line:col` of each problem that has a location.
     pub fn locations(&self) -> Vec<String> {
-        self.diagnostics
+        self.diagnostics()
             .iter()
             .filter_map(|d| d.location(&self.files))
             .map(|l| l.to_string())

@@ -5,14 +5,14 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use crate::diagnostic::{Diagnostic, SourceFiles};
+use crate::diagnostic::SourceFiles;
 use crate::lookup::suggest;
 use crate::preprocess::tree::ParsedModule;
-use crate::preprocess::{ParseLimits, parse_module};
+use crate::preprocess::{ParseError, ParseLimits, parse_module};
 use crate::shader::{Pass, Shader};
 use crate::source::{self, RawFile};
 
-use super::error::{LinkError, LoadError};
+use super::error::{LinkError, LoadError, LoadProblem};
 
 /// Limits applied while loading a library. Each has a clear error when passed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,36 +55,31 @@ pub(crate) fn load(
     let mut files = SourceFiles::new();
     let total: usize = raw.iter().map(|f| f.bytes.len()).sum();
     if total > options.max_total_bytes {
-        let diagnostics = vec![
-            LinkError::TooLarge {
-                bytes: total,
-                limit: options.max_total_bytes,
-            }
-            .diagnostic(),
-        ];
-        return Err(LoadError { files, diagnostics });
+        let problems = vec![LoadProblem::Link(LinkError::TooLarge {
+            bytes: total,
+            limit: options.max_total_bytes,
+        })];
+        return Err(LoadError { files, problems });
     }
     let paths: Vec<String> = raw
         .iter()
         .map(|f| f.path.strip_suffix(".wgsl").unwrap_or(&f.path).to_string())
         .collect();
-    let (ids, mut diagnostics) = source::decode(raw, &mut files);
-    let parsed: Vec<Result<ParsedModule, Vec<Diagnostic>>> = ids
+    let (ids, decode_errors) = source::decode(raw, &mut files);
+    let mut problems: Vec<LoadProblem> = decode_errors.into_iter().map(Into::into).collect();
+    let parsed: Vec<Result<ParsedModule, Vec<ParseError>>> = ids
         .par_iter()
-        .map(|&id| {
-            parse_module(id, files.text(id), options.parse)
-                .map_err(|errs| errs.iter().map(|e| e.diagnostic()).collect())
-        })
+        .map(|&id| parse_module(id, files.text(id), options.parse))
         .collect();
     let mut modules = Vec::with_capacity(parsed.len());
     for result in parsed {
         match result {
             Ok(m) => modules.push(m),
-            Err(errs) => diagnostics.extend(errs),
+            Err(errs) => problems.extend(errs.into_iter().map(Into::into)),
         }
     }
-    if !diagnostics.is_empty() {
-        return Err(LoadError { files, diagnostics });
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
     }
     // Module ids are file ids here: every file decoded and parsed.
     let by_path: HashMap<&str, usize> = paths
@@ -124,27 +119,27 @@ pub(crate) fn load(
                             span: import.span,
                         }
                     };
-                    diagnostics.push(error.diagnostic());
+                    problems.push(error.into());
                     targets.push(usize::MAX);
                 }
             }
         }
         resolved.push(targets);
     }
-    if diagnostics.is_empty() {
-        diagnostics.extend(
+    if problems.is_empty() {
+        problems.extend(
             check_graph(&modules, &paths, &resolved, options.max_import_depth)
                 .into_iter()
-                .map(|e| e.diagnostic()),
+                .map(Into::into),
         );
     }
-    let shaders = if diagnostics.is_empty() {
-        build_shaders(&mut modules, &mut diagnostics)
+    let shaders = if problems.is_empty() {
+        build_shaders(&mut modules, &mut problems)
     } else {
         Vec::new()
     };
-    if !diagnostics.is_empty() {
-        return Err(LoadError { files, diagnostics });
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
     }
     Ok(Loaded {
         files,
@@ -233,7 +228,7 @@ fn check_graph(
     errors
 }
 
-fn build_shaders(modules: &mut [ParsedModule], diagnostics: &mut Vec<Diagnostic>) -> Vec<Shader> {
+fn build_shaders(modules: &mut [ParsedModule], problems: &mut Vec<LoadProblem>) -> Vec<Shader> {
     let mut shaders: Vec<Shader> = Vec::new();
     let mut first_span = HashMap::new();
     for (id, module) in modules.iter_mut().enumerate() {
@@ -241,13 +236,13 @@ fn build_shaders(modules: &mut [ParsedModule], diagnostics: &mut Vec<Diagnostic>
             continue;
         };
         if let Some(&first) = first_span.get(&decl.name) {
-            diagnostics.push(
+            problems.push(
                 LinkError::DuplicateShader {
                     name: decl.name.clone(),
                     span: decl.span,
                     first,
                 }
-                .diagnostic(),
+                .into(),
             );
             continue;
         }
@@ -256,21 +251,21 @@ fn build_shaders(modules: &mut [ParsedModule], diagnostics: &mut Vec<Diagnostic>
         let mut pass_spans = HashMap::new();
         for pass in decl.passes {
             if let Some(&first) = pass_spans.get(&pass.name) {
-                diagnostics.push(
+                problems.push(
                     LinkError::DuplicatePass {
                         shader: decl.name.clone(),
                         name: pass.name.clone(),
                         span: pass.span,
                         first,
                     }
-                    .diagnostic(),
+                    .into(),
                 );
                 continue;
             }
             pass_spans.insert(pass.name.clone(), pass.span);
             match Pass::new(&decl.name, id, pass) {
                 Ok(p) => passes.push(p),
-                Err(errs) => diagnostics.extend(errs.iter().map(|e| e.diagnostic())),
+                Err(errs) => problems.extend(errs.into_iter().map(Into::into)),
             }
         }
         shaders.push(Shader {

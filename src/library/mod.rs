@@ -15,7 +15,7 @@ use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
 use crate::variants::{Choice, Space};
 
-pub use error::{LinkError, LoadError};
+pub use error::{LinkError, LoadError, LoadProblem};
 pub use load::LoadOptions;
 
 /// A library of WGSL modules and the shaders built from them.
@@ -103,7 +103,7 @@ impl Library {
         let (raw, escaping) =
             source::read_dir_tree(root, options.max_files).map_err(|e| LoadError {
                 files: SourceFiles::new(),
-                diagnostics: vec![crate::diagnostic::Diagnostic::new(e.to_string())],
+                problems: vec![e.into()],
             })?;
         Library::load(raw, &escaping, Origin::Dir(root.to_path_buf()), options)
     }

@@ -32,7 +32,7 @@ pub enum ParseError {
         span: Span,
     },
     /// `#elif`, `#else` or `#endif` with no open `#if`.
-    #[error("`#{directive}` without a matching `#if`")]
+    #[error("`#{directive}` without a matching `#{}`", opener(directive))]
     Unmatched {
         /// The directive.
         directive: &'static str,
@@ -50,7 +50,7 @@ pub enum ParseError {
         else_span: Span,
     },
     /// An `#if` that is never closed.
-    #[error("unterminated `#{directive}`: no matching `#endif`")]
+    #[error("unterminated `#{directive}`: no matching `#{}`", closer(directive))]
     Unterminated {
         /// The opening directive.
         directive: &'static str,
@@ -110,5 +110,19 @@ impl ParseError {
             _ => {}
         }
         d
+    }
+}
+
+/// The directive that opens the block `directive` closes or continues.
+fn opener(directive: &str) -> &'static str {
+    if directive == "endpass" { "pass" } else { "if" }
+}
+
+/// The directive that closes the block `directive` opens.
+fn closer(directive: &str) -> &'static str {
+    if directive == "pass" {
+        "endpass"
+    } else {
+        "endif"
     }
 }

@@ -99,6 +99,24 @@ struct ModuleParser<'a> {
     seen_code: bool,
 }
 
+/// The rule for shader and pass names, as the error states it.
+const NAME_RULE: &str = "expected a name: `/`-separated parts of letters, digits, `_` and `-`, \
+                         each starting with a letter or `_` (e.g. `Hidden/Internal-DeferredShading`)";
+
+/// Shader and pass names follow one rule ([`NAME_RULE`]): they name folders and files of
+/// `emit --out` and `bake`, so `.`, `..`, empty parts and leading `/` are never allowed.
+fn is_shader_or_pass_name(s: &str) -> bool {
+    !s.is_empty()
+        && s.split('/').all(|part| {
+            part.chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && part
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        })
+}
+
 fn is_name(s: &str) -> bool {
     let mut chars = s.chars();
     chars
@@ -472,14 +490,12 @@ impl<'a> ModuleParser<'a> {
                 span: name_span,
             });
         }
-        if args.is_empty()
-            || !args
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || "_-/.".contains(c))
-        {
-            return Err(ParseError::Malformed {
+        // A malformed name is reported, and the shader is opened all the same, so that its
+        // passes are not reported again as misplaced.
+        if !is_shader_or_pass_name(args) {
+            self.errors.push(ParseError::Malformed {
                 directive: "shader",
-                message: "expected a name of letters, digits, `_`, `-`, `.` and `/`".into(),
+                message: NAME_RULE.into(),
                 span: args_span,
             });
         }
@@ -512,10 +528,12 @@ impl<'a> ModuleParser<'a> {
                 span: name_span,
             });
         }
-        if !is_name(args) {
-            return Err(ParseError::Malformed {
+        // As for `#shader`: reported, and opened all the same so its body and `#endpass` are
+        // not reported again.
+        if !is_shader_or_pass_name(args) {
+            self.errors.push(ParseError::Malformed {
                 directive: "pass",
-                message: "expected a pass name (letters, digits, `_`)".into(),
+                message: NAME_RULE.into(),
                 span: args_span,
             });
         }

@@ -11,7 +11,7 @@ mod dir;
 
 use crate::diagnostic::{Diagnostic, FileId, SourceFiles, Span};
 
-pub use dir::read_dir_tree;
+pub use dir::{DirError, read_dir_tree};
 
 /// One raw file before decoding: library-relative path and bytes.
 #[derive(Clone, Debug)]
@@ -44,9 +44,35 @@ pub fn bundled_files() -> Vec<RawFile> {
         .collect()
 }
 
-/// Decodes raw files into `files`. Returns the id of each decoded file in input order, and a
-/// diagnostic for each file that is not UTF-8 (pointing at the first bad byte).
-pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<Diagnostic>) {
+/// A file that could not be turned into text.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SourceError {
+    /// The file is not UTF-8.
+    #[error("`{path}` is not valid UTF-8")]
+    NotUtf8 {
+        /// Library-relative path.
+        path: String,
+        /// The first bad byte (the file's text is its lossy decoding, which keeps the valid
+        /// prefix byte for byte).
+        span: Span,
+    },
+}
+
+impl SourceError {
+    /// A renderable report.
+    pub fn diagnostic(&self) -> Diagnostic {
+        match self {
+            SourceError::NotUtf8 { span, .. } => Diagnostic::new(self.to_string())
+                .at(*span, "invalid UTF-8 byte here")
+                .note("WGSL sources must be UTF-8"),
+        }
+    }
+}
+
+/// Decodes raw files into `files`. Returns the id of each decoded file in input order, and an
+/// error for each file that is not UTF-8 (pointing at the first bad byte).
+pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<SourceError>) {
     let mut ids = Vec::with_capacity(raw.len());
     let mut errors = Vec::new();
     for file in raw {
@@ -63,11 +89,10 @@ pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<D
                 // The lossy text keeps the valid prefix byte for byte.
                 let at = good;
                 let id = files.add(file.path.clone(), text);
-                errors.push(
-                    Diagnostic::new(format!("`{}` is not valid UTF-8", file.path))
-                        .at(Span::new(id, at..at + 1), "invalid UTF-8 byte here")
-                        .note("WGSL sources must be UTF-8"),
-                );
+                errors.push(SourceError::NotUtf8 {
+                    path: file.path.clone(),
+                    span: Span::new(id, at..at + 1),
+                });
             }
         }
     }

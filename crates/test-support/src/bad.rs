@@ -16,6 +16,8 @@ pub struct Expect {
     pub location: String,
     /// A part of the message.
     pub message: String,
+    /// For `load`: the kind of the first problem (`link::cycle`, `parse::unterminated`, …).
+    pub kind: Option<String>,
     /// For `lookup`: the shader looked up.
     pub shader: Option<String>,
     /// For `lookup`: the pass looked up.

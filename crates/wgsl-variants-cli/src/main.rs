@@ -281,8 +281,8 @@ fn main() -> ExitCode {
             eprint!("{}", e.render(color));
             eprintln!(
                 "error: the library could not be loaded ({} problem{})",
-                e.diagnostics.len(),
-                if e.diagnostics.len() == 1 { "" } else { "s" }
+                e.problems.len(),
+                if e.problems.len() == 1 { "" } else { "s" }
             );
             return ExitCode::from(1);
         }

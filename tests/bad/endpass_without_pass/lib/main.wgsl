@@ -1,0 +1,2 @@
+#shader s
+#endpass

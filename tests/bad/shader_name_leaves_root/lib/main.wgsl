@@ -1,0 +1,4 @@
+#shader ../../x
+#pass P
+@fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }
+#endpass
