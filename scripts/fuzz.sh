@@ -18,9 +18,9 @@ summary=""
 for target in preprocess expr pragmas loader lean; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
-    cp -n fuzz/seeds/"$target"/* "$corpus"/ 2>/dev/null || true
+    cp -n fuzz/initial/"$target"/* "$corpus"/ 2>/dev/null || true
     if [ "$target" = preprocess ] || [ "$target" = lean ]; then
-        # The bundled modules are seeds too (shader files are pass bodies, not modules).
+        # The bundled modules are initial inputs too (shader files are pass bodies, not modules).
         for m in $(grep -rL '^#shader' wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
     fi
     log="$(mktemp)"

@@ -41,7 +41,7 @@ fn fuzz_seeds_and_regressions_replay_cleanly() {
     ];
     let mut total = 0;
     for (name, check) in targets {
-        let mut seeds = inputs("seeds", name);
+        let mut seeds = inputs("initial", name);
         if name == "preprocess" || name == "lean" {
             // The bundled modules are seeds too, as scripts/fuzz.sh gives them to the fuzzer.
             let lib = wgsl_variants::Library::bundled().expect("bundled library");

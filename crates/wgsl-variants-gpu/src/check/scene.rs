@@ -237,7 +237,7 @@ impl TestScene {
     /// The scene with `seed` (see [`DEFAULT_SEED`]).
     ///
     /// # Panics
-    /// If the seed gives a scene whose reflection directions cannot be kept
+    /// If the random seed gives a scene whose reflection directions cannot be kept
     /// [`MIN_FACE_MARGIN`] away from cube-face edges (never for the default seed).
     pub fn new(seed: u64) -> TestScene {
         let (w, h) = (SIZE, SIZE);
