@@ -27,7 +27,7 @@ use crate::preprocess::tree::Node;
 use crate::validate::{VariantError, validate_composed};
 
 /// Why a module could not be exported.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// No module has this path.
     #[error("no module `{path}`{}", suggestion.as_ref().map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default())]
@@ -58,9 +58,12 @@ pub enum ExportError {
     /// naga rejected the composed module.
     #[error(transparent)]
     Invalid(#[from] VariantError),
+    /// The module no longer validates after its names were prefixed.
+    #[error("naga's WGSL writer failed: after renaming: {}", .0.as_inner())]
+    Renamed(Box<naga::WithSpan<naga::valid::ValidationError>>),
     /// naga's WGSL writer failed.
     #[error("naga's WGSL writer failed: {0}")]
-    Writer(String),
+    Writer(#[from] naga::back::wgsl::Error),
     /// A construct that naga_oil's dialect cannot express.
     #[error("{module}: {message}")]
     Inexpressible {
@@ -245,10 +248,9 @@ pub fn export_prefixed(
     prefix_names(&mut module, prefix);
     let info = crate::validate::validator()
         .validate(&module)
-        .map_err(|e| ExportError::Writer(format!("after renaming: {}", e.as_inner())))?;
+        .map_err(|e| ExportError::Renamed(Box::new(e)))?;
     let body =
-        naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
-            .map_err(|e| ExportError::Writer(e.to_string()))?;
+        naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())?;
     let imports: Vec<String> = import_closure(lib, module_index(lib, path)?)
         .into_iter()
         .skip(1)

@@ -84,6 +84,23 @@ pub struct Keywords {
     pub reflection_buffers: bool,
 }
 
+/// A keyword set the reference cannot model.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum KeywordsError {
+    /// A keyword the standard shader does not declare.
+    #[error("unknown keyword `{0}`")]
+    Unknown(String),
+    /// Two keywords of one set.
+    #[error("`{first}` and `{second}` belong to the same keyword set; only one can be on")]
+    SameSet {
+        /// The first one given.
+        first: String,
+        /// The second.
+        second: String,
+    },
+}
+
 /// Every keyword name [`Keywords::from_names`] knows, in the order [`Keywords::names`] lists them.
 pub const KEYWORD_NAMES: [&str; 14] = [
     "_RENDERING_CUTOUT",
@@ -119,15 +136,16 @@ impl Keywords {
     /// assert!(Keywords::from_names(&["_RENDERING_FADE", "_RENDERING_CUTOUT"]).is_err());
     /// assert_eq!(Keywords::from_names(&[]).unwrap(), Keywords::default());
     /// ```
-    pub fn from_names(names: &[&str]) -> Result<Keywords, String> {
+    pub fn from_names(names: &[&str]) -> Result<Keywords, KeywordsError> {
         let mut k = Keywords::default();
         let mut rendering: Option<&str> = None;
         let mut smoothness: Option<&str> = None;
-        fn one_of_set<'a>(slot: &mut Option<&'a str>, name: &'a str) -> Result<(), String> {
+        fn one_of_set<'a>(slot: &mut Option<&'a str>, name: &'a str) -> Result<(), KeywordsError> {
             match *slot {
-                Some(previous) if previous != name => Err(format!(
-                    "`{previous}` and `{name}` belong to the same keyword set; only one can be on"
-                )),
+                Some(previous) if previous != name => Err(KeywordsError::SameSet {
+                    first: previous.to_string(),
+                    second: name.to_string(),
+                }),
                 _ => {
                     *slot = Some(name);
                     Ok(())
@@ -166,7 +184,7 @@ impl Keywords {
                 "_DETAIL_NORMAL_MAP" => k.detail_normal = true,
                 "UNITY_HDR_ON" => k.hdr = true,
                 "UNITY_ENABLE_REFLECTION_BUFFERS" => k.reflection_buffers = true,
-                other => return Err(format!("unknown keyword `{other}`")),
+                other => return Err(KeywordsError::Unknown(other.to_string())),
             }
         }
         Ok(k)

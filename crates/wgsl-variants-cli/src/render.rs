@@ -62,7 +62,7 @@ pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
     for p in &pictures {
         let path = p
             .write_png(&args.out, args.scale)
-            .map_err(|e| Failed(format!("error: {e}")))?;
+            .map_err(|e| Failed(format!("error: cannot write {}: {e}", p.name)))?;
         written.push(Written {
             name: p.name.clone(),
             description: p.description.clone(),

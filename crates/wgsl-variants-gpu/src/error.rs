@@ -62,8 +62,72 @@ pub enum GpuError {
         /// The timeout that expired, in seconds.
         seconds: f64,
     },
-    /// The GPU check cannot run as asked (an unknown shader or pass, a keyword set the
-    /// reference does not know, a kernel library that does not compose, ...).
+    /// The GPU check cannot run as asked.
     #[error("GPU check: {0}")]
-    Check(String),
+    Check(Box<CheckError>),
+}
+
+/// Why the GPU check cannot run as asked.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum CheckError {
+    /// A shader, pass or keyword set the library does not have.
+    #[error("{what}: {source}")]
+    Lookup {
+        /// What was looked up (`shader/pass`, a kernel).
+        what: String,
+        /// The lookup error.
+        source: wgsl_variants::LookupError,
+    },
+    /// A pass's space past the check's budget.
+    #[error("{what}: {source}")]
+    Budget {
+        /// `shader/pass`.
+        what: String,
+        /// The budget error.
+        source: wgsl_variants::variants::BudgetError,
+    },
+    /// A keyword set the CPU reference does not know.
+    #[error("{variant}: the reference does not know this keyword set: {message}")]
+    UnknownToReference {
+        /// `shader/pass {KEYWORDS}`.
+        variant: String,
+        /// What the reference says.
+        message: String,
+    },
+    /// The library of compute kernels does not load.
+    #[error("the kernel library does not load:\n{}", .0.render(false))]
+    KernelLibrary(Box<wgsl_variants::LoadError>),
+    /// No pass or kernel matches the filters.
+    #[error("nothing matches shader {:?} pass {:?}; the check knows {}", .shader.as_deref().unwrap_or("*"), .pass.as_deref().unwrap_or("*"), .known.join(", "))]
+    NoMatch {
+        /// The shader filter.
+        shader: Option<String>,
+        /// The pass filter.
+        pass: Option<String>,
+        /// Every `shader/pass` (and kernel) the check knows.
+        known: Vec<String>,
+    },
+    /// Pictures are made of the standard passes only.
+    #[error("pictures are made of standard/Deferred and standard/ForwardBase, not {0}")]
+    NoPictures(String),
+    /// There is no GPU worker to render on.
+    #[error("no GPU worker to render on")]
+    NoWorker,
+}
+
+impl From<CheckError> for GpuError {
+    fn from(e: CheckError) -> GpuError {
+        GpuError::Check(Box::new(e))
+    }
+}
+
+impl CheckError {
+    /// A lookup error about `what`.
+    pub fn lookup(what: impl Into<String>, source: wgsl_variants::LookupError) -> GpuError {
+        GpuError::from(CheckError::Lookup {
+            what: what.into(),
+            source,
+        })
+    }
 }

@@ -16,7 +16,8 @@ use super::passes::{keyword_coverage, standard_job};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource};
 use crate::{
-    BoundResource, ColorTarget, GpuContext, GpuError, RenderJob, Resource, TargetFormat, render,
+    BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
+    TargetFormat, render,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::cube::face_margin;
@@ -101,7 +102,7 @@ pub fn render_gbuffer(
 ) -> Result<GBufferImage, GpuError> {
     let variant = lib
         .variant("standard", "Deferred", keywords)
-        .map_err(|e| GpuError::Check(format!("standard/Deferred {keywords:?}: {e}")))?;
+        .map_err(|e| CheckError::lookup(format!("standard/Deferred {keywords:?}"), e))?;
     let hdr = keywords.contains(&"UNITY_HDR_ON");
     let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), true, hdr);
     job.resources = scene.standard_resources();
@@ -121,7 +122,7 @@ fn pass_wgsl(
 ) -> Result<(String, String), GpuError> {
     let variant = lib
         .variant(shader, pass, keywords)
-        .map_err(|e| GpuError::Check(format!("{shader}/{pass}: {e}")))?;
+        .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
     Ok((variant.label(), lib.wgsl(&variant)))
 }
 
@@ -567,10 +568,13 @@ pub fn check_deferred_chain(
         // Keyword coverage: the HDR and LDR results of the same input differ.
         let pass = lib
             .pass("deferred_reflections", "Add")
-            .map_err(|e| GpuError::Check(e.to_string()))?;
+            .map_err(|e| CheckError::lookup("deferred_reflections/Add", e))?;
         let choices: Vec<Choice> = [&[][..], &["UNITY_HDR_ON"][..]]
             .iter()
-            .map(|k| pass.resolve(k).map_err(|e| GpuError::Check(e.to_string())))
+            .map(|k| {
+                pass.resolve(k)
+                    .map_err(|e| CheckError::lookup("deferred_reflections/Add", e))
+            })
             .collect::<Result<_, _>>()?;
         let decoded = |hdr: bool| -> Vec<[f32; 4]> {
             add_outputs

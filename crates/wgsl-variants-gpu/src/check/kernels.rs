@@ -17,7 +17,7 @@ use glam::{Vec3, Vec4};
 
 use super::report::{KernelReport, Mismatch};
 use super::scene::Rng;
-use crate::{GpuContext, GpuError, run_compute};
+use crate::{CheckError, GpuContext, GpuError, run_compute};
 use wgsl_variants::Library;
 use wgsl_variants::library::LoadOptions;
 use wgsl_variants::reference::gbuffer::{GBuffer, decode_normal, encode_normal};
@@ -164,12 +164,8 @@ pub fn kernel_library(lib: &Library) -> Result<Library, GpuError> {
         path: (*path).to_owned(),
         bytes: text.as_bytes().to_vec(),
     }));
-    Library::from_raw(raw, &LoadOptions::default()).map_err(|e| {
-        GpuError::Check(format!(
-            "the kernel library does not load:\n{}",
-            e.render(false)
-        ))
-    })
+    Library::from_raw(raw, &LoadOptions::default())
+        .map_err(|e| GpuError::from(CheckError::KernelLibrary(Box::new(e))))
 }
 
 /// Vulkan's precision of `exp2(x)`: `3 + 2·|x|` ULP (at least [`F32_ULP`]), plus `extra`
@@ -954,7 +950,7 @@ pub fn check_kernel(
 ) -> Result<KernelReport, GpuError> {
     let variant = lib
         .variant(kernel.shader, kernel.pass, kernel.keywords)
-        .map_err(|e| GpuError::Check(format!("kernel {}: {e}", kernel.name)))?;
+        .map_err(|e| CheckError::lookup(format!("kernel {}", kernel.name), e))?;
     let wgsl = lib.wgsl(&variant);
     let cases = cases_of(kernel);
     let input: Vec<u8> = cases

@@ -32,7 +32,7 @@ pub use passes::Worker;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
 pub use scene::TestScene;
 
-use super::{GpuContext, GpuError, GpuResources};
+use super::{CheckError, GpuContext, GpuError, GpuResources};
 use wgsl_variants::Library;
 
 /// What to check.
@@ -111,16 +111,15 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                     .map(|k| format!("{KERNELS}/{}", k.name)),
             )
             .collect();
-        return Err(GpuError::Check(format!(
-            "nothing matches shader {:?} pass {:?}; the check knows {}",
-            options.shader.as_deref().unwrap_or("*"),
-            options.pass.as_deref().unwrap_or("*"),
-            known.join(", ")
-        )));
+        return Err(GpuError::from(CheckError::NoMatch {
+            shader: options.shader.clone(),
+            pass: options.pass.clone(),
+            known,
+        }));
     }
     for (shader, pass) in &selected {
         lib.pass(shader, pass)
-            .map_err(|e| GpuError::Check(format!("{shader}/{pass}: {e}")))?;
+            .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
     }
 
     let ctx = GpuContext::new(options.adapter.as_deref())?;
@@ -158,7 +157,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         for pass in standard {
             let pass = lib
                 .pass("standard", pass)
-                .map_err(|e| GpuError::Check(e.to_string()))?;
+                .map_err(|e| CheckError::lookup(format!("standard/{pass}"), e))?;
             report.passes.push(passes::check_standard_pass(
                 &workers,
                 lib,

@@ -14,7 +14,8 @@ use super::compare::{clear_value, format_name, pixel, texel_within};
 use super::report::{KeywordCoverage, Mismatch, PassReport};
 use super::scene::TestScene;
 use crate::{
-    ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat, render_with,
+    CheckError, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat,
+    render_with,
 };
 use wgsl_variants::reference::surface::{Keywords, shade_deferred, shade_forward};
 use wgsl_variants::shader::Pass;
@@ -171,7 +172,7 @@ pub fn render_all(
     match (first_error, out.len() == jobs.len()) {
         (Some(e), _) => Err(e),
         (None, true) => Ok(out),
-        (None, false) => Err(GpuError::Check(String::from("no GPU worker to render on"))),
+        (None, false) => Err(GpuError::from(CheckError::NoWorker)),
     }
 }
 
@@ -189,7 +190,12 @@ pub fn check_standard_pass(
     let mut report = PassReport::new(&pass.shader, &pass.name);
     let all = Space::full(pass)
         .enumerate(MAX_VARIANTS)
-        .map_err(|e| GpuError::Check(format!("{}/{}: {e}", pass.shader, pass.name)))?;
+        .map_err(|source| {
+            GpuError::from(CheckError::Budget {
+                what: format!("{}/{}", pass.shader, pass.name),
+                source,
+            })
+        })?;
     let every = sample.max(1);
     let choices: Vec<Choice> = all
         .into_iter()
@@ -210,10 +216,10 @@ pub fn check_standard_pass(
         };
         let names = variant.keywords();
         let kw = Keywords::from_names(&names).map_err(|e| {
-            GpuError::Check(format!(
-                "{}: the reference does not know this keyword set: {e}",
-                variant.label()
-            ))
+            GpuError::from(CheckError::UnknownToReference {
+                variant: variant.label(),
+                message: e.to_string(),
+            })
         })?;
         let text = lib.wgsl(&variant);
         let index = match distinct.get(&text) {

@@ -9,7 +9,7 @@ use super::compare::pixel;
 use super::deferred::{final_pass, render_chain, render_gbuffer};
 use super::passes::standard_job;
 use super::scene::TestScene;
-use crate::{GpuContext, GpuError, TargetFormat, render};
+use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
 use wgsl_variants::reference::ldr::ldr_decode;
 use wgsl_variants::reference::quantize::unorm;
@@ -56,7 +56,7 @@ impl Picture {
 
     /// Writes the picture as `DIR/NAME.png`, each pixel scaled up to `scale × scale` pixels
     /// (nearest neighbour, so every stored texel stays visible). Returns the path.
-    pub fn write_png(&self, dir: &Path, scale: u32) -> Result<PathBuf, String> {
+    pub fn write_png(&self, dir: &Path, scale: u32) -> Result<PathBuf, image::ImageError> {
         let scale = scale.max(1);
         let (w, h) = (self.width * scale, self.height * scale);
         let mut out = Vec::with_capacity((w * h * 4) as usize);
@@ -66,12 +66,10 @@ impl Picture {
                 out.extend_from_slice(&self.rgba[i..i + 4]);
             }
         }
-        let image = image::RgbaImage::from_raw(w, h, out)
-            .ok_or_else(|| format!("picture {} has the wrong size", self.name))?;
+        // The buffer is made above to hold exactly w × h pixels.
+        let image = image::RgbaImage::from_raw(w, h, out).expect("w × h RGBA pixels");
         let path = dir.join(format!("{}.png", self.name));
-        image
-            .save_with_format(&path, image::ImageFormat::Png)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        image.save_with_format(&path, image::ImageFormat::Png)?;
         Ok(path)
     }
 }
@@ -179,7 +177,7 @@ pub fn render_pictures(
         ("standard", "ForwardBase") => {
             let variant = lib
                 .variant(shader, pass, keywords)
-                .map_err(|e| GpuError::Check(format!("{shader}/{pass}: {e}")))?;
+                .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
             let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), false, false);
             job.resources = scene.standard_resources();
             let out = render(ctx, &job)?.remove(0);
@@ -193,9 +191,9 @@ pub fn render_pictures(
                 }),
             ])
         }
-        _ => Err(GpuError::Check(format!(
-            "pictures are made of standard/Deferred and standard/ForwardBase, not {shader}/{pass}"
-        ))),
+        _ => Err(GpuError::from(CheckError::NoPictures(format!(
+            "{shader}/{pass}"
+        )))),
     }
 }
 
