@@ -308,7 +308,7 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let selection = ctx.plan(&args.build, args.all, args.shard)?;
+    let selection = ctx.plan(&ctx.plan_options(&args.build, args.all, args.shard)?)?;
     write_selection(ctx, &selection, targets, options, dir)
 }
 
