@@ -83,6 +83,32 @@ pub struct Manifest {
     pub variants: Vec<ManifestVariant>,
 }
 
+/// What [`write_set`] wrote (what `emit --out DIR --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
+pub struct WriteSummary {
+    /// The output folder.
+    pub out: String,
+    /// Number of variants written.
+    pub variants: usize,
+    /// Number of files written (besides `manifest.json`).
+    pub files: usize,
+    /// The targets as written (`glsl 450`).
+    pub targets: Vec<String>,
+}
+
+impl WriteSummary {
+    /// The summary of `manifest`, written into `dir` with `targets`.
+    pub fn new(dir: &Path, manifest: &Manifest, targets: &[Target]) -> WriteSummary {
+        WriteSummary {
+            out: dir.display().to_string(),
+            variants: manifest.variants.len(),
+            files: manifest.variants.iter().map(|v| v.files.len()).sum(),
+            targets: targets.iter().map(|t| t.to_string()).collect(),
+        }
+    }
+}
+
 /// Why a build set could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum SetError {
