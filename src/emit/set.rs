@@ -62,8 +62,7 @@ pub struct ManifestVariant {
     /// Shader name.
     pub shader: String,
     /// Pass name.
-    #[serde(rename = "pass")]
-    pub pass_name: String,
+    pub pass: String,
     /// Keywords that are on, in set order.
     pub keywords: Vec<String>,
     /// Entry points with their stages.
@@ -309,7 +308,7 @@ pub fn write_set(
         }
         variants.push(ManifestVariant {
             shader: job.pass.shader.clone(),
-            pass_name: job.pass.name.clone(),
+            pass: job.pass.name.clone(),
             keywords: keywords.into_iter().map(str::to_string).collect(),
             entry_points: eps,
             files,
