@@ -10,8 +10,8 @@ use std::fmt;
 use crate::diagnostic::{Diagnostic, Span};
 use crate::preprocess::tree::SetKind;
 
-/// One keyword set of a pass.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// One keyword set of a pass (serialized as `kind`, `local` and `options`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct KeywordSet {
     /// `multi_compile` or `shader_feature`.
     pub kind: SetKind,
@@ -20,6 +20,7 @@ pub struct KeywordSet {
     /// The options in declaration order; `None` is the "none of this set" placeholder.
     pub options: Vec<Option<String>>,
     /// The pragma's location.
+    #[serde(skip)]
     pub span: Span,
 }
 

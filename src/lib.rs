@@ -34,6 +34,7 @@ pub mod audit;
 pub mod cache;
 pub mod diagnostic;
 pub mod emit;
+pub mod json;
 pub mod keywords;
 pub mod library;
 pub mod lookup;

@@ -2,6 +2,8 @@
 
 use std::collections::HashMap;
 
+use num_bigint::BigUint;
+
 use crate::diagnostic::{FileId, Span};
 use crate::keywords::{KeywordError, KeywordSet};
 use crate::preprocess::tree::{Node, PassDecl, Pragma, SetKind};
@@ -24,27 +26,75 @@ impl Shader {
     }
 }
 
+/// A pass with its variant counts (one entry of [`ShaderListing::passes`]).
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct PassListing<'l> {
+    /// The pass.
+    #[serde(flatten)]
+    pub pass: &'l Pass,
+    /// Size of the full space.
+    #[serde(serialize_with = "crate::json::exact_count")]
+    pub full_space: BigUint,
+    /// Size of the space after `skip_variants`.
+    #[serde(serialize_with = "crate::json::exact_count")]
+    pub after_skip: BigUint,
+    /// Size of the build set (for the materials given).
+    #[serde(serialize_with = "crate::json::exact_count")]
+    pub build_set: BigUint,
+}
+
+/// A shader with its passes and their counts (one entry of [`Listing::shaders`]).
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct ShaderListing<'l> {
+    /// Shader name.
+    pub name: &'l str,
+    /// Path of the shader file.
+    pub file: &'l str,
+    /// Its passes, in file order.
+    pub passes: Vec<PassListing<'l>>,
+}
+
+/// The shaders of a library with their passes, keyword sets and variant counts (what
+/// `list --json` prints); see [`Library::listing`](crate::Library::listing).
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct Listing<'l> {
+    /// Every shader, in library order.
+    pub shaders: Vec<ShaderListing<'l>>,
+}
+
 /// One pass: its tags, keyword sets, pragmas and body.
-#[derive(Clone, Debug)]
+///
+/// Serialized (in `list --json`) as its declaration: `name`, `tags`, `keyword_sets`,
+/// `skip_variants` and `exclude_renderers`.
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct Pass {
     /// Name of the shader the pass belongs to.
+    #[serde(skip)]
     pub shader: String,
     /// Pass name (`#pass NAME`).
     pub name: String,
     /// `#tag KEY VALUE` pairs.
     pub tags: Vec<(String, String)>,
     /// Keyword sets in declaration order.
+    #[serde(rename = "keyword_sets")]
     pub sets: Vec<KeywordSet>,
     /// `#pragma skip_variants` keywords.
     pub skip_variants: Vec<String>,
     /// `#pragma exclude_renderers` names, kept as metadata.
     pub exclude_renderers: Vec<String>,
     /// Where the pass is declared.
+    #[serde(skip)]
     pub span: Span,
+    #[serde(skip)]
     pub(crate) body: Vec<Node>,
     /// Module id of the shader file the pass's body belongs to.
+    #[serde(skip)]
     pub(crate) module: usize,
     /// keyword → (set index, option index)
+    #[serde(skip)]
     index: HashMap<String, (usize, usize)>,
 }
 

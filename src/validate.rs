@@ -8,9 +8,10 @@ use rayon::prelude::*;
 use crate::cache::{Hash, ValidCache};
 use crate::diagnostic::{Diagnostic, Location, SourceFiles, Span};
 use crate::library::{Library, Variant};
+use crate::plan::{Plan, PlanOptions};
 use crate::preprocess::Composed;
 use crate::shader::Pass;
-use crate::variants::{Choice, Space};
+use crate::variants::{Choice, Shard, Space};
 
 /// Which naga stage rejected a variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -181,22 +182,43 @@ impl Library {
 }
 
 /// A distinct composed text that naga rejected, with every keyword set that produces it.
+///
+/// Serialized (in `validate --json`) as `stage`, `message`, `location`, `keyword_sets` and
+/// `diagnostic`.
 #[derive(Clone, Debug)]
 pub struct Failure {
     /// The error (naming the first such variant).
     pub error: VariantError,
+    /// `path:line:col` of the error's first label, when it has one.
+    pub location: Option<Location>,
     /// Every keyword set with this text, in enumeration order.
     pub keyword_sets: Vec<Vec<String>>,
+    /// The error's diagnostic, rendered without colours.
+    pub diagnostic: String,
+}
+
+impl serde::Serialize for Failure {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut out = s.serialize_struct("Failure", 5)?;
+        out.serialize_field("stage", &self.error.stage)?;
+        out.serialize_field("message", &self.error.message)?;
+        out.serialize_field("location", &self.location.as_ref().map(|l| l.to_string()))?;
+        out.serialize_field("keyword_sets", &self.keyword_sets)?;
+        out.serialize_field("diagnostic", &self.diagnostic)?;
+        out.end()
+    }
 }
 
 /// The result of validating one pass.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct PassReport {
     /// Shader name.
     pub shader: String,
     /// Pass name.
     pub pass: String,
     /// Size of the full space.
+    #[serde(serialize_with = "crate::json::exact_count")]
     pub full_space: BigUint,
     /// Variants built.
     pub built: u64,
@@ -208,6 +230,114 @@ pub struct PassReport {
     pub invalid: u64,
     /// The failures, one per distinct failing text.
     pub failures: Vec<Failure>,
+}
+
+/// Which variants a validation covered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Selection {
+    /// Each pass's build set.
+    BuildSet,
+    /// Each pass's full space.
+    FullSpace,
+}
+
+/// Sums over the passes of a [`ValidateReport`].
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct ValidateTotals {
+    /// Number of passes.
+    pub passes: usize,
+    /// Variants built.
+    pub built: u64,
+    /// Distinct composed texts.
+    pub distinct: u64,
+    /// Variants that passed.
+    pub valid: u64,
+    /// Variants that failed.
+    pub invalid: u64,
+}
+
+/// The result of validating a plan (what `validate --json` prints).
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct ValidateReport {
+    /// No variant failed.
+    pub ok: bool,
+    /// Build sets or full spaces.
+    pub selection: Selection,
+    /// The shard validated, if only one was (`K/N` in JSON).
+    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "shard_text")]
+    pub shard: Option<Shard>,
+    /// One report per pass, in plan order.
+    pub passes: Vec<PassReport>,
+    /// Sums over the passes.
+    pub totals: ValidateTotals,
+}
+
+fn shard_text<S: serde::Serializer>(shard: &Option<Shard>, s: S) -> Result<S::Ok, S::Error> {
+    match shard {
+        Some(shard) => s.collect_str(shard),
+        None => s.serialize_none(),
+    }
+}
+
+impl ValidateReport {
+    /// The report of `passes`, with its totals.
+    pub fn new(passes: Vec<PassReport>, selection: Selection, shard: Option<Shard>) -> Self {
+        let mut totals = ValidateTotals {
+            passes: passes.len(),
+            ..ValidateTotals::default()
+        };
+        for r in &passes {
+            totals.built += r.built;
+            totals.distinct += r.distinct;
+            totals.valid += r.valid;
+            totals.invalid += r.invalid;
+        }
+        ValidateReport {
+            ok: totals.invalid == 0,
+            selection,
+            shard,
+            passes,
+            totals,
+        }
+    }
+}
+
+/// Validates every variant of a plan made with `options` (see [`crate::plan::plan`]), with an
+/// optional cache of valid texts; `progress(n)` is called as each batch of `n` variants is
+/// done.
+///
+/// ```
+/// use wgsl_variants::plan::{PlanOptions, plan};
+///
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let mut options = PlanOptions::default();
+/// options.pass = Some("Final".into());
+/// let planned = plan(&lib, &options).unwrap();
+/// let report = wgsl_variants::validate::validate_plan(&lib, &planned, &options, None, &|_| {});
+/// assert!(report.ok && report.totals.passes == 1);
+/// ```
+pub fn validate_plan(
+    lib: &Library,
+    plan: &Plan<'_>,
+    options: &PlanOptions,
+    cache: Option<&ValidCache>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> ValidateReport {
+    let passes = plan
+        .iter()
+        .map(|(pass, choices)| {
+            validate_pass_with(lib, pass, choices.iter().cloned(), cache, progress)
+        })
+        .collect();
+    let selection = if options.all {
+        Selection::FullSpace
+    } else {
+        Selection::BuildSet
+    };
+    ValidateReport::new(passes, selection, options.shard)
 }
 
 /// Validates one pass's variants; `progress(n)` is called as each batch of `n` variants is done.
@@ -326,6 +456,8 @@ pub fn validate_pass_with(
         failures: failures
             .into_iter()
             .map(|(error, sets)| Failure {
+                location: error.location(lib.files()),
+                diagnostic: error.diagnostic().render(lib.files(), false),
                 error,
                 keyword_sets: sets
                     .iter()

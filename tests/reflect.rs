@@ -103,13 +103,13 @@ fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
     let mut seen: BTreeMap<Slot, (String, BindingKind)> = BTreeMap::new();
     for r in all {
         for b in &r.bindings {
-            let key = (r.shader.clone(), r.pass_name.clone(), b.group, b.binding);
+            let key = (r.shader.clone(), r.pass.clone(), b.group, b.binding);
             let value = (b.name.clone(), b.kind.clone());
             let first = seen.entry(key.clone()).or_insert_with(|| value.clone());
             assert_eq!(
                 *first, value,
                 "{key:?} changes in {}/{} {:?}",
-                r.shader, r.pass_name, r.keywords
+                r.shader, r.pass, r.keywords
             );
         }
     }
@@ -163,13 +163,13 @@ fn keywords_add_and_remove_bindings() {
         let detail = on("_DETAIL_ALBEDO_MAP") || on("_DETAIL_NORMAL_MAP");
         assert_eq!(has("detail_mask").is_some(), on("_DETAIL_MASK") && detail);
         // Probes are bound where the pass samples them.
-        let probes = r.pass_name == "ForwardBase" || !on("UNITY_ENABLE_REFLECTION_BUFFERS");
+        let probes = r.pass == "ForwardBase" || !on("UNITY_ENABLE_REFLECTION_BUFFERS");
         for name in ["probes", "probe_cube0", "probe_cube1", "probe_sampler"] {
             assert_eq!(
                 has(name).is_some(),
                 probes,
                 "{name} in {}/{:?}",
-                r.pass_name,
+                r.pass,
                 r.keywords
             );
         }

@@ -90,7 +90,7 @@ fn hint(s: &Option<String>) -> String {
 }
 
 /// The budget that applies to a pass, and where it comes from.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Limit {
     /// Most variants in the build set.
     pub limit: u64,
@@ -99,16 +99,21 @@ pub struct Limit {
 }
 
 /// The outcome of the gate for one pass.
-#[derive(Clone, Debug, PartialEq, Eq)]
+///
+/// Serialized as `limit`, `source` and `exceeded`.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Verdict {
     /// The tightest budget that applies.
+    #[serde(flatten)]
     pub limit: Limit,
     /// The build set's size.
+    #[serde(skip)]
     pub build_set: BigUint,
     /// Whether the build set is over the budget.
     pub exceeded: bool,
     /// `shader/pass: build set of N variants exceeds its budget of M (source)`, or the same
     /// with "fits".
+    #[serde(skip)]
     pub message: String,
 }
 

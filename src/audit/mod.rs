@@ -38,7 +38,9 @@ use compose::LineIds;
 use distinct::Limits;
 use domain::Domain;
 
-pub use report::{CodeGroup, Distinct, PassAudit, SetAudit, Together};
+pub use report::{
+    AuditReport, AuditTotals, AuditedPass, CodeGroup, Distinct, PassAudit, SetAudit, Together,
+};
 
 /// How a distinct count was obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]

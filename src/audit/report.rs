@@ -1,11 +1,16 @@
 //! The audit's result types, assembled from the stage analyses.
 
 use num_bigint::BigUint;
+use serde::ser::SerializeStruct as _;
+use serde::{Serialize as _, Serializer};
+
+use crate::json::{ExactCount, exact_count};
 
 use crate::preprocess::tree::SetKind;
 use crate::shader::Pass;
 
 use super::Method;
+use super::budget::{Budgets, Verdict, verdict};
 use super::distinct::{Analysis, Component};
 use super::findings::{SetFindings, base_option, findings};
 
@@ -25,7 +30,7 @@ pub struct Distinct {
 }
 
 /// A keyword that changes code only when other keywords are on.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Together {
     /// The keyword.
     pub keyword: String,
@@ -35,11 +40,12 @@ pub struct Together {
 }
 
 /// Keyword sets whose choices, everything else equal, can generate identical code.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct CodeGroup {
     /// The keywords of the sets involved.
     pub keywords: Vec<String>,
     /// Number of assignments of those sets in the stage.
+    #[serde(serialize_with = "exact_count")]
     pub variants: BigUint,
     /// Number of distinct codes among them.
     pub distinct: u64,
@@ -52,7 +58,9 @@ pub struct CodeGroup {
 }
 
 /// One keyword set in the multiplier table.
-#[derive(Clone, Debug, PartialEq, Eq)]
+///
+/// Serialized without `together` (listed in the pass's [`PassAudit::together`]) and `known`.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct SetAudit {
     /// The pragma as written, e.g. `shader_feature _ _NORMAL_MAP`.
     pub declaration: String,
@@ -73,7 +81,9 @@ pub struct SetAudit {
     pub distinct_factor: Option<u64>,
     /// Names of the sets it is coupled with (their code depends on each other).
     pub coupled_with: Vec<String>,
-    /// For a coupled set: assignments of its whole group, and distinct codes among them.
+    /// For a coupled set: assignments of its whole group, and distinct codes among them
+    /// (`{"variants": N, "distinct": D}` in JSON).
+    #[serde(serialize_with = "group_json")]
     pub group: Option<(BigUint, u64)>,
     /// No option changes any generated code.
     pub dead: bool,
@@ -83,49 +93,190 @@ pub struct SetAudit {
     /// Options that generate identical code in every variant (groups of two or more).
     pub identical_options: Vec<Vec<String>>,
     /// Keywords of the set that change code only together with others.
+    #[serde(skip)]
     pub together: Vec<Together>,
     /// Keywords of the set that some material enables (`None` without materials).
     pub used_by_materials: Option<Vec<String>>,
     /// What could be done about it.
     pub suggestions: Vec<String>,
     /// Whether the findings above are complete (false when its group was too large).
+    #[serde(skip)]
     pub known: bool,
 }
 
 /// The audit of one pass.
-#[derive(Clone, Debug, PartialEq, Eq)]
+///
+/// Serialized (in `audit --json`) with exact counts, the build set's distinct count as
+/// `distinct`, `distinct_exact` and `distinct_method`, only the counts of the other stages'
+/// distinct variants, and without `materials`.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct PassAudit {
     /// Shader name.
     pub shader: String,
     /// Pass name.
     pub pass: String,
     /// The full space: the product of the sets' sizes.
+    #[serde(serialize_with = "exact_count")]
     pub full_space: BigUint,
     /// After `skip_variants`.
+    #[serde(serialize_with = "exact_count")]
     pub after_filtering: BigUint,
     /// After `shader_feature` stripping against the materials (equal to `after_filtering`
     /// without materials).
+    #[serde(serialize_with = "exact_count")]
     pub after_stripping: BigUint,
     /// The variants `validate` builds (equal to `after_stripping`).
+    #[serde(serialize_with = "exact_count")]
     pub build_set: BigUint,
     /// Distinct variants of the build set.
+    #[serde(flatten, serialize_with = "distinct_fields")]
     pub distinct: Distinct,
     /// Distinct variants of the full space.
+    #[serde(serialize_with = "distinct_count")]
     pub distinct_full_space: Distinct,
     /// Distinct variants after `skip_variants`.
+    #[serde(serialize_with = "distinct_count")]
     pub distinct_after_filtering: Distinct,
-    /// The multiplier table, one row per keyword set in declaration order.
-    pub sets: Vec<SetAudit>,
     /// Keywords that change no generated code in any variant.
     pub dead_keywords: Vec<String>,
     /// Keywords that change code only together with others.
     pub together: Vec<Together>,
     /// Where build-set variants share code.
     pub identical_code: Vec<CodeGroup>,
+    /// The multiplier table, one row per keyword set in declaration order.
+    pub sets: Vec<SetAudit>,
     /// Whether dead keywords and the other findings are complete.
     pub findings_exact: bool,
     /// Whether materials were given.
+    #[serde(skip)]
     pub materials: bool,
+}
+
+/// `distinct`, `distinct_exact` and `distinct_method`.
+fn distinct_fields<S: Serializer>(d: &Distinct, s: S) -> Result<S::Ok, S::Error> {
+    let mut out = s.serialize_struct("Distinct", 3)?;
+    out.serialize_field("distinct", &ExactCount(&d.count))?;
+    out.serialize_field("distinct_exact", &d.exact)?;
+    out.serialize_field("distinct_method", &d.method)?;
+    out.end()
+}
+
+/// The count alone.
+fn distinct_count<S: Serializer>(d: &Distinct, s: S) -> Result<S::Ok, S::Error> {
+    exact_count(&d.count, s)
+}
+
+/// `{"variants": N, "distinct": D}`, or `null`.
+fn group_json<S: Serializer>(group: &Option<(BigUint, u64)>, s: S) -> Result<S::Ok, S::Error> {
+    #[derive(serde::Serialize)]
+    struct Group<'a> {
+        variants: ExactCount<'a>,
+        distinct: u64,
+    }
+    group
+        .as_ref()
+        .map(|(n, d)| Group {
+            variants: ExactCount(n),
+            distinct: *d,
+        })
+        .serialize(s)
+}
+
+/// One pass of an [`AuditReport`]: its audit and the budget gate's verdict.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct AuditedPass {
+    /// The audit.
+    #[serde(flatten)]
+    pub audit: PassAudit,
+    /// The budget gate, when a budget applies.
+    pub budget: Option<Verdict>,
+}
+
+/// Sums over the passes of an [`AuditReport`].
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct AuditTotals {
+    /// Number of passes.
+    pub passes: usize,
+    /// Sum of the full spaces.
+    #[serde(serialize_with = "exact_count")]
+    pub full_space: BigUint,
+    /// Sum of the build sets.
+    #[serde(serialize_with = "exact_count")]
+    pub build_set: BigUint,
+    /// Sum of the build sets' distinct counts.
+    #[serde(serialize_with = "exact_count")]
+    pub distinct: BigUint,
+    /// Whether every distinct count is exact.
+    pub distinct_exact: bool,
+    /// Number of passes over their budget.
+    pub over_budget: usize,
+}
+
+/// The audit of several passes with their budget verdicts (what `audit --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct AuditReport {
+    /// No pass is over its budget.
+    pub ok: bool,
+    /// Whether materials were given.
+    pub materials: bool,
+    /// The passes, in the order audited.
+    pub passes: Vec<AuditedPass>,
+    /// Sums over the passes.
+    pub totals: AuditTotals,
+}
+
+impl AuditReport {
+    /// Judges each audit against the tightest of `max_variants` and its budget in `budgets`
+    /// (see [`verdict`]), and sums the counts.
+    pub fn new(
+        audits: Vec<PassAudit>,
+        max_variants: Option<u64>,
+        budgets: Option<&Budgets>,
+        materials: bool,
+    ) -> AuditReport {
+        let sum = |f: &dyn Fn(&PassAudit) -> &BigUint| {
+            audits.iter().map(f).fold(BigUint::default(), |a, b| a + b)
+        };
+        let totals = AuditTotals {
+            passes: audits.len(),
+            full_space: sum(&|a| &a.full_space),
+            build_set: sum(&|a| &a.build_set),
+            distinct: sum(&|a| &a.distinct.count),
+            distinct_exact: audits.iter().all(|a| a.distinct.exact),
+            over_budget: 0,
+        };
+        let passes: Vec<AuditedPass> = audits
+            .into_iter()
+            .map(|audit| AuditedPass {
+                budget: verdict(&audit, max_variants, budgets),
+                audit,
+            })
+            .collect();
+        let over_budget = passes
+            .iter()
+            .filter(|p| p.budget.as_ref().is_some_and(|v| v.exceeded))
+            .count();
+        AuditReport {
+            ok: over_budget == 0,
+            materials,
+            passes,
+            totals: AuditTotals {
+                over_budget,
+                ..totals
+            },
+        }
+    }
+
+    /// The verdicts of the passes over their budget.
+    pub fn over_budget(&self) -> impl Iterator<Item = &Verdict> {
+        self.passes
+            .iter()
+            .filter_map(|p| p.budget.as_ref())
+            .filter(|v| v.exceeded)
+    }
 }
 
 fn stage(a: &Analysis) -> Distinct {

@@ -571,3 +571,79 @@ pub fn translate(
         }
     }
 }
+
+/// One text output of [`Translation`]: a back end's module, or (GLSL) one entry point.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct TextOutput {
+    /// The target as written (`glsl 450`, `hlsl 5_1`).
+    pub target: String,
+    /// The entry point, for back ends with one output per entry point (GLSL).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub entry_point: Option<String>,
+    /// That entry point's stage.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<Stage>,
+    /// The text (empty for SPIR-V, which is binary).
+    pub text: String,
+}
+
+/// One variant through several back ends, as text (what `emit --target … --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct Translation {
+    /// Shader name.
+    pub shader: String,
+    /// Pass name.
+    pub pass: String,
+    /// Keywords that are on, in set order.
+    pub keywords: Vec<String>,
+    /// The outputs, target by target in the order given.
+    pub outputs: Vec<TextOutput>,
+    /// The entry points of the module.
+    #[serde(skip)]
+    pub entry_points: Vec<EntryPoint>,
+}
+
+/// [`compile`](crate::validate::compile)s a variant, then [`translate`]s it with every target.
+///
+/// ```
+/// use wgsl_variants::emit::backends::{Options, Target, translate_to_text};
+///
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// let t = translate_to_text(&lib, &v, &[Target::Wgsl], &Options::default()).unwrap();
+/// assert!(t.outputs[0].text.contains("fn fs_main"));
+/// ```
+pub fn translate_to_text(
+    lib: &Library,
+    variant: &Variant<'_>,
+    targets: &[Target],
+    options: &Options,
+) -> Result<Translation, TranslateError> {
+    let (module, info) = crate::validate::compile(lib, variant)?;
+    let mut outputs = Vec::new();
+    for target in targets {
+        let written = translate(&module, &info, target, options).map_err(|error| {
+            TranslateError::Backend {
+                variant: variant.label(),
+                error,
+            }
+        })?;
+        for output in written {
+            outputs.push(TextOutput {
+                target: target.to_string(),
+                entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
+                stage: output.entry_point.as_ref().map(|e| e.stage),
+                text: output.contents.as_text().unwrap_or_default().to_string(),
+            });
+        }
+    }
+    Ok(Translation {
+        shader: variant.pass.shader.clone(),
+        pass: variant.pass.name.clone(),
+        keywords: variant.keywords().into_iter().map(str::to_string).collect(),
+        outputs,
+        entry_points: entry_points(&module),
+    })
+}

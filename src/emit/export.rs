@@ -232,6 +232,29 @@ pub fn prefix_names(module: &mut naga::Module, prefix: &str) {
     }
 }
 
+/// A module exported as self-contained WGSL (what `export MODULE --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct PrefixedModule {
+    /// The module path as asked for.
+    pub module: String,
+    /// The WGSL text.
+    pub source: String,
+}
+
+/// [`export_prefixed`], with the module path it was asked for.
+pub fn export_prefixed_module(
+    lib: &Library,
+    path: &str,
+    prefix: &str,
+    keywords: &[&str],
+) -> Result<PrefixedModule, ExportError> {
+    Ok(PrefixedModule {
+        module: path.to_string(),
+        source: export_prefixed(lib, path, prefix, keywords)?,
+    })
+}
+
 /// Exports a module with its imports as self-contained WGSL, every top-level name prefixed
 /// (see the [module docs](self)).
 pub fn export_prefixed(

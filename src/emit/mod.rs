@@ -24,3 +24,45 @@ pub mod export;
 pub mod naga_oil;
 pub mod reflect;
 pub mod set;
+
+use crate::library::{Library, Variant};
+use crate::validate::{VariantError, validate_composed};
+
+/// One variant's composed WGSL, as written (what `emit SHADER PASS --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct VariantSource {
+    /// Shader name.
+    pub shader: String,
+    /// Pass name.
+    pub pass: String,
+    /// Keywords that are on, in set order.
+    pub keywords: Vec<String>,
+    /// The composed text.
+    pub wgsl: String,
+}
+
+/// Composes a variant, and validates the text with naga when `validate` is set.
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// let source = wgsl_variants::emit::variant_source(&lib, &v, true).unwrap();
+/// assert_eq!(source.keywords, ["_NORMAL_MAP"]);
+/// ```
+pub fn variant_source(
+    lib: &Library,
+    variant: &Variant<'_>,
+    validate: bool,
+) -> Result<VariantSource, VariantError> {
+    let composed = lib.compose(variant);
+    if validate {
+        validate_composed(&composed, &variant.label())?;
+    }
+    Ok(VariantSource {
+        shader: variant.pass.shader.clone(),
+        pass: variant.pass.name.clone(),
+        keywords: variant.keywords().into_iter().map(str::to_string).collect(),
+        wgsl: composed.text,
+    })
+}

@@ -48,10 +48,11 @@ use crate::preprocess::tree::{Conditional, Node};
 
 use super::export::{ExportError, import_closure, is_shader_file, module_index};
 
-/// One module in naga_oil's dialect.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// One module in naga_oil's dialect (serialized as `module`, `import_path` and `source`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct NagaOilModule {
     /// Our module path (`deferred/gbuffer`).
+    #[serde(rename = "module")]
     pub path: String,
     /// Its naga_oil import path (`ROOT::deferred::gbuffer`).
     pub import_path: String,

@@ -311,8 +311,7 @@ pub struct Reflection {
     /// Shader name (empty for a module reflected on its own).
     pub shader: String,
     /// Pass name (empty for a module reflected on its own).
-    #[serde(rename = "pass")]
-    pub pass_name: String,
+    pub pass: String,
     /// The keywords that are on, in set order.
     pub keywords: Vec<String>,
     /// Entry points in declaration order.
@@ -480,7 +479,7 @@ pub fn bindings(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Bi
 pub fn reflect_module(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Reflection {
     Reflection {
         shader: String::new(),
-        pass_name: String::new(),
+        pass: String::new(),
         keywords: Vec::new(),
         entry_points: entry_points(module),
         bindings: bindings(module, info),
@@ -500,7 +499,7 @@ impl Library {
         let (module, info) = self.naga_module(variant)?;
         Ok(Reflection {
             shader: variant.pass.shader.clone(),
-            pass_name: variant.pass.name.clone(),
+            pass: variant.pass.name.clone(),
             keywords: variant.keywords().into_iter().map(str::to_string).collect(),
             ..reflect_module(&module, &info)
         })
@@ -527,7 +526,7 @@ impl Reflection {
             out,
             "{}/{} {{{}}}",
             self.shader,
-            self.pass_name,
+            self.pass,
             self.keywords.join(", ")
         );
         let eps: Vec<String> = self

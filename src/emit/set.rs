@@ -62,8 +62,7 @@ pub struct ManifestVariant {
     /// Shader name.
     pub shader: String,
     /// Pass name.
-    #[serde(rename = "pass")]
-    pub pass_name: String,
+    pub pass: String,
     /// Keywords that are on, in set order.
     pub keywords: Vec<String>,
     /// Entry points with their stages.
@@ -81,6 +80,32 @@ pub struct Manifest {
     pub targets: Vec<ManifestTarget>,
     /// Every variant, pass by pass in enumeration order.
     pub variants: Vec<ManifestVariant>,
+}
+
+/// What [`write_set`] wrote (what `emit --out DIR --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
+pub struct WriteSummary {
+    /// The output folder.
+    pub out: String,
+    /// Number of variants written.
+    pub variants: usize,
+    /// Number of files written (besides `manifest.json`).
+    pub files: usize,
+    /// The targets as written (`glsl 450`).
+    pub targets: Vec<String>,
+}
+
+impl WriteSummary {
+    /// The summary of `manifest`, written into `dir` with `targets`.
+    pub fn new(dir: &Path, manifest: &Manifest, targets: &[Target]) -> WriteSummary {
+        WriteSummary {
+            out: dir.display().to_string(),
+            variants: manifest.variants.len(),
+            files: manifest.variants.iter().map(|v| v.files.len()).sum(),
+            targets: targets.iter().map(|t| t.to_string()).collect(),
+        }
+    }
 }
 
 /// Why a build set could not be written.
@@ -283,7 +308,7 @@ pub fn write_set(
         }
         variants.push(ManifestVariant {
             shader: job.pass.shader.clone(),
-            pass_name: job.pass.name.clone(),
+            pass: job.pass.name.clone(),
             keywords: keywords.into_iter().map(str::to_string).collect(),
             entry_points: eps,
             files,

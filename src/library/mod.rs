@@ -223,6 +223,40 @@ impl Library {
         })
     }
 
+    /// Every shader with its passes, keyword sets and variant counts (the build set for
+    /// `materials`).
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let listing = lib.listing(None).unwrap();
+    /// let deferred = listing.shaders.iter().flat_map(|s| &s.passes)
+    ///     .find(|p| p.pass.name == "Deferred").unwrap();
+    /// assert_eq!(deferred.full_space, 3072u32.into());
+    /// ```
+    pub fn listing(
+        &self,
+        materials: Option<&[Material]>,
+    ) -> Result<crate::shader::Listing<'_>, MaterialsError> {
+        let mut shaders = Vec::new();
+        for shader in &self.shaders {
+            let mut passes = Vec::new();
+            for pass in &shader.passes {
+                passes.push(crate::shader::PassListing {
+                    pass,
+                    full_space: Space::full(pass).count(),
+                    after_skip: Space::after_skip(pass).count(),
+                    build_set: self.build_set(pass, materials)?.count(),
+                });
+            }
+            shaders.push(crate::shader::ShaderListing {
+                name: &shader.name,
+                file: self.files().path(shader.file),
+                passes,
+            });
+        }
+        Ok(crate::shader::Listing { shaders })
+    }
+
     /// The build set of a pass: the full space minus `skip_variants`, and, when `materials`
     /// are given, only the `shader_feature` combinations they use.
     pub fn build_set<'p>(

@@ -7,15 +7,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use num_bigint::BigUint;
-use serde::Serialize;
-use serde_json::value::RawValue;
-
-use wgsl_variants::audit::budget::{Budgets, Verdict, verdict};
-use wgsl_variants::audit::{self, AuditOptions, CodeGroup, Method, PassAudit, SetAudit};
+use wgsl_variants::audit::budget::Budgets;
+use wgsl_variants::audit::{self, AuditOptions, AuditReport, AuditedPass, Method, PassAudit};
 use wgsl_variants::plan::select_passes;
 
-use super::output::{count, print_json};
+use super::output::print_json;
 use super::{BuildArgs, Context, Failed, load_materials};
 
 /// Most variants the audit composes when the groups of coupled sets cannot give an exact count.
@@ -33,159 +29,6 @@ pub struct AuditArgs {
     /// Also write a chart (SVG): variants per stage and the multiplier of each keyword set.
     #[arg(long, value_name = "FILE.svg")]
     chart: Option<PathBuf>,
-}
-
-#[derive(Serialize)]
-struct BudgetOut {
-    limit: u64,
-    source: String,
-    exceeded: bool,
-}
-
-#[derive(Serialize)]
-struct GroupOut {
-    variants: Box<RawValue>,
-    distinct: u64,
-}
-
-#[derive(Serialize)]
-struct SetOut {
-    declaration: String,
-    name: String,
-    kind: wgsl_variants::preprocess::tree::SetKind,
-    options: Vec<String>,
-    factor: usize,
-    after_filtering: usize,
-    build_set: usize,
-    distinct_factor: Option<u64>,
-    coupled_with: Vec<String>,
-    group: Option<GroupOut>,
-    dead: bool,
-    dead_keywords: Vec<String>,
-    identical_options: Vec<Vec<String>>,
-    used_by_materials: Option<Vec<String>>,
-    suggestions: Vec<String>,
-}
-
-#[derive(Serialize)]
-struct TogetherOut {
-    keyword: String,
-    with: Vec<Vec<String>>,
-}
-
-#[derive(Serialize)]
-struct CodeGroupOut {
-    keywords: Vec<String>,
-    variants: Box<RawValue>,
-    distinct: u64,
-    shared: Vec<Vec<Vec<String>>>,
-    shared_total: usize,
-}
-
-#[derive(Serialize)]
-struct PassOut {
-    shader: String,
-    #[serde(rename = "pass")]
-    pass_name: String,
-    full_space: Box<RawValue>,
-    after_filtering: Box<RawValue>,
-    after_stripping: Box<RawValue>,
-    build_set: Box<RawValue>,
-    distinct: Box<RawValue>,
-    distinct_exact: bool,
-    distinct_method: Method,
-    distinct_full_space: Box<RawValue>,
-    distinct_after_filtering: Box<RawValue>,
-    dead_keywords: Vec<String>,
-    together: Vec<TogetherOut>,
-    identical_code: Vec<CodeGroupOut>,
-    sets: Vec<SetOut>,
-    findings_exact: bool,
-    budget: Option<BudgetOut>,
-}
-
-#[derive(Serialize)]
-struct Totals {
-    passes: usize,
-    full_space: Box<RawValue>,
-    build_set: Box<RawValue>,
-    distinct: Box<RawValue>,
-    distinct_exact: bool,
-    over_budget: usize,
-}
-
-#[derive(Serialize)]
-struct AuditOut {
-    ok: bool,
-    materials: bool,
-    passes: Vec<PassOut>,
-    totals: Totals,
-}
-
-fn set_out(s: &SetAudit) -> SetOut {
-    SetOut {
-        declaration: s.declaration.clone(),
-        name: s.name.clone(),
-        kind: s.kind,
-        options: s.options.clone(),
-        factor: s.factor,
-        after_filtering: s.after_filtering,
-        build_set: s.build_set,
-        distinct_factor: s.distinct_factor,
-        coupled_with: s.coupled_with.clone(),
-        group: s.group.as_ref().map(|(n, d)| GroupOut {
-            variants: count(n),
-            distinct: *d,
-        }),
-        dead: s.dead,
-        dead_keywords: s.dead_keywords.clone(),
-        identical_options: s.identical_options.clone(),
-        used_by_materials: s.used_by_materials.clone(),
-        suggestions: s.suggestions.clone(),
-    }
-}
-
-fn group_out(g: &CodeGroup) -> CodeGroupOut {
-    CodeGroupOut {
-        keywords: g.keywords.clone(),
-        variants: count(&g.variants),
-        distinct: g.distinct,
-        shared: g.shared.clone(),
-        shared_total: g.shared_total,
-    }
-}
-
-fn pass_out(a: &PassAudit, v: Option<&Verdict>) -> PassOut {
-    PassOut {
-        shader: a.shader.clone(),
-        pass_name: a.pass.clone(),
-        full_space: count(&a.full_space),
-        after_filtering: count(&a.after_filtering),
-        after_stripping: count(&a.after_stripping),
-        build_set: count(&a.build_set),
-        distinct: count(&a.distinct.count),
-        distinct_exact: a.distinct.exact,
-        distinct_method: a.distinct.method,
-        distinct_full_space: count(&a.distinct_full_space.count),
-        distinct_after_filtering: count(&a.distinct_after_filtering.count),
-        dead_keywords: a.dead_keywords.clone(),
-        together: a
-            .together
-            .iter()
-            .map(|t| TogetherOut {
-                keyword: t.keyword.clone(),
-                with: t.with.clone(),
-            })
-            .collect(),
-        identical_code: a.identical_code.iter().map(group_out).collect(),
-        sets: a.sets.iter().map(set_out).collect(),
-        findings_exact: a.findings_exact,
-        budget: v.map(|v| BudgetOut {
-            limit: v.limit.limit,
-            source: v.limit.source.clone(),
-            exceeded: v.exceeded,
-        }),
-    }
 }
 
 pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
@@ -214,43 +57,26 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
     };
     let passes = select_passes(&ctx.lib, build.shader.as_deref(), build.pass.as_deref())?;
     let audits = audit::audit_passes(&ctx.lib, &passes, &options)?;
-    let verdicts: Vec<Option<Verdict>> = audits
-        .iter()
-        .map(|a| verdict(a, Some(build.max_variants), budgets.as_ref()))
-        .collect();
     if let Some(path) = &args.chart {
         std::fs::write(path, audit::chart::svg(&audits))
             .map_err(|e| Failed(format!("error: cannot write `{}`: {e}", path.display())))?;
     }
-    let over: Vec<&Verdict> = verdicts.iter().flatten().filter(|v| v.exceeded).collect();
+    let materials = options.materials.is_some();
+    let report = AuditReport::new(
+        audits,
+        Some(build.max_variants),
+        budgets.as_ref(),
+        materials,
+    );
     if ctx.json {
-        let sum = |f: &dyn Fn(&PassAudit) -> &BigUint| {
-            audits.iter().map(f).fold(BigUint::default(), |a, b| a + b)
-        };
-        print_json(&AuditOut {
-            ok: over.is_empty(),
-            materials: options.materials.is_some(),
-            passes: audits
-                .iter()
-                .zip(&verdicts)
-                .map(|(a, v)| pass_out(a, v.as_ref()))
-                .collect(),
-            totals: Totals {
-                passes: audits.len(),
-                full_space: count(&sum(&|a| &a.full_space)),
-                build_set: count(&sum(&|a| &a.build_set)),
-                distinct: count(&sum(&|a| &a.distinct.count)),
-                distinct_exact: audits.iter().all(|a| a.distinct.exact),
-                over_budget: over.len(),
-            },
-        })?;
+        print_json(&report)?;
     } else {
-        print!("{}", table(&audits, &verdicts));
+        print!("{}", table(&report.passes));
     }
-    for v in &over {
+    for v in report.over_budget() {
         eprintln!("error: {}", v.message);
     }
-    Ok(if over.is_empty() {
+    Ok(if report.ok {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
@@ -301,7 +127,7 @@ fn columns(rows: &[Vec<String>], indent: &str, left: usize) -> String {
 }
 
 /// The report for people: a summary table, then per pass its multiplier table and findings.
-fn table(audits: &[PassAudit], verdicts: &[Option<Verdict>]) -> String {
+fn table(passes: &[AuditedPass]) -> String {
     let mut rows = vec![vec![
         "shader/pass".to_string(),
         "full space".into(),
@@ -310,7 +136,12 @@ fn table(audits: &[PassAudit], verdicts: &[Option<Verdict>]) -> String {
         "distinct".into(),
         "budget".into(),
     ]];
-    for (a, v) in audits.iter().zip(verdicts) {
+    for AuditedPass {
+        audit: a,
+        budget: v,
+        ..
+    } in passes
+    {
         rows.push(vec![
             format!("{}/{}", a.shader, a.pass),
             a.full_space.to_string(),
@@ -325,7 +156,11 @@ fn table(audits: &[PassAudit], verdicts: &[Option<Verdict>]) -> String {
         ]);
     }
     let mut out = columns(&rows, "", 1);
-    for a in audits.iter().filter(|a| !a.sets.is_empty()) {
+    for a in passes
+        .iter()
+        .map(|p| &p.audit)
+        .filter(|a| !a.sets.is_empty())
+    {
         out.push('\n');
         out.push_str(&pass_details(a));
     }

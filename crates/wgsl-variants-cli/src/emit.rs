@@ -6,15 +6,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::ValueEnum;
-use serde::Serialize;
 
 use wgsl_variants::emit::backends::{
-    self, Options, Target, TargetKind, TranslateError, parse_glsl_version, parse_msl_version,
-    parse_shader_model,
+    Options, Target, TargetKind, TranslateError, parse_glsl_version, parse_msl_version,
+    parse_shader_model, translate_to_text,
 };
-use wgsl_variants::emit::reflect::Stage;
-use wgsl_variants::emit::set::{self, SetError};
-use wgsl_variants::validate::validate_composed;
+use wgsl_variants::emit::set::{self, SetError, WriteSummary};
+use wgsl_variants::emit::variant_source;
 
 use super::output::print_json;
 use super::{BuildArgs, Context, Failed, load_materials};
@@ -91,42 +89,6 @@ pub struct EmitArgs {
     build: BuildArgs,
 }
 
-#[derive(Serialize)]
-struct EmitOut<'a> {
-    shader: &'a str,
-    #[serde(rename = "pass")]
-    pass_name: &'a str,
-    keywords: Vec<&'a str>,
-    wgsl: &'a str,
-}
-
-#[derive(Serialize)]
-struct TargetOut<'a> {
-    shader: &'a str,
-    #[serde(rename = "pass")]
-    pass_name: &'a str,
-    keywords: Vec<&'a str>,
-    outputs: Vec<OutputOut>,
-}
-
-#[derive(Serialize)]
-struct OutputOut {
-    target: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    entry_point: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    stage: Option<Stage>,
-    text: String,
-}
-
-#[derive(Serialize)]
-struct WrittenOut {
-    out: String,
-    variants: usize,
-    files: usize,
-    targets: Vec<String>,
-}
-
 fn targets(args: &EmitArgs) -> Result<Vec<Target>, Failed> {
     let mut out: Vec<Target> = Vec::new();
     let kinds = if args.targets.is_empty() {
@@ -195,22 +157,17 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
 
     // The composed text, as written (the default).
     if targets == [Target::Wgsl] && !args.canonical {
-        let composed = ctx.lib.compose(&variant);
-        if !args.no_validate
-            && let Err(e) = validate_composed(&composed, &variant.label())
-        {
-            eprint!("{}", ctx.render(&e.diagnostic()));
-            return Ok(ExitCode::from(1));
-        }
+        let source = match variant_source(&ctx.lib, &variant, !args.no_validate) {
+            Ok(source) => source,
+            Err(e) => {
+                eprint!("{}", ctx.render(&e.diagnostic()));
+                return Ok(ExitCode::from(1));
+            }
+        };
         if ctx.json {
-            print_json(&EmitOut {
-                shader: &pass.shader,
-                pass_name: &pass.name,
-                keywords: variant.keywords(),
-                wgsl: &composed.text,
-            })?;
+            print_json(&source)?;
         } else {
-            print!("{}", composed.text);
+            print!("{}", source.wgsl);
         }
         return Ok(ExitCode::SUCCESS);
     }
@@ -224,66 +181,43 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
             "error: SPIR-V is binary: write it into a folder with --out DIR".into(),
         ));
     }
-    let (module, info) = match wgsl_variants::validate::compile(&ctx.lib, &variant) {
-        Ok(m) => m,
-        Err(e) => {
+    let mut translation = match translate_to_text(&ctx.lib, &variant, &targets, &options) {
+        Ok(t) => t,
+        Err(TranslateError::Invalid(e)) => {
             eprint!("{}", ctx.render(&e.diagnostic()));
             return Ok(ExitCode::from(1));
         }
+        Err(e) => return Err(Failed(render_failure(ctx, &e))),
     };
-    let mut outputs = Vec::new();
-    for target in &targets {
-        let written = backends::translate(&module, &info, target, &options).map_err(|e| {
-            Failed(render_failure(
-                ctx,
-                &TranslateError::Backend {
-                    variant: variant.label(),
-                    error: e,
-                },
-            ))
-        })?;
-        for output in written {
-            if let (Some(want), Some(ep)) = (&args.entry_point, &output.entry_point)
-                && &ep.name != want
-            {
-                continue;
-            }
-            outputs.push(OutputOut {
-                target: target.to_string(),
-                entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
-                stage: output.entry_point.as_ref().map(|e| e.stage),
-                text: output.contents.as_text().unwrap_or_default().to_string(),
-            });
-        }
-    }
-    if let Some(want) = &args.entry_point
-        && !outputs
+    if let Some(want) = &args.entry_point {
+        translation
+            .outputs
+            .retain(|o| o.entry_point.as_ref().is_none_or(|ep| ep == want));
+        if !translation
+            .outputs
             .iter()
             .any(|o| o.entry_point.as_deref() == Some(want.as_str()))
-        && targets.iter().any(|t| t.kind() == TargetKind::Glsl)
-    {
-        let names: Vec<&str> = module
-            .entry_points
-            .iter()
-            .map(|e| e.name.as_str())
-            .collect();
-        return Err(Failed(format!(
-            "error: no entry point `{want}` in {} (entry points: {})",
-            variant.label(),
-            names.join(", ")
-        )));
+            && targets.iter().any(|t| t.kind() == TargetKind::Glsl)
+        {
+            let names: Vec<&str> = translation
+                .entry_points
+                .iter()
+                .map(|e| e.name.as_str())
+                .collect();
+            return Err(Failed(format!(
+                "error: no entry point `{want}` in {} (entry points: {})",
+                variant.label(),
+                names.join(", ")
+            )));
+        }
     }
+    let outputs = &translation.outputs;
     if ctx.json {
-        print_json(&TargetOut {
-            shader: &pass.shader,
-            pass_name: &pass.name,
-            keywords: variant.keywords(),
-            outputs,
-        })?;
+        print_json(&translation)?;
     } else {
         let single = outputs.len() == 1;
         let mut stdout = std::io::stdout().lock();
-        for o in &outputs {
+        for o in outputs {
             if !single {
                 let what = match (&o.entry_point, o.stage) {
                     (Some(ep), Some(stage)) => format!("{}: {ep} ({stage})", o.target),
@@ -308,7 +242,7 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let selection = ctx.plan(&args.build, args.all, args.shard)?;
+    let selection = ctx.plan(&ctx.plan_options(&args.build, args.all, args.shard)?)?;
     write_selection(ctx, &selection, targets, options, dir)
 }
 
@@ -321,23 +255,18 @@ fn write_selection(
 ) -> Result<ExitCode, Failed> {
     match set::write_set(&ctx.lib, selection, targets, options, dir) {
         Ok(manifest) => {
-            let files: usize = manifest.variants.iter().map(|v| v.files.len()).sum();
-            let target_names: Vec<String> = targets.iter().map(|t| t.to_string()).collect();
+            let summary = WriteSummary::new(dir, &manifest, targets);
             if ctx.json {
-                print_json(&WrittenOut {
-                    out: dir.display().to_string(),
-                    variants: manifest.variants.len(),
-                    files,
-                    targets: target_names,
-                })?;
+                print_json(&summary)?;
             } else {
                 for (pass, choices) in selection {
                     println!("{}/{}: {} variants", pass.shader, pass.name, choices.len());
                 }
                 println!(
-                    "wrote {files} files for {} variants ({}) and manifest.json to {}",
-                    manifest.variants.len(),
-                    target_names.join(", "),
+                    "wrote {} files for {} variants ({}) and manifest.json to {}",
+                    summary.files,
+                    summary.variants,
+                    summary.targets.join(", "),
                     dir.display()
                 );
             }

@@ -5,9 +5,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::ValueEnum;
-use serde::Serialize;
 
-use wgsl_variants::emit::export::{ExportError, export_prefixed};
+use wgsl_variants::emit::export::{ExportError, export_prefixed_module};
 use wgsl_variants::emit::naga_oil::{self, NagaOilModule};
 
 use super::output::print_json;
@@ -46,14 +45,6 @@ pub struct ExportArgs {
     out: Option<PathBuf>,
 }
 
-#[derive(Serialize)]
-struct ModuleOut<'a> {
-    module: &'a str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    import_path: Option<&'a str>,
-    source: &'a str,
-}
-
 fn fail(ctx: &Context, e: ExportError) -> Failed {
     Failed(ctx.render(&e.diagnostic()).trim_end().to_string())
 }
@@ -86,20 +77,16 @@ pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
             let Some(prefix) = &args.prefix else {
                 return Err(Failed("error: the WGSL dialect needs --prefix NAME (the prefix of every top-level name)".into()));
             };
-            let text =
-                export_prefixed(&ctx.lib, module, prefix, &keywords).map_err(|e| fail(ctx, e))?;
+            let exported = export_prefixed_module(&ctx.lib, module, prefix, &keywords)
+                .map_err(|e| fail(ctx, e))?;
             if let Some(dir) = &args.out {
                 let rel = format!("{}.wgsl", module.trim().trim_end_matches(".wgsl"));
-                write(dir, &rel, &text)?;
+                write(dir, &rel, &exported.source)?;
                 println!("wrote {}", dir.join(rel).display());
             } else if ctx.json {
-                print_json(&ModuleOut {
-                    module,
-                    import_path: None,
-                    source: &text,
-                })?;
+                print_json(&exported)?;
             } else {
-                print!("{text}");
+                print!("{}", exported.source);
             }
         }
         Dialect::NagaOil => {
@@ -130,15 +117,7 @@ pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
                     modules.last().into_iter().collect()
                 };
                 if ctx.json {
-                    let out: Vec<ModuleOut<'_>> = shown
-                        .iter()
-                        .map(|m| ModuleOut {
-                            module: &m.path,
-                            import_path: Some(&m.import_path),
-                            source: &m.source,
-                        })
-                        .collect();
-                    print_json(&out)?;
+                    print_json(&shown)?;
                 } else {
                     for m in &shown {
                         print!("{}", m.source);

@@ -201,15 +201,13 @@ impl Context {
         Ok(variant)
     }
 
-    /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
-    /// The plan of `build` (the full space with `all`, one shard with `shard`). A pass over its
-    /// budget is reported at its declaration.
-    pub fn plan(
+    /// The plan options of `build` (the full space with `all`, one shard with `shard`).
+    pub fn plan_options(
         &self,
         build: &BuildArgs,
         all: bool,
         shard: Option<wgsl_variants::variants::Shard>,
-    ) -> Result<wgsl_variants::plan::Plan<'_>, Failed> {
+    ) -> Result<wgsl_variants::plan::PlanOptions, Failed> {
         let mut options = wgsl_variants::plan::PlanOptions::default();
         options.all = all;
         options.materials = load_materials(&build.materials)?;
@@ -217,7 +215,15 @@ impl Context {
         options.shader = build.shader.clone();
         options.pass = build.pass.clone();
         options.shard = shard;
-        wgsl_variants::plan::plan(&self.lib, &options).map_err(|e| match &e {
+        Ok(options)
+    }
+
+    /// The plan of `options`. A pass over its budget is reported at its declaration.
+    pub fn plan(
+        &self,
+        options: &wgsl_variants::plan::PlanOptions,
+    ) -> Result<wgsl_variants::plan::Plan<'_>, Failed> {
+        wgsl_variants::plan::plan(&self.lib, options).map_err(|e| match &e {
             wgsl_variants::plan::PlanError::Budget { shader, pass, .. } => {
                 match self.lib.pass(shader, pass) {
                     Ok(p) => self.pass_failure(p, e.to_string()),
@@ -228,6 +234,7 @@ impl Context {
         })
     }
 
+    /// A failure about a pass, rendered at the pass's declaration with its keyword sets.
     fn pass_failure(&self, pass: &wgsl_variants::Pass, message: String) -> Failed {
         let mut d = wgsl_variants::Diagnostic::new(message).at(pass.span, "pass declared here");
         for set in &pass.sets {

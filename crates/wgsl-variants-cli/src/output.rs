@@ -1,13 +1,4 @@
-//! Shared output helpers: exact big counts in JSON, and printing.
-
-use num_bigint::BigUint;
-use serde_json::value::RawValue;
-
-/// An exact count as a JSON number of any size (JSON numbers are unbounded; a parser that
-/// cannot hold it still sees a number, never a rounded value in our output).
-pub fn count(n: &BigUint) -> Box<RawValue> {
-    RawValue::from_string(n.to_string()).expect("a decimal integer is valid JSON")
-}
+//! Shared output helpers: printing JSON, and progress bars.
 
 /// Prints a JSON value on stdout, pretty, with a trailing newline.
 pub fn print_json<T: serde::Serialize>(value: &T) -> Result<(), super::Failed> {

@@ -4,7 +4,6 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use serde::Serialize;
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::{TestScene, pictures};
 
@@ -34,13 +33,6 @@ pub struct RenderArgs {
     adapter: Option<String>,
 }
 
-#[derive(Serialize)]
-struct Written {
-    name: String,
-    description: String,
-    path: String,
-}
-
 pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
     let shader = args.shader.as_deref().unwrap_or("standard");
     let pass = args.pass.as_deref().unwrap_or("Deferred");
@@ -58,17 +50,8 @@ pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
     let pictures = pictures::render_pictures(&gpu, &ctx.lib, &scene, shader, pass, &keywords)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| Failed(format!("error: cannot create {}: {e}", args.out.display())))?;
-    let mut written = Vec::new();
-    for p in &pictures {
-        let path = p
-            .write_png(&args.out, args.scale)
-            .map_err(|e| Failed(format!("error: cannot write {}: {e}", p.name)))?;
-        written.push(Written {
-            name: p.name.clone(),
-            description: p.description.clone(),
-            path: path.display().to_string(),
-        });
-    }
+    let written = pictures::write_pngs(&pictures, &args.out, args.scale)
+        .map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {
         print_json(&written)?;
     } else {

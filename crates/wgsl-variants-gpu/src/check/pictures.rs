@@ -74,6 +74,36 @@ impl Picture {
     }
 }
 
+/// A picture written as a PNG file (one entry of what `render --json` prints).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
+pub struct WrittenPicture {
+    /// The picture's name.
+    pub name: String,
+    /// What it shows.
+    pub description: String,
+    /// The file written.
+    pub path: String,
+}
+
+/// Writes every picture into `dir` (which must exist) with [`Picture::write_png`].
+pub fn write_pngs(
+    pictures: &[Picture],
+    dir: &Path,
+    scale: u32,
+) -> Result<Vec<WrittenPicture>, image::ImageError> {
+    pictures
+        .iter()
+        .map(|p| {
+            Ok(WrittenPicture {
+                name: p.name.clone(),
+                description: p.description.clone(),
+                path: p.write_png(dir, scale)?.display().to_string(),
+            })
+        })
+        .collect()
+}
+
 /// A colour read from a target, as floats.
 fn read(format: TargetFormat, bytes: &[u8], i: usize) -> [f32; 4] {
     pixel(format, bytes, i).1
