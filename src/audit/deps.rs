@@ -139,11 +139,11 @@ impl Analyzer<'_, '_> {
                 Val::Unknown(d) => Abs::Unknown(d),
             },
             Expr::Not(e) => match self.eval(e) {
-                Abs::Known(v) => Abs::Known((v == 0) as i64),
+                Abs::Known(v) => Abs::Known(Expr::logical_not(v)),
                 u => u,
             },
             Expr::Neg(e) => match self.eval(e) {
-                Abs::Known(v) => Abs::Known(v.wrapping_neg()),
+                Abs::Known(v) => Abs::Known(Expr::negate(v)),
                 u => u,
             },
             Expr::Binary(op, a, b) => {
@@ -155,7 +155,7 @@ impl Analyzer<'_, '_> {
                     (BinOp::And, Abs::Known(0), _) | (BinOp::And, _, Abs::Known(0)) => {
                         Abs::Known(0)
                     }
-                    (op, Abs::Known(x), Abs::Known(y)) => Abs::Known(binary(*op, x, y)),
+                    (op, Abs::Known(x), Abs::Known(y)) => Abs::Known(op.apply(x, y)),
                     // `x || u` with x == 0, `x && u` with x != 0: the value is `u != 0`.
                     (BinOp::Or | BinOp::And, Abs::Known(_), u)
                     | (BinOp::Or | BinOp::And, u, Abs::Known(_)) => u,
@@ -319,17 +319,4 @@ impl Analyzer<'_, '_> {
         }
         Ok(())
     }
-}
-
-fn binary(op: BinOp, a: i64, b: i64) -> i64 {
-    (match op {
-        BinOp::Or => a != 0 || b != 0,
-        BinOp::And => a != 0 && b != 0,
-        BinOp::Eq => a == b,
-        BinOp::Ne => a != b,
-        BinOp::Lt => a < b,
-        BinOp::Le => a <= b,
-        BinOp::Gt => a > b,
-        BinOp::Ge => a >= b,
-    }) as i64
 }
