@@ -22,10 +22,10 @@ use crate::preprocess::compose::ModuleGraph;
 use crate::preprocess::expr::{BinOp, Expr};
 use crate::preprocess::tree::Node;
 use crate::shader::Pass;
+use crate::variants::Space;
 
 use super::bits::{Bits, UnionFind};
 use super::compose::{LineIds, node_key};
-use super::domain::Domain;
 
 /// Most nodes the walk visits before giving up (modules imported at many conditional sites
 /// can be walked once per site).
@@ -75,22 +75,23 @@ enum Included {
     Yes,
 }
 
-/// Runs the static walk of `pass` over the variants of `domain`.
+/// Runs the static walk of `pass` over the variants of `space`.
 pub(crate) fn analyze(
     graph: &ModuleGraph<'_>,
     ids: &LineIds,
     pass: &Pass,
-    domain: &Domain,
+    space: &Space<'_>,
 ) -> Result<Template, TooComplex> {
     let mut vals = HashMap::new();
     for (s, set) in pass.sets.iter().enumerate() {
-        match domain.fixed(s) {
-            Some(o) => {
-                if let Some(k) = &set.options[o as usize] {
+        match space.options(s).as_slice() {
+            // The same option in every variant.
+            [only] => {
+                if let Some(k) = &set.options[*only as usize] {
                     vals.insert(Box::from(k.as_str()), Val::Known(Some(1)));
                 }
             }
-            None => {
+            _ => {
                 for k in set.keywords() {
                     vals.insert(Box::from(k), Val::Unknown(Bits::single(s)));
                 }
