@@ -24,3 +24,14 @@ pub mod export;
 pub mod naga_oil;
 pub mod reflect;
 pub mod set;
+
+use std::path::Path;
+
+/// Writes `bytes` to `path` unless the file already holds them, so that an unchanged output
+/// keeps its modification time (and does not make `cargo` or other build tools rebuild).
+pub(crate) fn write_if_changed(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    if std::fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    std::fs::write(path, bytes)
+}

@@ -224,37 +224,27 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
             "error: SPIR-V is binary: write it into a folder with --out DIR".into(),
         ));
     }
-    let (module, info) = match wgsl_variants::validate::compile(&ctx.lib, &variant) {
-        Ok(m) => m,
-        Err(e) => {
+    let all = match backends::translate_all(&ctx.lib, &variant, &targets, &options) {
+        Ok(all) => all,
+        Err(TranslateError::Invalid(e)) => {
             eprint!("{}", ctx.render(&e.diagnostic()));
             return Ok(ExitCode::from(1));
         }
+        Err(e) => return Err(Failed(render_failure(ctx, &e))),
     };
     let mut outputs = Vec::new();
-    for target in &targets {
-        let written = backends::translate(&module, &info, target, &options).map_err(|e| {
-            Failed(render_failure(
-                ctx,
-                &TranslateError::Backend {
-                    variant: variant.label(),
-                    error: e,
-                },
-            ))
-        })?;
-        for output in written {
-            if let (Some(want), Some(ep)) = (&args.entry_point, &output.entry_point)
-                && &ep.name != want
-            {
-                continue;
-            }
-            outputs.push(OutputOut {
-                target: target.to_string(),
-                entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
-                stage: output.entry_point.as_ref().map(|e| e.stage),
-                text: output.contents.as_text().unwrap_or_default().to_string(),
-            });
+    for (target, output) in all.outputs {
+        if let (Some(want), Some(ep)) = (&args.entry_point, &output.entry_point)
+            && &ep.name != want
+        {
+            continue;
         }
+        outputs.push(OutputOut {
+            target: target.to_string(),
+            entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
+            stage: output.entry_point.as_ref().map(|e| e.stage),
+            text: output.contents.as_text().unwrap_or_default().to_string(),
+        });
     }
     if let Some(want) = &args.entry_point
         && !outputs
@@ -262,11 +252,7 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
             .any(|o| o.entry_point.as_deref() == Some(want.as_str()))
         && targets.iter().any(|t| t.kind() == TargetKind::Glsl)
     {
-        let names: Vec<&str> = module
-            .entry_points
-            .iter()
-            .map(|e| e.name.as_str())
-            .collect();
+        let names: Vec<&str> = all.entry_points.iter().map(|e| e.name.as_str()).collect();
         return Err(Failed(format!(
             "error: no entry point `{want}` in {} (entry points: {})",
             variant.label(),
