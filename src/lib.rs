@@ -32,6 +32,7 @@
 
 pub mod audit;
 pub mod cache;
+pub mod data_file;
 pub mod diagnostic;
 pub mod emit;
 pub mod json;

@@ -20,6 +20,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use crate::data_file::{self, FileError, Format};
 use crate::lookup::suggest;
 use crate::shader::{Pass, Shader};
 
@@ -46,26 +47,9 @@ struct MaterialsFile {
 /// A problem with a materials file.
 #[derive(Debug, thiserror::Error)]
 pub enum MaterialsError {
-    /// The file could not be read.
-    #[error("cannot read materials file `{path}`: {message}")]
-    Io {
-        /// The file.
-        path: String,
-        /// The OS error.
-        message: String,
-    },
-    /// The file is not valid JSON/TOML of the expected shape.
-    #[error("{path}:{line}:{column}: {message}")]
-    Syntax {
-        /// The file.
-        path: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
+    /// The file could not be read, or is not valid JSON/TOML of the expected shape.
+    #[error(transparent)]
+    File(#[from] FileError),
     /// A material names a shader the library does not have.
     #[error(
         "material `{material}` uses shader `{shader}`, which the library does not have{}",
@@ -120,42 +104,19 @@ fn hint(s: &Option<String>) -> String {
 
 /// Reads a materials file (`.toml`, otherwise JSON).
 pub fn load(path: &Path) -> Result<Vec<Material>, MaterialsError> {
-    let display = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| MaterialsError::Io {
-        path: display.clone(),
-        message: e.to_string(),
-    })?;
+    let text = data_file::read(path, "materials")?;
     parse(
         &text,
         path.extension().is_some_and(|e| e == "toml"),
-        &display,
+        &path.display().to_string(),
     )
 }
 
 /// Parses materials from text; `toml` selects the format. `path` is used in messages.
 pub fn parse(text: &str, toml: bool, path: &str) -> Result<Vec<Material>, MaterialsError> {
-    let syntax = |line: usize, column: usize, message: String| MaterialsError::Syntax {
-        path: path.to_string(),
-        line,
-        column,
-        message,
-    };
-    let file: MaterialsFile = if toml {
-        toml::from_str(text).map_err(|e| {
-            let (line, column) = e.span().map_or((1, 1), |s| line_col(text, s.start));
-            syntax(line, column, e.message().to_string())
-        })?
-    } else {
-        serde_json::from_str(text).map_err(|e| syntax(e.line(), e.column(), e.to_string()))?
-    };
+    let format = if toml { Format::Toml } else { Format::Json };
+    let file: MaterialsFile = data_file::parse(text, format, path)?;
     Ok(file.materials)
-}
-
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
 }
 
 /// Checks materials against the library's shaders: every shader exists and every keyword is

@@ -14,6 +14,7 @@
 
 use rayon::prelude::*;
 
+use crate::emit::set::file_safe;
 use crate::library::{Library, Variant};
 use crate::shader::Pass;
 use crate::validate::VariantError;
@@ -81,18 +82,6 @@ pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
     let mut seen = std::collections::HashSet::new();
     out.retain(|(_, c)| seen.insert(c.clone()));
     out
-}
-
-fn file_safe(text: &str) -> String {
-    text.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                c
-            } else {
-                '-'
-            }
-        })
-        .collect()
 }
 
 /// Canonical WGSL of the covering set of every pass, named `shader.pass.which`.

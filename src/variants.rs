@@ -77,6 +77,9 @@ pub struct BudgetError {
 
 /// A set of variants of one pass: the options allowed per set, optionally restricted to the
 /// `shader_feature` combinations some material uses.
+///
+/// Two spaces are equal when they are of the same pass (the same [`Pass`] in memory) with the
+/// same allowed options and the same material combinations.
 #[derive(Clone, Debug)]
 pub struct Space<'p> {
     pass: &'p Pass,
@@ -141,6 +144,58 @@ impl<'p> Space<'p> {
     /// The pass this space belongs to.
     pub fn pass(&self) -> &'p Pass {
         self.pass
+    }
+
+    /// The options `set` takes in some variant, ascending.
+    ///
+    /// ```
+    /// use wgsl_variants::{Library, Space};
+    /// let lib = Library::from_sources([(
+    ///     "s.wgsl",
+    ///     "#shader s\n#pass P\n#pragma multi_compile A B C\n#pragma skip_variants B\n#endpass",
+    /// )])
+    /// .unwrap();
+    /// let pass = lib.pass("s", "P").unwrap();
+    /// assert_eq!(Space::full(pass).options(0), vec![0, 1, 2]);
+    /// assert_eq!(Space::after_skip(pass).options(0), vec![0, 2]);
+    /// ```
+    pub fn options(&self, set: usize) -> Vec<u16> {
+        let feature = self
+            .features
+            .as_ref()
+            .zip(self.pass.shader_feature_sets().position(|s| s == set));
+        match feature {
+            None => self.allowed[set].clone(),
+            Some((combos, k)) => {
+                let used: BTreeSet<u16> = combos.iter().map(|c| c[k]).collect();
+                used.into_iter().collect()
+            }
+        }
+    }
+
+    /// The space as a product of independent factors, each set in exactly one: a factor per
+    /// set, except that with materials the `shader_feature` sets are one joint factor (the
+    /// combinations materials use), last. The joint factor is there even without
+    /// `shader_feature` sets: a shader no material uses builds nothing.
+    pub(crate) fn factors(&self) -> Vec<Factor> {
+        let joint: Vec<usize> = match self.features {
+            Some(_) => self.pass.shader_feature_sets().collect(),
+            None => Vec::new(),
+        };
+        let mut factors: Vec<Factor> = (0..self.allowed.len())
+            .filter(|set| !joint.contains(set))
+            .map(|set| Factor::Set {
+                set,
+                options: self.allowed[set].clone(),
+            })
+            .collect();
+        if let Some(combos) = &self.features {
+            factors.push(Factor::Joint {
+                sets: joint,
+                tuples: combos.iter().cloned().collect(),
+            });
+        }
+        factors
     }
 
     /// Exact number of variants, without enumerating.
@@ -224,6 +279,65 @@ impl<'p> Space<'p> {
             combos,
             combo: 0,
             done: empty,
+        }
+    }
+}
+
+impl PartialEq for Space<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self.pass, other.pass)
+            && self.allowed == other.allowed
+            && self.features == other.features
+    }
+}
+
+impl Eq for Space<'_> {}
+
+/// One independent factor of a [`Space`] (see [`Space::factors`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Factor {
+    /// One keyword set and the options it may take.
+    Set {
+        /// The set.
+        set: usize,
+        /// Allowed options, ascending.
+        options: Vec<u16>,
+    },
+    /// Several sets that take their options together (material combinations).
+    Joint {
+        /// The sets.
+        sets: Vec<usize>,
+        /// Allowed tuples, one option per set of `sets`, ascending.
+        tuples: Vec<Vec<u16>>,
+    },
+}
+
+impl Factor {
+    /// Number of choices of this factor.
+    pub fn len(&self) -> usize {
+        match self {
+            Factor::Set { options, .. } => options.len(),
+            Factor::Joint { tuples, .. } => tuples.len(),
+        }
+    }
+
+    /// The sets this factor decides.
+    pub fn sets(&self) -> Vec<usize> {
+        match self {
+            Factor::Set { set, .. } => vec![*set],
+            Factor::Joint { sets, .. } => sets.clone(),
+        }
+    }
+
+    /// Writes choice `i` of this factor into `choice` (one option per set of the pass).
+    pub fn apply(&self, i: usize, choice: &mut [u16]) {
+        match self {
+            Factor::Set { set, options } => choice[*set] = options[i],
+            Factor::Joint { sets, tuples } => {
+                for (&s, &o) in sets.iter().zip(&tuples[i]) {
+                    choice[s] = o;
+                }
+            }
         }
     }
 }

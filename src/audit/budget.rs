@@ -19,6 +19,7 @@ use std::path::Path;
 use num_bigint::BigUint;
 use serde::Deserialize;
 
+use crate::data_file::{self, FileError, Format};
 use crate::library::Library;
 use crate::lookup::suggest;
 
@@ -46,26 +47,9 @@ pub struct Budgets {
 /// A problem with a budget file.
 #[derive(Debug, thiserror::Error)]
 pub enum BudgetFileError {
-    /// The file could not be read.
-    #[error("cannot read budget file `{path}`: {message}")]
-    Io {
-        /// The file.
-        path: String,
-        /// The OS error.
-        message: String,
-    },
-    /// Not TOML of the expected shape.
-    #[error("{path}:{line}:{column}: {message}")]
-    Syntax {
-        /// The file.
-        path: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
+    /// The file could not be read, or is not TOML of the expected shape.
+    #[error(transparent)]
+    File(#[from] FileError),
     /// A key names no shader or pass of the library.
     #[error(
         "budget file `{path}`: `{key}` names no {what} of the library{}",
@@ -120,12 +104,8 @@ pub struct Verdict {
 impl Budgets {
     /// Reads a budget file.
     pub fn load(path: &Path) -> Result<Budgets, BudgetFileError> {
-        let display = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| BudgetFileError::Io {
-            path: display.clone(),
-            message: e.to_string(),
-        })?;
-        Budgets::parse(&text, &display)
+        let text = data_file::read(path, "budget")?;
+        Budgets::parse(&text, &path.display().to_string())
     }
 
     /// Parses a budget file's text; `path` is used in messages.
@@ -137,16 +117,7 @@ impl Budgets {
     /// assert_eq!(b.limit_for("standard", "ForwardBase").unwrap().limit, 10);
     /// ```
     pub fn parse(text: &str, path: &str) -> Result<Budgets, BudgetFileError> {
-        let file: File = toml::from_str(text).map_err(|e| {
-            let offset = e.span().map_or(0, |s| s.start).min(text.len());
-            let before = &text[..offset];
-            BudgetFileError::Syntax {
-                path: path.to_string(),
-                line: before.matches('\n').count() + 1,
-                column: before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1,
-                message: e.message().to_string(),
-            }
-        })?;
+        let file: File = data_file::parse(text, Format::Toml, path)?;
         Ok(Budgets {
             path: path.to_string(),
             default: file.default,

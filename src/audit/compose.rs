@@ -1,12 +1,14 @@
 //! Composing a variant as a sequence of line ids, recording where each audited region went.
 //!
-//! This is [`crate::preprocess::compose::compose`] with two differences: every output line is
-//! an id (equal ids ⟺ equal line text, so equal id sequences ⟺ equal composed text), and the
-//! output range of each region found by the static analysis is recorded.
+//! The walk is the preprocessor's ([`crate::preprocess::compose::walk`]) with another sink:
+//! every output line is an id (equal ids ⟺ equal line text, so equal id sequences ⟺ equal
+//! composed text), and the output range of each region found by the static analysis is
+//! recorded.
 
 use std::collections::HashMap;
+use std::ops::Range;
 
-use crate::preprocess::compose::ModuleGraph;
+use crate::preprocess::compose::{ModuleGraph, Sink, walk};
 use crate::preprocess::tree::Node;
 use crate::shader::Pass;
 
@@ -83,93 +85,43 @@ impl IdComposer<'_> {
             .filter_map(|(&o, s)| s.options[o as usize].as_deref())
             .map(|k| (Box::from(k), 1))
             .collect();
-        let mut walk = Walk {
+        let mut sink = IdSink {
             c: self,
-            defines,
-            included: vec![false; self.graph.modules.len()],
             out: IdText {
                 lines: Vec::with_capacity(1024),
                 spans: vec![(0, 0); self.slots],
             },
         };
-        walk.walk(pass.module, &pass.body);
-        walk.out
+        walk(self.graph, pass.module, &pass.body, defines, &mut sink);
+        sink.out
     }
 }
 
-struct Walk<'c, 'a> {
+/// Appends line ids and records the output range of each region.
+struct IdSink<'c, 'a> {
     c: &'c IdComposer<'a>,
-    defines: HashMap<Box<str>, i64>,
-    included: Vec<bool>,
     out: IdText,
 }
 
-enum Frame<'n> {
-    /// Nodes left to walk in a module.
-    Nodes(usize, &'n [Node]),
-    /// The end of a region's output.
-    End(usize),
-}
+impl Sink for IdSink<'_, '_> {
+    fn text(&mut self, module: usize, run: &Range<u32>) {
+        let ids = &self.c.ids.per_module[module];
+        self.out.lines.extend(
+            ids[run.start as usize..run.end as usize]
+                .iter()
+                .copied()
+                .filter(|&id| id != NO_CODE),
+        );
+    }
 
-impl Walk<'_, '_> {
-    /// Walks with an explicit stack, like the preprocessor: nesting is bounded by the load
-    /// limits, not by the thread's stack.
-    fn walk(&mut self, module: usize, nodes: &[Node]) {
-        let graph = self.c.graph;
-        let mut stack = vec![Frame::Nodes(module, nodes)];
-        while let Some(frame) = stack.pop() {
-            let (module, nodes) = match frame {
-                Frame::End(slot) => {
-                    self.out.spans[slot].1 = self.out.lines.len() as u32;
-                    continue;
-                }
-                Frame::Nodes(module, nodes) => (module, nodes),
-            };
-            let Some((node, rest)) = nodes.split_first() else {
-                continue;
-            };
-            stack.push(Frame::Nodes(module, rest));
-            if matches!(node, Node::If(_) | Node::Import(_))
-                && let Some(&slot) = self.c.regions.get(&node_key(node))
-            {
-                let here = self.out.lines.len() as u32;
-                self.out.spans[slot] = (here, here);
-                stack.push(Frame::End(slot));
-            }
-            match node {
-                Node::Text(run) => {
-                    let ids = &self.c.ids.per_module[module];
-                    self.out.lines.extend(
-                        ids[run.start as usize..run.end as usize]
-                            .iter()
-                            .copied()
-                            .filter(|&id| id != NO_CODE),
-                    );
-                }
-                Node::If(cond) => {
-                    let defines = &self.defines;
-                    let lookup = |n: &str| defines.get(n).copied();
-                    let taken = cond
-                        .branches
-                        .iter()
-                        .find(|(e, _)| e.eval(&lookup) != 0)
-                        .map(|(_, b)| b);
-                    stack.push(Frame::Nodes(module, taken.unwrap_or(&cond.otherwise)));
-                }
-                Node::Define { name, value } => {
-                    self.defines.insert(name.clone(), *value);
-                }
-                Node::Undef { name } => {
-                    self.defines.remove(name);
-                }
-                Node::Import(index) => {
-                    let target = graph.resolved[module][*index];
-                    if !self.included[target] {
-                        self.included[target] = true;
-                        stack.push(Frame::Nodes(target, &graph.modules[target].body));
-                    }
-                }
-            }
-        }
+    fn begin(&mut self, node: &Node) -> Option<usize> {
+        let slot = *self.c.regions.get(&node_key(node))?;
+        let here = self.out.lines.len() as u32;
+        self.out.spans[slot] = (here, here);
+        Some(slot)
+    }
+
+    fn end(&mut self, slot: usize) {
+        self.out.spans[slot].1 = self.out.lines.len() as u32;
     }
 }

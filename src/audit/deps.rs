@@ -22,10 +22,10 @@ use crate::preprocess::compose::ModuleGraph;
 use crate::preprocess::expr::{BinOp, Expr};
 use crate::preprocess::tree::Node;
 use crate::shader::Pass;
+use crate::variants::Space;
 
 use super::bits::{Bits, UnionFind};
 use super::compose::{LineIds, node_key};
-use super::domain::Domain;
 
 /// Most nodes the walk visits before giving up (modules imported at many conditional sites
 /// can be walked once per site).
@@ -75,22 +75,23 @@ enum Included {
     Yes,
 }
 
-/// Runs the static walk of `pass` over the variants of `domain`.
+/// Runs the static walk of `pass` over the variants of `space`.
 pub(crate) fn analyze(
     graph: &ModuleGraph<'_>,
     ids: &LineIds,
     pass: &Pass,
-    domain: &Domain,
+    space: &Space<'_>,
 ) -> Result<Template, TooComplex> {
     let mut vals = HashMap::new();
     for (s, set) in pass.sets.iter().enumerate() {
-        match domain.fixed(s) {
-            Some(o) => {
-                if let Some(k) = &set.options[o as usize] {
+        match space.options(s).as_slice() {
+            // The same option in every variant.
+            [only] => {
+                if let Some(k) = &set.options[*only as usize] {
                     vals.insert(Box::from(k.as_str()), Val::Known(Some(1)));
                 }
             }
-            None => {
+            _ => {
                 for k in set.keywords() {
                     vals.insert(Box::from(k), Val::Unknown(Bits::single(s)));
                 }
@@ -139,11 +140,11 @@ impl Analyzer<'_, '_> {
                 Val::Unknown(d) => Abs::Unknown(d),
             },
             Expr::Not(e) => match self.eval(e) {
-                Abs::Known(v) => Abs::Known((v == 0) as i64),
+                Abs::Known(v) => Abs::Known(Expr::logical_not(v)),
                 u => u,
             },
             Expr::Neg(e) => match self.eval(e) {
-                Abs::Known(v) => Abs::Known(v.wrapping_neg()),
+                Abs::Known(v) => Abs::Known(Expr::negate(v)),
                 u => u,
             },
             Expr::Binary(op, a, b) => {
@@ -155,7 +156,7 @@ impl Analyzer<'_, '_> {
                     (BinOp::And, Abs::Known(0), _) | (BinOp::And, _, Abs::Known(0)) => {
                         Abs::Known(0)
                     }
-                    (op, Abs::Known(x), Abs::Known(y)) => Abs::Known(binary(*op, x, y)),
+                    (op, Abs::Known(x), Abs::Known(y)) => Abs::Known(op.apply(x, y)),
                     // `x || u` with x == 0, `x && u` with x != 0: the value is `u != 0`.
                     (BinOp::Or | BinOp::And, Abs::Known(_), u)
                     | (BinOp::Or | BinOp::And, u, Abs::Known(_)) => u,
@@ -319,17 +320,4 @@ impl Analyzer<'_, '_> {
         }
         Ok(())
     }
-}
-
-fn binary(op: BinOp, a: i64, b: i64) -> i64 {
-    (match op {
-        BinOp::Or => a != 0 || b != 0,
-        BinOp::And => a != 0 && b != 0,
-        BinOp::Eq => a == b,
-        BinOp::Ne => a != b,
-        BinOp::Lt => a < b,
-        BinOp::Le => a <= b,
-        BinOp::Gt => a > b,
-        BinOp::Ge => a >= b,
-    }) as i64
 }

@@ -25,11 +25,11 @@ use rayon::prelude::*;
 
 use crate::preprocess::compose::ModuleGraph;
 use crate::shader::Pass;
+use crate::variants::{Factor, Space};
 
 use super::Method;
 use super::compose::{IdComposer, IdText, LineIds};
 use super::deps::{self, Slot, Template};
-use super::domain::Domain;
 
 /// Rows composed per parallel batch.
 const BATCH: usize = 4096;
@@ -73,7 +73,7 @@ impl Table {
 /// Keyword sets that change code together, and how their assignments group by code.
 #[derive(Clone, Debug)]
 pub(crate) struct Component {
-    /// Domain factors of the component, ascending.
+    /// Factors of the component (indices into [`Analysis::factors`]), ascending.
     pub factors: Vec<usize>,
     /// Keyword sets of the component, ascending.
     pub sets: Vec<usize>,
@@ -85,9 +85,11 @@ pub(crate) struct Component {
 
 /// Distinct texts of one stage of a pass.
 #[derive(Clone, Debug)]
-pub(crate) struct Analysis {
+pub(crate) struct Analysis<'p> {
     /// The stage.
-    pub domain: Domain,
+    pub space: Space<'p>,
+    /// The stage as a product of factors ([`Space::factors`]), which rows enumerate.
+    pub factors: Vec<Factor>,
     /// Number of variants.
     pub count: BigUint,
     /// Distinct texts: exact when `exact`, else an upper bound.
@@ -115,7 +117,7 @@ struct Ctx<'a> {
     composer: IdComposer<'a>,
     template: Option<&'a Template>,
     pass: &'a Pass,
-    domain: &'a Domain,
+    factors: &'a [Factor],
     base: Vec<u16>,
 }
 
@@ -126,16 +128,17 @@ struct Enumerated {
     outputs: Vec<Vec<Vec<u32>>>,
 }
 
-/// Counts the distinct texts of `domain`.
-pub(crate) fn analyze(
+/// Counts the distinct texts of `space`.
+pub(crate) fn analyze<'p>(
     graph: &ModuleGraph<'_>,
     ids: &LineIds,
     pass: &Pass,
-    domain: Domain,
+    space: Space<'p>,
     limits: Limits,
-) -> Analysis {
-    let count = domain.count();
-    let Some(base) = domain.base(pass.sets.len()) else {
+) -> Analysis<'p> {
+    let count = space.count();
+    let factors = space.factors();
+    let Some(base) = base(&factors, pass.sets.len()) else {
         return Analysis {
             count: count.clone(),
             distinct: BigUint::zero(),
@@ -143,13 +146,14 @@ pub(crate) fn analyze(
             method: Method::Components,
             components: Vec::new(),
             dead: (0..pass.sets.len()).collect(),
-            domain,
+            space,
+            factors,
         };
     };
-    let template = deps::analyze(graph, ids, pass, &domain).ok();
+    let template = deps::analyze(graph, ids, pass, &space).ok();
     let outcome = template
         .as_ref()
-        .map(|t| by_components(graph, ids, pass, &domain, &base, t, limits));
+        .map(|t| by_components(graph, ids, pass, &factors, &base, t, limits));
     match outcome {
         Some(Ok((components, dead))) => {
             let distinct = components
@@ -163,13 +167,14 @@ pub(crate) fn analyze(
                 method: Method::Components,
                 components,
                 dead,
-                domain,
+                space,
+                factors,
             }
         }
         other => {
             let fits = count.to_u64().is_some_and(|n| n <= limits.whole);
             if fits {
-                whole(graph, ids, pass, domain, base, count)
+                whole(graph, ids, pass, space, factors, base, count)
             } else {
                 let (components, dead) = match other {
                     Some(Err(partial)) => partial,
@@ -194,7 +199,8 @@ pub(crate) fn analyze(
                     method: Method::Bound,
                     components,
                     dead,
-                    domain,
+                    space,
+                    factors,
                 }
             }
         }
@@ -211,7 +217,7 @@ fn by_components(
     graph: &ModuleGraph<'_>,
     ids: &LineIds,
     pass: &Pass,
-    domain: &Domain,
+    factors: &[Factor],
     base: &[u16],
     template: &Template,
     limits: Limits,
@@ -225,12 +231,16 @@ fn by_components(
         },
         template: Some(template),
         pass,
-        domain,
+        factors,
         base: base.to_vec(),
     };
+    let mut factor_of = vec![0; pass.sets.len()];
     let mut uf = template.uf.clone();
-    for f in &domain.factors {
+    for (i, f) in factors.iter().enumerate() {
         let sets = f.sets();
+        for &s in &sets {
+            factor_of[s] = i;
+        }
         for w in sets.windows(2) {
             uf.union(w[0], w[1]);
         }
@@ -255,16 +265,16 @@ fn by_components(
             let sets: Vec<usize> = (0..pass.sets.len())
                 .filter(|&s| uf.find(s) == root)
                 .collect();
-            let factors: BTreeSet<usize> = sets.iter().map(|&s| domain.factor_of[s]).collect();
-            let factors: Vec<usize> = factors.into_iter().collect();
-            let size = factors.iter().fold(BigUint::one(), |a, &f| {
-                a * BigUint::from(domain.factors[f].len())
-            });
+            let mine_factors: BTreeSet<usize> = sets.iter().map(|&s| factor_of[s]).collect();
+            let mine_factors: Vec<usize> = mine_factors.into_iter().collect();
+            let size = mine_factors
+                .iter()
+                .fold(BigUint::one(), |a, &f| a * BigUint::from(factors[f].len()));
             let mine: Vec<usize> = (0..units.len())
                 .filter(|&u| unit_class[u] == Some(root))
                 .collect();
             components.push(Component {
-                factors,
+                factors: mine_factors,
                 sets,
                 size,
                 table: None,
@@ -356,10 +366,7 @@ fn enumerate(
     mine: &[usize],
     units: &[(usize, usize)],
 ) -> Enumerated {
-    let radix: Vec<usize> = factors
-        .iter()
-        .map(|&f| ctx.domain.factors[f].len())
-        .collect();
+    let radix: Vec<usize> = factors.iter().map(|&f| ctx.factors[f].len()).collect();
     let rows: usize = radix.iter().product();
     let template = ctx.template.expect("components come from a template");
     let template_units: Vec<(usize, usize)> = mine.iter().map(|&u| units[u]).collect();
@@ -417,7 +424,7 @@ fn enumerate(
 fn choice_of(ctx: &Ctx<'_>, factors: &[usize], digits: &[usize]) -> Vec<u16> {
     let mut choice = ctx.base.clone();
     for (&f, &d) in factors.iter().zip(digits) {
-        ctx.domain.factors[f].apply(d, &mut choice);
+        ctx.factors[f].apply(d, &mut choice);
     }
     choice
 }
@@ -494,15 +501,16 @@ fn prefix_extensions(outs: &[Vec<u32>]) -> HashSet<u32> {
     lines
 }
 
-/// Enumerates the whole domain: exact, within the budget.
-fn whole(
+/// Enumerates the whole space: exact, within the budget.
+fn whole<'p>(
     graph: &ModuleGraph<'_>,
     ids: &LineIds,
     pass: &Pass,
-    domain: Domain,
+    space: Space<'p>,
+    factors: Vec<Factor>,
     base: Vec<u16>,
     count: BigUint,
-) -> Analysis {
+) -> Analysis<'p> {
     let regions = HashMap::new();
     let ctx = Ctx {
         composer: IdComposer {
@@ -513,11 +521,11 @@ fn whole(
         },
         template: None,
         pass,
-        domain: &domain,
+        factors: &factors,
         base,
     };
-    let factors: Vec<usize> = (0..domain.factors.len()).collect();
-    let radix: Vec<usize> = domain.factors.iter().map(|f| f.len()).collect();
+    let all: Vec<usize> = (0..factors.len()).collect();
+    let radix: Vec<usize> = factors.iter().map(|f| f.len()).collect();
     let rows: usize = radix.iter().product();
     let hashed = rows > HASH_ABOVE;
     let mut table = Table {
@@ -532,7 +540,7 @@ fn whole(
         let keys: Vec<Vec<u32>> = (start..end)
             .into_par_iter()
             .map(|row| {
-                let choice = choice_of(&ctx, &factors, &table.digits(row));
+                let choice = choice_of(&ctx, &all, &table.digits(row));
                 let lines = ctx.composer.compose(pass, &choice).lines;
                 if hashed { hash128(&lines) } else { lines }
             })
@@ -547,13 +555,14 @@ fn whole(
     let sets: Vec<usize> = (0..pass.sets.len()).collect();
     let distinct = BigUint::from(table.classes);
     Analysis {
-        domain: domain.clone(),
+        space,
+        factors,
         count: count.clone(),
         distinct,
         exact: true,
         method: Method::Enumeration,
         components: vec![Component {
-            factors,
+            factors: all,
             sets,
             size: count,
             table: Some(table),
@@ -573,4 +582,16 @@ fn hash128(lines: &[u32]) -> Vec<u32> {
         .chunks(4)
         .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
         .collect()
+}
+
+/// The first variant (first choice of every factor), or `None` when the space is empty.
+fn base(factors: &[Factor], sets: usize) -> Option<Vec<u16>> {
+    let mut choice = vec![0u16; sets];
+    for f in factors {
+        if f.len() == 0 {
+            return None;
+        }
+        f.apply(0, &mut choice);
+    }
+    Some(choice)
 }

@@ -24,7 +24,6 @@ pub mod chart;
 mod compose;
 mod deps;
 mod distinct;
-mod domain;
 mod findings;
 mod report;
 
@@ -33,10 +32,10 @@ use rayon::prelude::*;
 use crate::library::Library;
 use crate::materials::{self, Material, MaterialsError};
 use crate::shader::Pass;
+use crate::variants::Space;
 
 use compose::LineIds;
 use distinct::Limits;
-use domain::Domain;
 
 pub use report::{
     AuditReport, AuditTotals, AuditedPass, CodeGroup, Distinct, PassAudit, SetAudit, Together,
@@ -116,7 +115,7 @@ pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
         component: AuditOptions::default().component_limit,
         whole: 0,
     };
-    let full = distinct::analyze(&graph, &ids, pass, Domain::full(pass), limits);
+    let full = distinct::analyze(&graph, &ids, pass, Space::full(pass), limits);
     full.exact && full.distinct == full.count
 }
 
@@ -136,10 +135,10 @@ pub fn audit_passes(
         .collect()
 }
 
-fn audit_with(
+fn audit_with<'p>(
     lib: &Library,
     ids: &LineIds,
-    pass: &Pass,
+    pass: &'p Pass,
     options: &AuditOptions,
 ) -> Result<PassAudit, MaterialsError> {
     let graph = lib.module_graph();
@@ -154,19 +153,19 @@ fn audit_with(
             Some(materials::feature_combinations(pass, m)?)
         }
     };
-    let analyse = |d: Domain| distinct::analyze(&graph, ids, pass, d, limits);
-    let full = analyse(Domain::full(pass));
-    let skip_domain = Domain::after_skip(pass);
-    let after = if skip_domain == full.domain {
+    let analyse = |s: Space<'p>| distinct::analyze(&graph, ids, pass, s, limits);
+    let full = analyse(Space::full(pass));
+    let skip_space = Space::after_skip(pass);
+    let after = if skip_space == full.space {
         full.clone()
     } else {
-        analyse(skip_domain)
+        analyse(skip_space)
     };
-    let build_domain = Domain::build(pass, features);
-    let build = if build_domain == after.domain {
+    let build_space = Space::build_set(pass, features);
+    let build = if build_space == after.space {
         after.clone()
     } else {
-        analyse(build_domain)
+        analyse(build_space)
     };
     let used = options.materials.as_ref().map(|m| used_keywords(pass, m));
     Ok(report::assemble(pass, &full, &after, &build, used))

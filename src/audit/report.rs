@@ -429,8 +429,8 @@ fn set_row(
         kind: set.kind,
         options: set.options.iter().map(label).collect(),
         factor: n,
-        after_filtering: after.domain.options(s).len(),
-        build_set: build.domain.options(s).len(),
+        after_filtering: after.space.options(s).len(),
+        build_set: build.space.options(s).len(),
         distinct_factor,
         coupled_with,
         group,
@@ -457,7 +457,7 @@ fn groups(pass: &Pass, a: &Analysis) -> Vec<CodeGroup> {
         }
     }
     // Factors no code depends on: all their choices share code.
-    for (f, factor) in a.domain.factors.iter().enumerate() {
+    for (f, factor) in a.factors.iter().enumerate() {
         let sets = factor.sets();
         if factor.len() < 2 || sets.is_empty() || !sets.iter().all(|s| a.dead.contains(s)) {
             continue;
@@ -528,7 +528,7 @@ fn keywords_of(
 ) -> Vec<String> {
     let mut choice = vec![0u16; pass.sets.len()];
     for (&f, &d) in factors.iter().zip(digits) {
-        a.domain.factors[f].apply(d, &mut choice);
+        a.factors[f].apply(d, &mut choice);
     }
     sets.iter()
         .filter_map(|&s| pass.sets[s].options[choice[s] as usize].clone())

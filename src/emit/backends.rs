@@ -312,12 +312,62 @@ pub fn translate_variant(
     variant: &Variant<'_>,
     target: &Target,
 ) -> Result<Vec<Output>, TranslateError> {
+    let all = translate_all(
+        lib,
+        variant,
+        std::slice::from_ref(target),
+        &Options::default(),
+    )?;
+    Ok(all.outputs.into_iter().map(|(_, output)| output).collect())
+}
+
+/// The outputs of one variant ([`translate_all`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariantOutputs {
+    /// The variant's entry points.
+    pub entry_points: Vec<EntryPoint>,
+    /// Every output of every target, in target order.
+    pub outputs: Vec<(Target, Output)>,
+    /// For each target, in the order given: the flat slot of each binding ([`slots`]; empty
+    /// but for GLSL and MSL).
+    pub slots: Vec<Vec<Slot>>,
+}
+
+/// Every output of one variant for each target: [`compile`](crate::validate::compile) once,
+/// then [`translate`] with each target in turn. The first failure is returned.
+///
+/// ```
+/// use wgsl_variants::emit::backends::{Options, Target, translate_all};
+///
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// let all = translate_all(&lib, &v, &[Target::Wgsl, Target::SpirV], &Options::default()).unwrap();
+/// assert_eq!(all.outputs.len(), 2);
+/// assert!(all.slots.iter().all(Vec::is_empty));
+/// ```
+pub fn translate_all(
+    lib: &Library,
+    variant: &Variant<'_>,
+    targets: &[Target],
+    options: &Options,
+) -> Result<VariantOutputs, TranslateError> {
     let (module, info) = crate::validate::compile(lib, variant)?;
-    translate(&module, &info, target, &Options::default()).map_err(|error| {
-        TranslateError::Backend {
-            variant: variant.label(),
-            error,
-        }
+    let mut outputs = Vec::new();
+    let mut target_slots = Vec::with_capacity(targets.len());
+    for target in targets {
+        let written = translate(&module, &info, target, options).map_err(|error| {
+            TranslateError::Backend {
+                variant: variant.label(),
+                error,
+            }
+        })?;
+        outputs.extend(written.into_iter().map(|o| (*target, o)));
+        target_slots.push(slots(&module, &info, target));
+    }
+    Ok(VariantOutputs {
+        entry_points: entry_points(&module),
+        outputs,
+        slots: target_slots,
     })
 }
 
@@ -338,6 +388,10 @@ pub struct Slot {
 /// The GLSL or MSL slot of every binding the module's entry points use (other targets:
 /// empty). `info` must be `module`'s validation result.
 pub fn slots(module: &naga::Module, info: &naga::valid::ModuleInfo, target: &Target) -> Vec<Slot> {
+    // The other targets bind by group and binding: no need to collect the bindings.
+    if !matches!(target, Target::Glsl(_) | Target::Msl(..)) {
+        return Vec::new();
+    }
     let mut counters: BTreeMap<&'static str, u8> = BTreeMap::new();
     let mut next = |class: &'static str| {
         let n = counters.entry(class).or_insert(0);
@@ -605,7 +659,7 @@ pub struct Translation {
     pub entry_points: Vec<EntryPoint>,
 }
 
-/// [`compile`](crate::validate::compile)s a variant, then [`translate`]s it with every target.
+/// [`translate_all`], with every output as text (what `emit --target … --json` prints).
 ///
 /// ```
 /// use wgsl_variants::emit::backends::{Options, Target, translate_to_text};
@@ -621,29 +675,22 @@ pub fn translate_to_text(
     targets: &[Target],
     options: &Options,
 ) -> Result<Translation, TranslateError> {
-    let (module, info) = crate::validate::compile(lib, variant)?;
-    let mut outputs = Vec::new();
-    for target in targets {
-        let written = translate(&module, &info, target, options).map_err(|error| {
-            TranslateError::Backend {
-                variant: variant.label(),
-                error,
-            }
-        })?;
-        for output in written {
-            outputs.push(TextOutput {
-                target: target.to_string(),
-                entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
-                stage: output.entry_point.as_ref().map(|e| e.stage),
-                text: output.contents.as_text().unwrap_or_default().to_string(),
-            });
-        }
-    }
+    let all = translate_all(lib, variant, targets, options)?;
+    let outputs = all
+        .outputs
+        .into_iter()
+        .map(|(target, output)| TextOutput {
+            target: target.to_string(),
+            entry_point: output.entry_point.as_ref().map(|e| e.name.clone()),
+            stage: output.entry_point.as_ref().map(|e| e.stage),
+            text: output.contents.as_text().unwrap_or_default().to_string(),
+        })
+        .collect();
     Ok(Translation {
         shader: variant.pass.shader.clone(),
         pass: variant.pass.name.clone(),
         keywords: variant.keywords().into_iter().map(str::to_string).collect(),
         outputs,
-        entry_points: entry_points(&module),
+        entry_points: all.entry_points,
     })
 }

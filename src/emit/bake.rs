@@ -45,9 +45,9 @@ use crate::library::{Library, LoadError, Variant};
 use crate::materials::{self, MaterialsError};
 use crate::plan::{PlanError, PlanOptions, plan};
 
-use super::backends::{Contents, Options, Target, TranslateError, translate};
-use super::reflect::{Stage, entry_points};
-use crate::validate::compile;
+use super::backends::{Contents, Options, Target, TranslateError, translate_all};
+use super::reflect::Stage;
+use super::write_if_changed;
 
 /// What to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -302,26 +302,21 @@ fn bake_variant(
     targets: &[BakeTarget],
     options: &Options,
 ) -> Result<BakedVariant, TranslateError> {
-    let (module, info) = compile(lib, variant)?;
-    let backend = |target: Target| {
-        translate(&module, &info, &target, options)
-            .map(|mut outputs| outputs.remove(0).contents)
-            .map_err(|error| TranslateError::Backend {
-                variant: variant.label(),
-                error,
-            })
+    // WGSL always: its hash keys the variant. Each of these back ends writes one output.
+    let mut wanted = vec![Target::Wgsl];
+    if targets.contains(&BakeTarget::SpirV) {
+        wanted.push(Target::SpirV);
+    }
+    let all = translate_all(lib, variant, &wanted, options)?;
+    let mut contents = all.outputs.into_iter().map(|(_, o)| o.contents);
+    let wgsl = match contents.next() {
+        Some(Contents::Text(text)) => text,
+        _ => unreachable!("the WGSL back end writes one text"),
     };
-    let wgsl = match backend(Target::Wgsl)? {
-        Contents::Text(text) => text,
-        Contents::SpirV(_) => unreachable!("the WGSL back end writes text"),
-    };
-    let spirv = if targets.contains(&BakeTarget::SpirV) {
-        Some(backend(Target::SpirV)?.to_bytes())
-    } else {
-        None
-    };
+    let spirv = contents.next().map(|c| c.to_bytes());
     Ok(BakedVariant {
-        entry_points: entry_points(&module)
+        entry_points: all
+            .entry_points
             .into_iter()
             .map(|e| (e.name, e.stage))
             .collect(),
@@ -338,13 +333,6 @@ fn io(path: &Path, e: std::io::Error) -> BakeError {
         path: path.to_path_buf(),
         message: e.to_string(),
     }
-}
-
-fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), BakeError> {
-    if std::fs::read(path).is_ok_and(|old| old == bytes) {
-        return Ok(());
-    }
-    std::fs::write(path, bytes).map_err(|e| io(path, e))
 }
 
 fn lit(text: &str) -> String {
@@ -377,7 +365,7 @@ fn generate(
             return Ok(ident.clone());
         }
         let path = blob_dir.join(&name);
-        write_if_changed(&path, bytes)?;
+        write_if_changed(&path, bytes).map_err(|e| io(&path, e))?;
         let path_lit = lit(&path.display().to_string());
         let ident = format!("{}_{}", ext.to_uppercase(), blobs.len());
         if ext == "spv" {
@@ -485,6 +473,6 @@ fn generate(
         selection.len(),
     );
     let path = out_dir.join(file_name);
-    write_if_changed(&path, code.as_bytes())?;
+    write_if_changed(&path, code.as_bytes()).map_err(|e| io(&path, e))?;
     Ok(blobs.len())
 }

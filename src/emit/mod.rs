@@ -25,6 +25,8 @@ pub mod naga_oil;
 pub mod reflect;
 pub mod set;
 
+use std::path::Path;
+
 use crate::library::{Library, Variant};
 use crate::validate::{VariantError, validate_composed};
 
@@ -65,4 +67,13 @@ pub fn variant_source(
         keywords: variant.keywords().into_iter().map(str::to_string).collect(),
         wgsl: composed.text,
     })
+}
+
+/// Writes `bytes` to `path` unless the file already holds them, so that an unchanged output
+/// keeps its modification time (and does not make `cargo` or other build tools rebuild).
+pub(crate) fn write_if_changed(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    if std::fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    std::fs::write(path, bytes)
 }

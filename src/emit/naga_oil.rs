@@ -536,7 +536,7 @@ impl Translator<'_> {
             Expr::Name(n) | Expr::Defined(n) => Ok(ifdef(n, &then, &otherwise)),
             Expr::Not(e) => self.emit(e, otherwise, then),
             Expr::Neg(e) => match constant(e) {
-                Some(v) => self.emit(&Expr::Int(v.wrapping_neg()), then, otherwise),
+                Some(v) => self.emit(&Expr::Int(Expr::negate(v)), then, otherwise),
                 None => Err(self
                     .fail("unary `-` on a name cannot be expressed in naga_oil's dialect".into())),
             },
@@ -550,7 +550,7 @@ impl Translator<'_> {
             }
             Expr::Binary(op, a, b) => {
                 if let (Some(x), Some(y)) = (constant(a), constant(b)) {
-                    return Ok(if compare(*op, x, y) { then } else { otherwise });
+                    return Ok(if op.apply(x, y) != 0 { then } else { otherwise });
                 }
                 match (&**a, &**b) {
                     (Expr::Name(n), other) if constant(other).is_some() => {
@@ -588,7 +588,7 @@ impl Translator<'_> {
 fn constant(e: &Expr) -> Option<i64> {
     match e {
         Expr::Int(v) => Some(*v),
-        Expr::Neg(inner) => constant(inner).map(i64::wrapping_neg),
+        Expr::Neg(inner) => constant(inner).map(Expr::negate),
         _ => None,
     }
 }
@@ -613,19 +613,6 @@ fn is_boolean(e: &Expr) -> bool {
     )
 }
 
-fn compare(op: BinOp, a: i64, b: i64) -> bool {
-    match op {
-        BinOp::Eq => a == b,
-        BinOp::Ne => a != b,
-        BinOp::Lt => a < b,
-        BinOp::Le => a <= b,
-        BinOp::Gt => a > b,
-        BinOp::Ge => a >= b,
-        BinOp::And => a != 0 && b != 0,
-        BinOp::Or => a != 0 || b != 0,
-    }
-}
-
 /// `v op n` ⇔ `n flip(op) v`.
 fn flip(op: BinOp) -> BinOp {
     match op {
@@ -634,19 +621,6 @@ fn flip(op: BinOp) -> BinOp {
         BinOp::Gt => BinOp::Lt,
         BinOp::Ge => BinOp::Le,
         other => other,
-    }
-}
-
-fn op_text(op: BinOp) -> &'static str {
-    match op {
-        BinOp::Eq => "==",
-        BinOp::Ne => "!=",
-        BinOp::Lt => "<",
-        BinOp::Le => "<=",
-        BinOp::Gt => ">",
-        BinOp::Ge => ">=",
-        BinOp::And => "&&",
-        BinOp::Or => "||",
     }
 }
 
@@ -663,11 +637,11 @@ fn if_compare(name: &str, op: BinOp, value: i64, then: &str, otherwise: &str) ->
     // naga_oil evaluates `#if NAME op N` even in inactive blocks and fails when NAME is not a
     // def, so it cannot be guarded by `#ifdef NAME`: valued defines must always be given.
     if otherwise.is_empty() {
-        format!("#if {name} {} {value}\n{then}#endif\n", op_text(op))
+        format!("#if {name} {} {value}\n{then}#endif\n", op.symbol())
     } else {
         format!(
             "#if {name} {} {value}\n{then}#else\n{otherwise}#endif\n",
-            op_text(op)
+            op.symbol()
         )
     }
 }

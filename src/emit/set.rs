@@ -19,10 +19,10 @@ use crate::library::{Library, Variant};
 use crate::shader::Pass;
 use crate::variants::Choice;
 
-use super::backends::{Options, Output, Slot, Target, TranslateError, slots, translate};
-use super::reflect::{EntryPoint, Stage, entry_points};
+use super::backends::{Options, Output, Slot, Target, TranslateError, translate_all};
+use super::reflect::{EntryPoint, Stage};
+use super::write_if_changed;
 use crate::plan::Plan;
-use crate::validate::compile;
 
 /// One back end's name and version in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -162,46 +162,6 @@ pub fn variant_stem(keywords: &[&str], index: usize) -> String {
     }
 }
 
-/// The outputs of one variant.
-#[derive(Clone, Debug, PartialEq)]
-pub struct VariantOutputs {
-    /// The variant's entry points.
-    pub entry_points: Vec<EntryPoint>,
-    /// Every output of every target, in target order.
-    pub outputs: Vec<(Target, Output)>,
-}
-
-/// Every output of one variant for each target.
-pub fn emit_variant(
-    lib: &Library,
-    variant: &Variant<'_>,
-    targets: &[Target],
-    options: &Options,
-) -> Result<VariantOutputs, TranslateError> {
-    let (module, info) = compile(lib, variant)?;
-    let mut outputs = Vec::new();
-    for target in targets {
-        let written = translate(&module, &info, target, options).map_err(|error| {
-            TranslateError::Backend {
-                variant: variant.label(),
-                error,
-            }
-        })?;
-        outputs.extend(written.into_iter().map(|o| (*target, o)));
-    }
-    Ok(VariantOutputs {
-        entry_points: entry_points(&module),
-        outputs,
-    })
-}
-
-fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), SetError> {
-    if std::fs::read(path).is_ok_and(|old| old == bytes) {
-        return Ok(());
-    }
-    std::fs::write(path, bytes).map_err(|e| io_error(path, e))
-}
-
 /// Writes every variant of `selection` through every target into `dir` (created if needed;
 /// existing files are overwritten, others left alone) and `dir/manifest.json`. Returns the
 /// manifest. Nothing is written when any variant fails: every failure is returned.
@@ -236,23 +196,18 @@ pub fn write_set(
                 pass: job.pass,
                 choice: job.choice.clone(),
             };
-            let (module, info) = compile(lib, &variant)?;
-            let mut outputs = Vec::new();
-            for target in targets {
-                let written = translate(&module, &info, target, options).map_err(|error| {
-                    TranslateError::Backend {
-                        variant: variant.label(),
-                        error,
-                    }
-                })?;
-                let target_slots = slots(&module, &info, target);
-                outputs.extend(
-                    written
-                        .into_iter()
-                        .map(|o| (*target, o, target_slots.clone())),
-                );
-            }
-            Ok((entry_points(&module), outputs))
+            let all = translate_all(lib, &variant, targets, options)?;
+            let outputs = all
+                .outputs
+                .into_iter()
+                .map(|(target, o)| {
+                    // Equal targets have equal slots: the first one's will do.
+                    let t = targets.iter().position(|t| *t == target);
+                    let slots = t.map(|t| all.slots[t].clone()).unwrap_or_default();
+                    (target, o, slots)
+                })
+                .collect();
+            Ok((all.entry_points, outputs))
         })
         .collect();
     let failures: Vec<TranslateError> = results
@@ -295,7 +250,8 @@ pub fn write_set(
                 None => format!("{folder}/{stem}.{}", target.extension(None)),
             };
             let bytes = output.contents.to_bytes();
-            write_if_changed(&dir.join(&file), &bytes)?;
+            let path = dir.join(&file);
+            write_if_changed(&path, &bytes).map_err(|e| io_error(&path, e))?;
             files.push(ManifestFile {
                 target: target.name().to_string(),
                 entry_point,
@@ -327,6 +283,7 @@ pub fn write_set(
     };
     let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serializes");
     json.push('\n');
-    write_if_changed(&dir.join("manifest.json"), json.as_bytes())?;
+    let path = dir.join("manifest.json");
+    write_if_changed(&path, json.as_bytes()).map_err(|e| io_error(&path, e))?;
     Ok(manifest)
 }

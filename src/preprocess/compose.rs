@@ -1,6 +1,7 @@
 //! Composing one variant: walking the parsed tree with a keyword set's defines.
 
 use std::collections::HashMap;
+use std::ops::Range;
 
 use crate::diagnostic::SourceFiles;
 
@@ -45,85 +46,128 @@ pub fn compose(
     defines: HashMap<Box<str>, i64>,
     with_map: bool,
 ) -> Composed {
-    let mut c = Composer {
+    let mut sink = TextSink {
         graph,
-        defines,
-        included: vec![false; graph.modules.len()],
         with_map,
         out: Composed::default(),
     };
-    c.out.text.reserve(16 * 1024);
-    c.walk(module, body);
-    c.out
+    sink.out.text.reserve(16 * 1024);
+    walk(graph, module, body, defines, &mut sink);
+    sink.out
 }
 
-struct Composer<'g, 'a> {
+/// What a composition walk does with what it takes: the composer copies text, the audit
+/// records line ids. [`walk`] is generic over it, so each sink gets its own monomorphized
+/// walk with no dynamic dispatch per line.
+pub(crate) trait Sink {
+    /// Lines `run` (indices into [`ParsedModule::lines`]) of module `module` are emitted.
+    fn text(&mut self, module: usize, run: &Range<u32>);
+
+    /// `node`, an `#if` or an `#import`, is about to be walked. A sink that returns `Some(key)`
+    /// is called back with [`Sink::end`] once everything the node emits has been emitted.
+    fn begin(&mut self, _node: &Node) -> Option<usize> {
+        None
+    }
+
+    /// The output of the node that [`Sink::begin`] returned `key` for is complete.
+    fn end(&mut self, _key: usize) {}
+}
+
+enum Frame<'n> {
+    /// Nodes left to walk in a module.
+    Nodes(usize, &'n [Node]),
+    /// The end of the output of a node a sink asked about.
+    End(usize),
+}
+
+/// The composition walk: `body` (nodes of module `module`) with `defines` in effect at the
+/// start, in output order. Each module is emitted once, at its first import; later imports of
+/// it are no-ops. Directive lines produce no output.
+///
+/// Walks with an explicit stack: nesting depth (`#if` inside imports inside `#if` …) is
+/// bounded by limits, but not by the thread's stack size.
+pub(crate) fn walk<S: Sink>(
+    graph: &ModuleGraph<'_>,
+    module: usize,
+    body: &[Node],
+    mut defines: HashMap<Box<str>, i64>,
+    sink: &mut S,
+) {
+    let mut included = vec![false; graph.modules.len()];
+    let mut stack = vec![Frame::Nodes(module, body)];
+    while let Some(frame) = stack.pop() {
+        let (module, nodes) = match frame {
+            Frame::End(key) => {
+                sink.end(key);
+                continue;
+            }
+            Frame::Nodes(module, nodes) => (module, nodes),
+        };
+        let Some((node, rest)) = nodes.split_first() else {
+            continue;
+        };
+        stack.push(Frame::Nodes(module, rest));
+        if matches!(node, Node::If(_) | Node::Import(_))
+            && let Some(key) = sink.begin(node)
+        {
+            stack.push(Frame::End(key));
+        }
+        match node {
+            Node::Text(run) => sink.text(module, run),
+            Node::If(cond) => {
+                let lookup = |n: &str| defines.get(n).copied();
+                let taken = cond
+                    .branches
+                    .iter()
+                    .find(|(e, _)| e.eval(&lookup) != 0)
+                    .map(|(_, b)| b);
+                stack.push(Frame::Nodes(module, taken.unwrap_or(&cond.otherwise)));
+            }
+            Node::Define { name, value } => {
+                defines.insert(name.clone(), *value);
+            }
+            Node::Undef { name } => {
+                defines.remove(name);
+            }
+            Node::Import(index) => {
+                let target = graph.resolved[module][*index];
+                if !included[target] {
+                    included[target] = true;
+                    stack.push(Frame::Nodes(target, &graph.modules[target].body));
+                }
+            }
+        }
+    }
+}
+
+/// The composer's sink: copies the lines, keeping the line map unless lean.
+struct TextSink<'g, 'a> {
     graph: &'g ModuleGraph<'a>,
-    defines: HashMap<Box<str>, i64>,
-    included: Vec<bool>,
     with_map: bool,
     out: Composed,
 }
 
-impl Composer<'_, '_> {
-    /// Walks with an explicit stack: nesting depth (`#if` inside imports inside `#if` …) is
-    /// bounded by limits, but not by the thread's stack size.
-    fn walk(&mut self, module: usize, nodes: &[Node]) {
-        let graph = self.graph;
-        let mut stack: Vec<(usize, &[Node])> = vec![(module, nodes)];
-        while let Some((module, nodes)) = stack.pop() {
-            let Some((node, rest)) = nodes.split_first() else {
+impl Sink for TextSink<'_, '_> {
+    fn text(&mut self, module: usize, run: &Range<u32>) {
+        let parsed = &self.graph.modules[module];
+        let text = self.graph.files.text(parsed.file);
+        let range = run.start as usize..run.end as usize;
+        for (line, &comment_only) in parsed.lines[range.clone()]
+            .iter()
+            .zip(&parsed.comment_only[range])
+        {
+            if !self.with_map && comment_only {
                 continue;
-            };
-            stack.push((module, rest));
-            let parsed = &graph.modules[module];
-            match node {
-                Node::Text(run) => {
-                    let text = graph.files.text(parsed.file);
-                    for (line, &comment_only) in parsed.lines[run.start as usize..run.end as usize]
-                        .iter()
-                        .zip(&parsed.comment_only[run.start as usize..run.end as usize])
-                    {
-                        if !self.with_map && comment_only {
-                            continue;
-                        }
-                        if self.with_map {
-                            self.out.map.push(
-                                self.out.text.len(),
-                                parsed.file,
-                                line.start as usize,
-                            );
-                        }
-                        self.out
-                            .text
-                            .push_str(&text[line.start as usize..line.end as usize]);
-                        self.out.text.push('\n');
-                    }
-                }
-                Node::If(cond) => {
-                    let defines = &self.defines;
-                    let lookup = |n: &str| defines.get(n).copied();
-                    let taken = cond
-                        .branches
-                        .iter()
-                        .find(|(e, _)| e.eval(&lookup) != 0)
-                        .map(|(_, b)| b);
-                    stack.push((module, taken.unwrap_or(&cond.otherwise)));
-                }
-                Node::Define { name, value } => {
-                    self.defines.insert(name.clone(), *value);
-                }
-                Node::Undef { name } => {
-                    self.defines.remove(name);
-                }
-                Node::Import(index) => {
-                    let target = graph.resolved[module][*index];
-                    if !self.included[target] {
-                        self.included[target] = true;
-                        stack.push((target, &graph.modules[target].body));
-                    }
-                }
             }
+            if self.with_map {
+                self.out
+                    .map
+                    .push(self.out.text.len(), parsed.file, line.start as usize);
+            }
+            self.out
+                .text
+                .push_str(&text[line.start as usize..line.end as usize]);
+            self.out.text.push('\n');
         }
     }
 }

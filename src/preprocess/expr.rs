@@ -47,6 +47,44 @@ pub enum BinOp {
     Ge,
 }
 
+impl BinOp {
+    /// The value of `a op b`: 0 or 1. The one definition of the operators, for every
+    /// evaluator of expressions (composition, the audit's static walk, the naga_oil export).
+    ///
+    /// ```
+    /// use wgsl_variants::preprocess::expr::BinOp;
+    /// assert_eq!(BinOp::Le.apply(2, 3), 1);
+    /// assert_eq!(BinOp::Or.apply(0, -1), 1);
+    /// assert_eq!(BinOp::And.apply(2, 0), 0);
+    /// ```
+    pub fn apply(self, a: i64, b: i64) -> i64 {
+        (match self {
+            BinOp::Or => a != 0 || b != 0,
+            BinOp::And => a != 0 && b != 0,
+            BinOp::Eq => a == b,
+            BinOp::Ne => a != b,
+            BinOp::Lt => a < b,
+            BinOp::Le => a <= b,
+            BinOp::Gt => a > b,
+            BinOp::Ge => a >= b,
+        }) as i64
+    }
+
+    /// The operator as written: `||`, `&&`, `==`, `!=`, `<`, `<=`, `>`, `>=`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Or => "||",
+            BinOp::And => "&&",
+            BinOp::Eq => "==",
+            BinOp::Ne => "!=",
+            BinOp::Lt => "<",
+            BinOp::Le => "<=",
+            BinOp::Gt => ">",
+            BinOp::Ge => ">=",
+        }
+    }
+}
+
 impl Expr {
     /// Evaluates with `value(name)` giving each defined name's value.
     ///
@@ -62,27 +100,28 @@ impl Expr {
             Expr::Int(v) => *v,
             Expr::Name(n) => value(n).unwrap_or(0),
             Expr::Defined(n) => value(n).is_some() as i64,
-            Expr::Not(e) => (e.eval(value) == 0) as i64,
-            Expr::Neg(e) => e.eval(value).wrapping_neg(),
+            Expr::Not(e) => Expr::logical_not(e.eval(value)),
+            Expr::Neg(e) => Expr::negate(e.eval(value)),
             Expr::Binary(op, a, b) => {
                 let a = a.eval(value);
-                match op {
-                    BinOp::Or => (a != 0 || b.eval(value) != 0) as i64,
-                    BinOp::And => (a != 0 && b.eval(value) != 0) as i64,
-                    _ => {
-                        let b = b.eval(value);
-                        (match op {
-                            BinOp::Eq => a == b,
-                            BinOp::Ne => a != b,
-                            BinOp::Lt => a < b,
-                            BinOp::Le => a <= b,
-                            BinOp::Gt => a > b,
-                            _ => a >= b,
-                        }) as i64
-                    }
+                // `||` and `&&` short-circuit: a decided left operand leaves `b` unread.
+                match (op, a != 0) {
+                    (BinOp::Or, true) => 1,
+                    (BinOp::And, false) => 0,
+                    _ => op.apply(a, b.eval(value)),
                 }
             }
         }
+    }
+
+    /// The value of `!v`: 1 when `v` is 0, else 0.
+    pub fn logical_not(v: i64) -> i64 {
+        (v == 0) as i64
+    }
+
+    /// The value of `-v` (wrapping: `-i64::MIN` is `i64::MIN`).
+    pub fn negate(v: i64) -> i64 {
+        v.wrapping_neg()
     }
 
     /// Calls `f` on every name the expression reads (names and `defined` operands).

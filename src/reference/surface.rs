@@ -55,8 +55,9 @@ pub enum SmoothnessSource {
     Metallic,
 }
 
-/// The keywords of one variant of the bundled shader. `Default` is every set at "none".
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// The keywords of one variant of the bundled shader. `Default` is every set at "none"
+/// ([`Keywords::NONE`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Keywords {
     /// Rendering mode; the Deferred pass only knows `Opaque` and `Cutout` (it treats `Fade` and
     /// `Transparent`, which have no deferred variant, as `Opaque`).
@@ -119,7 +120,52 @@ pub const KEYWORD_NAMES: [&str; 14] = [
     "UNITY_ENABLE_REFLECTION_BUFFERS",
 ];
 
+impl Default for Keywords {
+    fn default() -> Keywords {
+        Keywords::NONE
+    }
+}
+
 impl Keywords {
+    /// Every set at "none": what `Default` gives, usable in constants.
+    pub const NONE: Keywords = Keywords {
+        rendering: RenderingMode::Opaque,
+        metallic_map: false,
+        smoothness: SmoothnessSource::Uniform,
+        normal_map: false,
+        occlusion_map: false,
+        emission_map: false,
+        detail_mask: false,
+        detail_albedo: false,
+        detail_normal: false,
+        hdr: false,
+        reflection_buffers: false,
+    };
+
+    /// Every texture map on, smoothness from the metallic map's alpha; opaque, LDR, no
+    /// reflection buffers. The GPU checks and benches start from it; its names come from
+    /// [`Keywords::names`], so the keyword list is written once ([`KEYWORD_NAMES`]).
+    ///
+    /// ```
+    /// use wgsl_variants::reference::surface::Keywords;
+    /// assert_eq!(
+    ///     Keywords::EVERY_MAP.names().join(" "),
+    ///     "_METALLIC_MAP _SMOOTHNESS_METALLIC _NORMAL_MAP _OCCLUSION_MAP _EMISSION_MAP \
+    ///      _DETAIL_MASK _DETAIL_ALBEDO_MAP _DETAIL_NORMAL_MAP"
+    /// );
+    /// ```
+    pub const EVERY_MAP: Keywords = Keywords {
+        metallic_map: true,
+        smoothness: SmoothnessSource::Metallic,
+        normal_map: true,
+        occlusion_map: true,
+        emission_map: true,
+        detail_mask: true,
+        detail_albedo: true,
+        detail_normal: true,
+        ..Keywords::NONE
+    };
+
     /// The keywords from the names of the active ones (Unity spelling).
     ///
     /// Names made only of underscores (`_`, `__`, …) mean "none of this set" and are ignored.

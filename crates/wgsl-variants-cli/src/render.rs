@@ -42,7 +42,7 @@ pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
             .map(|k| k.trim())
             .filter(|k| !k.is_empty())
             .collect(),
-        None if (shader, pass) == ("standard", "Deferred") => pictures::DEFAULT_KEYWORDS.to_vec(),
+        None if (shader, pass) == ("standard", "Deferred") => pictures::DEFAULT_KEYWORDS.names(),
         None => Vec::new(),
     };
     let gpu = GpuContext::new(args.adapter.as_deref())?;

@@ -9,6 +9,7 @@ use test_support as common;
 
 use serde_json::json;
 use wgsl_variants::Library;
+use wgsl_variants::reference::surface::Keywords;
 use wgsl_variants_gpu::check::TestScene;
 use wgsl_variants_gpu::check::passes::standard_job;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
@@ -86,16 +87,7 @@ fn main() {
         }
     };
     let lib = Library::bundled().expect("bundled library");
-    let keywords = [
-        "_METALLIC_MAP",
-        "_SMOOTHNESS_METALLIC",
-        "_NORMAL_MAP",
-        "_OCCLUSION_MAP",
-        "_EMISSION_MAP",
-        "_DETAIL_MASK",
-        "_DETAIL_ALBEDO_MAP",
-        "_DETAIL_NORMAL_MAP",
-    ];
+    let keywords = Keywords::EVERY_MAP.names();
     let variant = lib
         .variant("standard", "Deferred", &keywords)
         .expect("variant");

@@ -1,4 +1,6 @@
-//! Colour-target formats the harness can render into and decode, and an f16 → f32 converter.
+//! Colour-target formats the harness can render into and decode.
+
+use wgsl_variants::reference::quantize::f16_bits_to_f32;
 
 /// A colour-target format supported by the render harness and its decoders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -108,7 +110,7 @@ impl TargetFormat {
                 std::array::from_fn(|i| raw[i] as f32 / max[i] as f32)
             }
             // Channels hold 16-bit patterns, so the truncation is lossless.
-            TargetFormat::Rgba16Float => std::array::from_fn(|i| f16_to_f32(raw[i] as u16)),
+            TargetFormat::Rgba16Float => std::array::from_fn(|i| f16_bits_to_f32(raw[i] as u16)),
             TargetFormat::Rgba32Float => raw.map(f32::from_bits),
         }
     }
@@ -132,29 +134,11 @@ impl TargetFormat {
     }
 }
 
-/// Converts IEEE 754 half-precision bits to an `f32`, exactly.
-///
-/// Handles signed zeros, subnormals, infinities and NaNs (the NaN payload is kept in the
-/// high mantissa bits).
-pub fn f16_to_f32(bits: u16) -> f32 {
-    let negative = bits & 0x8000 != 0;
-    let exponent = u32::from((bits >> 10) & 0x1f);
-    let mantissa = u32::from(bits & 0x03ff);
-    let sign = if negative { 0x8000_0000u32 } else { 0 };
-    match exponent {
-        0 => {
-            // Zero or subnormal: mantissa * 2^-24, exact in f32.
-            let magnitude = mantissa as f32 * f32::from_bits(0x3380_0000);
-            if negative { -magnitude } else { magnitude }
-        }
-        0x1f => f32::from_bits(sign | 0x7f80_0000 | (mantissa << 13)),
-        _ => f32::from_bits(sign | ((exponent + 112) << 23) | (mantissa << 13)),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    // The harness decodes with the library's converter: these pin it for render targets.
+    use wgsl_variants::reference::quantize::f16_bits_to_f32 as f16_to_f32;
 
     #[test]
     fn f16_normal_values() {

@@ -40,7 +40,7 @@ pub use compile::{compile_scoped, wgsl_module};
 pub use compute::run_compute;
 pub use context::{DEFAULT_TIMEOUT, GpuContext, error_message};
 pub use error::{CheckError, GpuError};
-pub use format::{TargetFormat, f16_to_f32};
+pub use format::TargetFormat;
 pub use layout::{
     create_bind_group_layouts, create_pipeline_layout, layout_entries, layout_entry, stage_flags,
     storage_format, view_dimension,

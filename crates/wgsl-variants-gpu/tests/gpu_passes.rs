@@ -193,7 +193,7 @@ fn pictures_are_written() {
         &scene,
         "standard",
         "Deferred",
-        pictures::DEFAULT_KEYWORDS,
+        &pictures::DEFAULT_KEYWORDS.names(),
     )
     .unwrap();
     let names: Vec<&str> = pics.iter().map(|p| p.name.as_str()).collect();

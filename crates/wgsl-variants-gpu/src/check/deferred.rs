@@ -25,7 +25,8 @@ use wgsl_variants::reference::gbuffer::{GBufferTexel, Rt3Texel, decode_normal};
 use wgsl_variants::reference::probe::{box_project_grown, composite, draw_order, falloff};
 use wgsl_variants::reference::quantize::unorm_to_f32;
 use wgsl_variants::reference::surface::{
-    Keywords, final_ldr, reflection_probe_pixel, reflections_add, view_and_reflection,
+    Keywords, SmoothnessSource, final_ldr, reflection_probe_pixel, reflections_add,
+    view_and_reflection,
 };
 use wgsl_variants::reference::tolerance::f16_within;
 use wgsl_variants::variants::Choice;
@@ -33,23 +34,17 @@ use wgsl_variants::variants::Choice;
 /// The keywords of the G-buffers the deferred chain starts from (with
 /// `UNITY_ENABLE_REFLECTION_BUFFERS`, so RT3 holds no indirect specular yet): every map on, and
 /// a plain material whose smoothness comes from the albedo's alpha.
-pub const CHAIN_INPUTS: [&[&str]; 2] = [
-    &[
-        "_METALLIC_MAP",
-        "_SMOOTHNESS_METALLIC",
-        "_NORMAL_MAP",
-        "_OCCLUSION_MAP",
-        "_EMISSION_MAP",
-        "_DETAIL_MASK",
-        "_DETAIL_ALBEDO_MAP",
-        "_DETAIL_NORMAL_MAP",
-        "UNITY_ENABLE_REFLECTION_BUFFERS",
-    ],
-    &[
-        "_SMOOTHNESS_ALBEDO",
-        "_NORMAL_MAP",
-        "UNITY_ENABLE_REFLECTION_BUFFERS",
-    ],
+pub const CHAIN_INPUTS: [Keywords; 2] = [
+    Keywords {
+        reflection_buffers: true,
+        ..Keywords::EVERY_MAP
+    },
+    Keywords {
+        smoothness: SmoothnessSource::Albedo,
+        normal_map: true,
+        reflection_buffers: true,
+        ..Keywords::NONE
+    },
 ];
 
 /// Side of the synthetic RT3 the final pass decodes: 32 × 32 texels cover every 10-bit value.
@@ -503,7 +498,7 @@ pub fn check_deferred_chain(
                 if !wants("Reflections") && !wants("Add") && (hdr || n > 0) {
                     continue; // Final alone needs one LDR RT3
                 }
-                let mut kw: Vec<&str> = keywords.to_vec();
+                let mut kw: Vec<&str> = keywords.names();
                 if hdr {
                     kw.push("UNITY_HDR_ON");
                 }

@@ -13,10 +13,12 @@ use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
 use wgsl_variants::reference::ldr::ldr_decode;
 use wgsl_variants::reference::quantize::unorm;
+use wgsl_variants::reference::surface::Keywords;
 
 /// The keyword set the pictures use by default: `standard/Deferred` with every map on and the
-/// per-pixel reflection probes, LDR (so the final frame goes through the final pass).
-pub const DEFAULT_KEYWORDS: &[&str] = super::deferred::CHAIN_INPUTS[0];
+/// per-pixel reflection probes, LDR (so the final frame goes through the final pass); its
+/// names are `DEFAULT_KEYWORDS.names()`.
+pub const DEFAULT_KEYWORDS: Keywords = super::deferred::CHAIN_INPUTS[0];
 
 /// One picture: a name (the file stem) and 8-bit RGBA pixels, rows top to bottom.
 #[derive(Clone, Debug, PartialEq, Eq)]
