@@ -23,14 +23,25 @@
 //! # let _ = module;
 //! ```
 //!
-//! Layout: [`source`] reads files; [`preprocess`] parses directives and composes a variant;
-//! [`keywords`], [`shader`], [`variants`], [`lookup`] and [`materials`] model Unity's keyword
-//! semantics; [`library`] ties them together; [`validate`] runs naga; [`diagnostic`] renders
-//! errors.
+//! ## The pipeline, one module per stage
+//!
+//! 1. [`source`] reads files; [`preprocess`] splits WGSL lines, parses directives and composes
+//!    a variant; [`library`] loads and links a tree ([`LoadError`] holds every problem, typed).
+//! 2. [`keywords`], [`shader`], [`variants`] ([`Space`], [`Choice`]), [`lookup`] and
+//!    [`materials`] model Unity's keyword semantics; [`plan`] chooses what a command builds.
+//! 3. [`validate`] runs naga ([`cache`] remembers valid texts); [`audit`] measures a variant
+//!    explosion without building anything.
+//! 4. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
+//!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests.
+//! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts, [`reference`](mod@reference) is the
+//!    CPU math of the bundled library.
+//!
+//! `docs/api.md` in the repository lists the main items of each stage.
 
 #![deny(missing_docs)]
 
 pub mod audit;
+pub mod bake;
 pub mod cache;
 pub mod data_file;
 pub mod diagnostic;
@@ -43,6 +54,7 @@ pub mod materials;
 pub mod plan;
 pub mod preprocess;
 pub mod reference;
+pub mod reflect;
 pub mod shader;
 pub mod snapshot;
 pub mod source;
@@ -50,8 +62,6 @@ pub mod validate;
 pub mod variants;
 
 pub use diagnostic::{Diagnostic, Location, SourceFiles, Span};
-/// The `build.rs` API ([`emit::bake`]) and binding reflection ([`emit::reflect`]).
-pub use emit::{bake, reflect};
 pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use shader::{Pass, Shader};

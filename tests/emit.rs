@@ -10,7 +10,7 @@ use wgsl_variants::emit::backends::{
     Contents, Options, Target, parse_glsl_version, parse_msl_version, parse_shader_model, slots,
     translate,
 };
-use wgsl_variants::emit::reflect::Stage;
+use wgsl_variants::reflect::Stage;
 use wgsl_variants::{Library, Space, Variant};
 
 fn targets() -> Vec<Target> {
@@ -356,7 +356,7 @@ fn outputs_do_not_depend_on_the_build_or_run() {
 // ---------------------------------------------------------------- bake
 mod prelude_compiles {
     // The fixed part of the generated file, with an empty table: it must compile on its own.
-    include!("../src/emit/bake_prelude.rs");
+    include!("../src/bake/prelude.rs");
     static VARIANTS: &[Variant] = &[];
     static PASSES: &[Pass] = &[];
 

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use wgsl_variants::emit::export::{ExportError, export_prefixed};
 use wgsl_variants::emit::naga_oil::{NagaOilModule, export, export_all};
-use wgsl_variants::emit::reflect::{Binding, reflect_module};
+use wgsl_variants::reflect::{Binding, reflect_module};
 use wgsl_variants::snapshot::covering_set;
 use wgsl_variants::{Library, Space, Variant};
 

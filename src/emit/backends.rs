@@ -1,7 +1,7 @@
 //! Every naga back end for a validated variant: WGSL, SPIR-V, GLSL, HLSL and MSL.
 //!
 //! A variant is composed, validated, compacted (unused types, constants and functions
-//! removed) and validated again ([`compile`]); the back ends write that module. Resource
+//! removed) and validated again ([`compile`](crate::validate::compile)); the back ends write that module. Resource
 //! slots follow fixed rules so that every output of a variant binds the same way:
 //!
 //! - WGSL and SPIR-V keep `@group`/`@binding` (SPIR-V: `DescriptorSet`/`Binding`).
@@ -21,7 +21,7 @@ use std::fmt;
 use crate::library::{Library, Variant};
 use crate::validate::VariantError;
 
-use super::reflect::{BindingKind, EntryPoint, Stage, bindings, entry_points};
+use crate::reflect::{BindingKind, EntryPoint, Stage, bindings, entry_points};
 
 /// A naga back end and its language version.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,10 +2,9 @@
 //!
 //! - [`backends`]: every naga back end (WGSL, SPIR-V, GLSL, HLSL, MSL) for one variant.
 //! - [`set`]: a whole build set written to a folder with a `manifest.json`.
-//! - [`reflect`]: the bind groups and bindings a variant uses, from naga's IR (and, with the
-//!   `gpu` feature, as wgpu `BindGroupLayoutEntry` values).
-//! - [`bake`]: a `build.rs` API that validates a build set at compile time and generates Rust
-//!   with the baked variants and a strict lookup.
+//!
+//! Reflection ([`crate::reflect`]) and `build.rs` baking ([`crate::bake`]) are stages of their
+//! own that use these back ends.
 //! - [`export`]: one module (with its imports) on its own, as self-contained WGSL under a name
 //!   prefix, or in naga_oil's dialect ([`naga_oil`]).
 //!
@@ -19,10 +18,8 @@
 //! ```
 
 pub mod backends;
-pub mod bake;
 pub mod export;
 pub mod naga_oil;
-pub mod reflect;
 pub mod set;
 
 use std::path::Path;

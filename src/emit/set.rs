@@ -20,9 +20,9 @@ use crate::shader::Pass;
 use crate::variants::Choice;
 
 use super::backends::{Options, Output, Slot, Target, TranslateError, translate_all};
-use super::reflect::{EntryPoint, Stage};
 use super::write_if_changed;
 use crate::plan::Plan;
+use crate::reflect::{EntryPoint, Stage};
 
 /// One back end's name and version in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]

@@ -45,9 +45,9 @@ use crate::library::{Library, LoadError, Variant};
 use crate::materials::{self, MaterialsError};
 use crate::plan::{PlanError, PlanOptions, plan};
 
-use super::backends::{Contents, Options, Target, TranslateError, translate_all};
-use super::reflect::Stage;
-use super::write_if_changed;
+use crate::emit::backends::{Contents, Options, Target, TranslateError, translate_all};
+use crate::emit::write_if_changed;
+use crate::reflect::Stage;
 
 /// What to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -173,7 +173,7 @@ impl Bake {
     }
 
     /// Keeps WGSL's coordinate space in SPIR-V (see
-    /// [`Options::keep_coordinate_space`](super::backends::Options)); set it when the SPIR-V
+    /// [`Options::keep_coordinate_space`](crate::emit::backends::Options)); set it when the SPIR-V
     /// is given back to wgpu.
     pub fn keep_coordinate_space(mut self, keep: bool) -> Bake {
         self.options.keep_coordinate_space = keep;
@@ -326,7 +326,7 @@ fn bake_variant(
     })
 }
 
-const PRELUDE: &str = include_str!("bake_prelude.rs");
+const PRELUDE: &str = include_str!("prelude.rs");
 
 fn io(path: &Path, e: std::io::Error) -> BakeError {
     BakeError::Io {
