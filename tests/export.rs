@@ -1,12 +1,10 @@
 //! Single modules on their own: prefixed self-contained WGSL, and naga_oil's dialect composed
 //! with naga_oil itself (the release on naga 30, 0.23) and validated by naga.
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 use std::time::Instant;
 
-use naga_oil::compose::{
-    ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
-};
+use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue};
 use rayon::prelude::*;
 
 use wgsl_variants::emit::export::{ExportError, export_prefixed};
@@ -146,27 +144,7 @@ fn prefixed_export_errors_are_clear() {
 // ---------------------------------------------------------------- naga_oil
 
 fn composer_with(modules: &[NagaOilModule]) -> Composer {
-    let mut composer = Composer::default();
-    for m in modules {
-        composer
-            .add_composable_module(ComposableModuleDescriptor {
-                source: &m.source,
-                file_path: &format!("{}.wgsl", m.path),
-                language: ShaderLanguage::Wgsl,
-                as_name: None,
-                additional_imports: &[],
-                shader_defs: HashMap::new(),
-            })
-            .unwrap_or_else(|e| {
-                panic!(
-                    "{}: {}\n{}",
-                    m.path,
-                    e.emit_to_string(&Composer::default()),
-                    m.source
-                )
-            });
-    }
-    composer
+    test_support::naga_oil_composer(modules).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn compose(

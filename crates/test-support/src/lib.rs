@@ -151,7 +151,7 @@ impl NagaOil {
     ) -> Option<NagaOil> {
         use naga_oil::compose::ShaderDefValue;
         let modules = wgsl_variants::emit::naga_oil::export_all(lib, Some("wv")).ok()?;
-        let composer = naga_oil_composer(&modules)?;
+        let composer = naga_oil_composer(&modules).ok()?;
         let program = modules
             .iter()
             .find(|m| m.path == "standard/my_lighting")?
@@ -235,10 +235,11 @@ pub fn naga_oil_cold(lib: &Library, rounds: usize) -> Option<Duration> {
     }))
 }
 
-/// A new naga_oil Composer with every exported module registered (`None` if one is refused).
-fn naga_oil_composer(
+/// A new naga_oil Composer with every exported module registered, or the first module that
+/// naga_oil refuses with naga_oil's error rendered.
+pub fn naga_oil_composer(
     modules: &[wgsl_variants::emit::naga_oil::NagaOilModule],
-) -> Option<naga_oil::compose::Composer> {
+) -> Result<naga_oil::compose::Composer, String> {
     use naga_oil::compose::{ComposableModuleDescriptor, Composer, ShaderLanguage};
     let mut composer = Composer::default();
     for m in modules {
@@ -251,7 +252,10 @@ fn naga_oil_composer(
                 additional_imports: &[],
                 shader_defs: Default::default(),
             })
-            .ok()?;
+            .map_err(|e| {
+                let rendered = e.emit_to_string(&Composer::default());
+                format!("{}: {rendered}\n{}", m.path, m.source)
+            })?;
     }
-    Some(composer)
+    Ok(composer)
 }
