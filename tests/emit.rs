@@ -1,5 +1,12 @@
 //! Every naga back end for every variant of the bundled library, `emit --out` with its
-//! manifest, and the build.rs API (`wgsl_variants::bake`).
+//! manifest, and the build.rs API (`wgsl_variants::bake`). Needs every back end (the default
+//! features).
+#![cfg(all(
+    feature = "spv-out",
+    feature = "glsl-out",
+    feature = "hlsl-out",
+    feature = "msl-out"
+))]
 
 use rayon::prelude::*;
 use std::path::Path;

@@ -3,6 +3,7 @@
 //! set to variant.
 //!
 //! ```no_run
+//! # #[cfg(feature = "spv-out")] {
 //! // build.rs of the consuming crate ([build-dependencies] wgsl-variants)
 //! use wgsl_variants::bake::{Bake, BakeTarget};
 //!
@@ -11,6 +12,7 @@
 //!     .target(BakeTarget::Wgsl)
 //!     .target(BakeTarget::SpirV)
 //!     .run(); // writes $OUT_DIR/wgsl_variants.rs, or fails the build with diagnostics
+//! # }
 //! ```
 //!
 //! ```ignore
@@ -54,7 +56,8 @@ use crate::reflect::Stage;
 pub enum BakeTarget {
     /// The canonical WGSL: validated, compacted, written by naga (`Variant::wgsl`).
     Wgsl,
-    /// SPIR-V 1.0 words (`Variant::spirv`).
+    /// SPIR-V 1.0 words (`Variant::spirv`; feature `spv-out`).
+    #[cfg(feature = "spv-out")]
     SpirV,
 }
 
@@ -303,7 +306,9 @@ fn bake_variant(
     options: &Options,
 ) -> Result<BakedVariant, TranslateError> {
     // WGSL always: its hash keys the variant. Each of these back ends writes one output.
+    #[cfg_attr(not(feature = "spv-out"), allow(unused_mut))]
     let mut wanted = vec![Target::Wgsl];
+    #[cfg(feature = "spv-out")]
     if targets.contains(&BakeTarget::SpirV) {
         wanted.push(Target::SpirV);
     }

@@ -15,26 +15,30 @@
 //!
 //! Outputs are byte-identical across runs and thread counts.
 
-use std::collections::BTreeMap;
 use std::fmt;
 
 use crate::library::{Library, Variant};
 use crate::validate::VariantError;
 
-use crate::reflect::{BindingKind, EntryPoint, Stage, bindings, entry_points};
+use crate::reflect::{EntryPoint, Stage, entry_points};
 
 /// A naga back end and its language version.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target {
     /// WGSL, written by naga from the compacted module.
     Wgsl,
-    /// SPIR-V 1.0 words.
+    /// SPIR-V 1.0 words (feature `spv-out`).
+    #[cfg(feature = "spv-out")]
     SpirV,
-    /// GLSL, one output per entry point.
+    /// GLSL, one output per entry point (feature `glsl-out`).
+    #[cfg(feature = "glsl-out")]
     Glsl(naga::back::glsl::Version),
-    /// HLSL for a shader model, every entry point in one output.
+    /// HLSL for a shader model, every entry point in one output (feature `hlsl-out`).
+    #[cfg(feature = "hlsl-out")]
     Hlsl(naga::back::hlsl::ShaderModel),
-    /// Metal Shading Language `(major, minor)`, every entry point in one output.
+    /// Metal Shading Language `(major, minor)`, every entry point in one output (feature
+    /// `msl-out`).
+    #[cfg(feature = "msl-out")]
     Msl(u8, u8),
 }
 
@@ -55,19 +59,26 @@ pub enum TargetKind {
 
 impl Target {
     /// Default GLSL version: 450 core.
+    #[cfg(feature = "glsl-out")]
     pub const GLSL_DEFAULT: naga::back::glsl::Version = naga::back::glsl::Version::Desktop(450);
     /// Default shader model: 5.1 (naga's default).
+    #[cfg(feature = "hlsl-out")]
     pub const HLSL_DEFAULT: naga::back::hlsl::ShaderModel = naga::back::hlsl::ShaderModel::V5_1;
     /// Default MSL version: 2.0.
+    #[cfg(feature = "msl-out")]
     pub const MSL_DEFAULT: (u8, u8) = (2, 0);
 
     /// The back end.
     pub fn kind(&self) -> TargetKind {
         match self {
             Target::Wgsl => TargetKind::Wgsl,
+            #[cfg(feature = "spv-out")]
             Target::SpirV => TargetKind::SpirV,
+            #[cfg(feature = "glsl-out")]
             Target::Glsl(_) => TargetKind::Glsl,
+            #[cfg(feature = "hlsl-out")]
             Target::Hlsl(_) => TargetKind::Hlsl,
+            #[cfg(feature = "msl-out")]
             Target::Msl(..) => TargetKind::Msl,
         }
     }
@@ -81,28 +92,37 @@ impl Target {
     pub fn version(&self) -> Option<String> {
         match self {
             Target::Wgsl => None,
+            #[cfg(feature = "spv-out")]
             Target::SpirV => Some("1.0".into()),
+            #[cfg(feature = "glsl-out")]
             Target::Glsl(v) => Some(match v {
                 naga::back::glsl::Version::Desktop(n) => n.to_string(),
                 naga::back::glsl::Version::Embedded { version, .. } => format!("{version}es"),
             }),
+            #[cfg(feature = "hlsl-out")]
             Target::Hlsl(sm) => Some(sm.to_str().to_string()),
+            #[cfg(feature = "msl-out")]
             Target::Msl(major, minor) => Some(format!("{major}.{minor}")),
         }
     }
 
     /// The file extension of an output (GLSL: by stage, glslang's `vert`/`frag`/`comp`).
+    #[cfg_attr(not(feature = "glsl-out"), allow(unused_variables))]
     pub fn extension(&self, stage: Option<Stage>) -> &'static str {
         match self {
             Target::Wgsl => "wgsl",
+            #[cfg(feature = "spv-out")]
             Target::SpirV => "spv",
+            #[cfg(feature = "glsl-out")]
             Target::Glsl(_) => match stage {
                 Some(Stage::Vertex) => "vert",
                 Some(Stage::Fragment) => "frag",
                 Some(Stage::Compute) => "comp",
                 _ => "glsl",
             },
+            #[cfg(feature = "hlsl-out")]
             Target::Hlsl(_) => "hlsl",
+            #[cfg(feature = "msl-out")]
             Target::Msl(..) => "metal",
         }
     }
@@ -111,7 +131,7 @@ impl Target {
 impl fmt::Display for Target {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.version() {
-            Some(v) if *self != Target::SpirV => write!(f, "{} {v}", self.name()),
+            Some(v) if self.kind() != TargetKind::SpirV => write!(f, "{} {v}", self.name()),
             _ => f.write_str(self.name()),
         }
     }
@@ -138,17 +158,45 @@ impl TargetKind {
         }
     }
 
-    /// The target with the default version.
-    pub fn with_defaults(self) -> Target {
+    /// The cargo feature that compiles this back end in (WGSL is always in).
+    pub fn feature(self) -> Option<&'static str> {
         match self {
-            TargetKind::Wgsl => Target::Wgsl,
-            TargetKind::SpirV => Target::SpirV,
-            TargetKind::Glsl => Target::Glsl(Target::GLSL_DEFAULT),
-            TargetKind::Hlsl => Target::Hlsl(Target::HLSL_DEFAULT),
-            TargetKind::Msl => Target::Msl(Target::MSL_DEFAULT.0, Target::MSL_DEFAULT.1),
+            TargetKind::Wgsl => None,
+            TargetKind::SpirV => Some("spv-out"),
+            TargetKind::Glsl => Some("glsl-out"),
+            TargetKind::Hlsl => Some("hlsl-out"),
+            TargetKind::Msl => Some("msl-out"),
+        }
+    }
+
+    /// The target with the default version, or [`Disabled`] when its cargo feature is off.
+    pub fn with_defaults(self) -> Result<Target, Disabled> {
+        match self {
+            TargetKind::Wgsl => Ok(Target::Wgsl),
+            #[cfg(feature = "spv-out")]
+            TargetKind::SpirV => Ok(Target::SpirV),
+            #[cfg(feature = "glsl-out")]
+            TargetKind::Glsl => Ok(Target::Glsl(Target::GLSL_DEFAULT)),
+            #[cfg(feature = "hlsl-out")]
+            TargetKind::Hlsl => Ok(Target::Hlsl(Target::HLSL_DEFAULT)),
+            #[cfg(feature = "msl-out")]
+            TargetKind::Msl => Ok(Target::Msl(Target::MSL_DEFAULT.0, Target::MSL_DEFAULT.1)),
+            #[allow(unreachable_patterns)] // reached when a back-end feature is off
+            _ => Err(Disabled(self)),
         }
     }
 }
+
+/// A back end whose cargo feature is off in this build of the crate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "the {} back end is not compiled in: enable the `{}` feature of wgsl-variants",
+    .0.name(),
+    .0.feature().unwrap_or_default()
+)]
+pub struct Disabled(pub TargetKind);
+
+impl TargetKind {}
 
 /// A language version that a back end does not know, as given on a command line or in a
 /// build script.
@@ -178,6 +226,7 @@ pub enum VersionError {
 /// assert!(parse_glsl_version("300es").unwrap().is_es());
 /// assert!(parse_glsl_version("451").is_err());
 /// ```
+#[cfg(feature = "glsl-out")]
 pub fn parse_glsl_version(text: &str) -> Result<naga::back::glsl::Version, VersionError> {
     let t = text.trim().to_ascii_lowercase();
     let t = t.strip_suffix("core").unwrap_or(&t).trim();
@@ -200,6 +249,7 @@ pub fn parse_glsl_version(text: &str) -> Result<naga::back::glsl::Version, Versi
 }
 
 /// Parses an HLSL shader model: `5_0`, `5_1`, `6_0` … `6_9` (`5.0` works too).
+#[cfg(feature = "hlsl-out")]
 pub fn parse_shader_model(text: &str) -> Result<naga::back::hlsl::ShaderModel, VersionError> {
     use naga::back::hlsl::ShaderModel as Sm;
     Ok(match text.trim().replace('.', "_").as_str() {
@@ -222,6 +272,7 @@ pub fn parse_shader_model(text: &str) -> Result<naga::back::hlsl::ShaderModel, V
 }
 
 /// Parses a Metal Shading Language version `MAJOR.MINOR` (1.0 to 3.x).
+#[cfg(feature = "msl-out")]
 pub fn parse_msl_version(text: &str) -> Result<(u8, u8), VersionError> {
     let bad = || VersionError::NotMsl(text.to_string());
     let (major, minor) = text.trim().split_once('.').ok_or_else(bad)?;
@@ -341,9 +392,11 @@ pub struct VariantOutputs {
 ///
 /// let lib = wgsl_variants::Library::bundled().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+/// # #[cfg(feature = "spv-out")] {
 /// let all = translate_all(&lib, &v, &[Target::Wgsl, Target::SpirV], &Options::default()).unwrap();
 /// assert_eq!(all.outputs.len(), 2);
 /// assert!(all.slots.iter().all(Vec::is_empty));
+/// # }
 /// ```
 pub fn translate_all(
     lib: &Library,
@@ -389,9 +442,22 @@ pub struct Slot {
 /// empty). `info` must be `module`'s validation result.
 pub fn slots(module: &naga::Module, info: &naga::valid::ModuleInfo, target: &Target) -> Vec<Slot> {
     // The other targets bind by group and binding: no need to collect the bindings.
-    if !matches!(target, Target::Glsl(_) | Target::Msl(..)) {
+    if !matches!(target.kind(), TargetKind::Glsl | TargetKind::Msl) {
         return Vec::new();
     }
+    flat_slots(module, info, target)
+}
+
+/// Without the GLSL and MSL back ends, no target has flat slots.
+#[cfg(not(any(feature = "glsl-out", feature = "msl-out")))]
+fn flat_slots(_: &naga::Module, _: &naga::valid::ModuleInfo, _: &Target) -> Vec<Slot> {
+    Vec::new()
+}
+
+#[cfg(any(feature = "glsl-out", feature = "msl-out"))]
+fn flat_slots(module: &naga::Module, info: &naga::valid::ModuleInfo, target: &Target) -> Vec<Slot> {
+    use crate::reflect::{BindingKind, bindings};
+    use std::collections::BTreeMap;
     let mut counters: BTreeMap<&'static str, u8> = BTreeMap::new();
     let mut next = |class: &'static str| {
         let n = counters.entry(class).or_insert(0);
@@ -403,20 +469,28 @@ pub fn slots(module: &naga::Module, info: &naga::valid::ModuleInfo, target: &Tar
         .into_iter()
         .filter_map(|b| {
             let (class, slot) = match (target, &b.kind) {
+                #[cfg(feature = "glsl-out")]
                 (Target::Glsl(_), BindingKind::UniformBuffer { .. }) => {
                     ("uniform_block", next("uniform_block"))
                 }
+                #[cfg(feature = "glsl-out")]
                 (Target::Glsl(_), BindingKind::StorageBuffer { .. }) => {
                     ("storage_block", next("storage_block"))
                 }
+                #[cfg(feature = "glsl-out")]
                 (Target::Glsl(_), BindingKind::StorageTexture { .. }) => ("image", next("image")),
+                #[cfg(feature = "glsl-out")]
                 (Target::Glsl(_), BindingKind::Sampler { .. }) => ("sampler", None),
+                #[cfg(feature = "glsl-out")]
                 (Target::Glsl(_), _) => ("texture", next("texture")),
+                #[cfg(feature = "msl-out")]
                 (
                     Target::Msl(..),
                     BindingKind::UniformBuffer { .. } | BindingKind::StorageBuffer { .. },
                 ) => ("buffer", next("buffer")),
+                #[cfg(feature = "msl-out")]
                 (Target::Msl(..), BindingKind::Sampler { .. }) => ("sampler", next("sampler")),
+                #[cfg(feature = "msl-out")]
                 (Target::Msl(..), _) => ("texture", next("texture")),
                 _ => return None,
             };
@@ -443,6 +517,10 @@ fn backend_error(
 }
 
 /// Writes a validated module with one back end. `info` must be `module`'s validation result.
+#[cfg_attr(
+    not(any(feature = "spv-out", feature = "glsl-out")),
+    allow(unused_variables)
+)]
 pub fn translate(
     module: &naga::Module,
     info: &naga::valid::ModuleInfo,
@@ -465,6 +543,7 @@ pub fn translate(
             .map_err(|e| backend_error(target, None, e))?;
             Ok(whole(Contents::Text(text)))
         }
+        #[cfg(feature = "spv-out")]
         Target::SpirV => {
             use naga::back::spv;
             // Explicit flags: naga's default adds DEBUG only in debug builds, and outputs must
@@ -484,6 +563,7 @@ pub fn translate(
                 .map_err(|e| backend_error(target, None, e))?;
             Ok(whole(Contents::SpirV(words)))
         }
+        #[cfg(feature = "glsl-out")]
         Target::Glsl(version) => {
             use naga::back::glsl;
             let mut binding_map = glsl::BindingMap::default();
@@ -535,6 +615,7 @@ pub fn translate(
             }
             Ok(outputs)
         }
+        #[cfg(feature = "hlsl-out")]
         Target::Hlsl(shader_model) => {
             use naga::back::hlsl;
             let hlsl_options = hlsl::Options {
@@ -557,6 +638,7 @@ pub fn translate(
             }
             Ok(whole(Contents::Text(text)))
         }
+        #[cfg(feature = "msl-out")]
         Target::Msl(major, minor) => {
             use naga::back::msl;
             let mut resources = msl::BindingMap::default();

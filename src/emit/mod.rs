@@ -11,10 +11,12 @@
 //! ```
 //! use wgsl_variants::emit::backends::{Target, translate_variant};
 //!
+//! # #[cfg(feature = "spv-out")] {
 //! let lib = wgsl_variants::Library::bundled().unwrap();
 //! let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 //! let outputs = translate_variant(&lib, &v, &Target::SpirV).unwrap();
 //! assert_eq!(outputs[0].contents.to_bytes()[..4], 0x0723_0203u32.to_le_bytes());
+//! # }
 //! ```
 
 pub mod backends;
