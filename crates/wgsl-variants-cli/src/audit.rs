@@ -200,8 +200,8 @@ fn pass_details(a: &PassAudit) -> String {
             (None, None) => "?".into(),
         };
         let kind = match s.kind {
-            wgsl_variants::preprocess::tree::SetKind::MultiCompile => "multi_compile",
-            wgsl_variants::preprocess::tree::SetKind::ShaderFeature => "shader_feature",
+            wgsl_variants::keywords::SetKind::MultiCompile => "multi_compile",
+            wgsl_variants::keywords::SetKind::ShaderFeature => "shader_feature",
         };
         rows.push(vec![
             s.name.clone(),
