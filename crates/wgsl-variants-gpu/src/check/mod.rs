@@ -38,6 +38,7 @@ use wgsl_variants::Library;
 
 /// What to check.
 #[derive(Clone, Debug, Default)]
+#[non_exhaustive]
 pub struct CheckOptions {
     /// Only this shader (`standard`, `deferred_reflections`, `deferred_final`, or `kernels`
     /// for the compute kernels alone).
