@@ -8,7 +8,7 @@
 use std::fmt;
 
 use crate::diagnostic::{Diagnostic, Span};
-use crate::preprocess::tree::SetKind;
+pub use crate::preprocess::tree::SetKind;
 
 /// One keyword set of a pass (serialized as `kind`, `local` and `options`).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]

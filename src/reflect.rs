@@ -83,6 +83,7 @@ impl fmt::Display for Stage {
 
 /// An entry point of a module.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct EntryPoint {
     /// Its name.
     pub name: String,
@@ -288,6 +289,7 @@ impl fmt::Display for BindingKind {
 
 /// One `@group/@binding` resource a variant uses.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct Binding {
     /// `@group`.
     pub group: u32,
@@ -307,6 +309,7 @@ pub struct Binding {
 
 /// The entry points and bindings of a variant (or of any validated naga module).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct Reflection {
     /// Shader name (empty for a module reflected on its own).
     pub shader: String,

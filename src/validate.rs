@@ -186,6 +186,7 @@ impl Library {
 /// Serialized (in `validate --json`) as `stage`, `message`, `location`, `keyword_sets` and
 /// `diagnostic`.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Failure {
     /// The error (naming the first such variant).
     pub error: VariantError,
@@ -212,6 +213,7 @@ impl serde::Serialize for Failure {
 
 /// The result of validating one pass.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct PassReport {
     /// Shader name.
     pub shader: String,

@@ -106,10 +106,8 @@ keywords = []
         "m.toml",
     )
     .unwrap();
-    let o = AuditOptions {
-        materials: Some(m),
-        ..AuditOptions::default()
-    };
+    let mut o = AuditOptions::default();
+    o.materials = Some(m);
     let d = audit_of(&lib, "standard", "Deferred", &o);
     // Two shader_feature combinations × the multi_compile sets (2 · 2).
     assert_eq!(d.build_set, big(8));
@@ -415,11 +413,9 @@ fn analytic_distinct_equals_enumeration_on_random_libraries() {
         let mats = random_materials(&mut rng, &keywords, pass);
         // Small component limits sometimes, to exercise the fallbacks.
         let component_limit = if seed % 5 == 0 { 2 } else { 1 << 16 };
-        let o = AuditOptions {
-            materials: Some(mats.clone()),
-            component_limit,
-            ..AuditOptions::default()
-        };
+        let mut o = AuditOptions::default();
+        o.materials = Some(mats.clone());
+        o.component_limit = component_limit;
         let a = audit::audit_pass(&lib, pass, &o).unwrap();
         let ctx = || {
             format!(
@@ -478,16 +474,10 @@ fn analytic_distinct_equals_enumeration_on_random_libraries() {
             fused += 1;
         }
         // With no room to enumerate, the count is a bound and says so.
-        let tight = audit::audit_pass(
-            &lib,
-            pass,
-            &AuditOptions {
-                component_limit: 1,
-                enumeration_limit: 1,
-                ..AuditOptions::default()
-            },
-        )
-        .unwrap();
+        let mut tight_options = AuditOptions::default();
+        tight_options.component_limit = 1;
+        tight_options.enumeration_limit = 1;
+        let tight = audit::audit_pass(&lib, pass, &tight_options).unwrap();
         if !tight.distinct_full_space.exact {
             assert_eq!(tight.distinct_full_space.method, Method::Bound);
             assert!(
@@ -610,10 +600,8 @@ fn fixture_counts_match_the_hand_computed_ones() {
 #[test]
 fn fixture_materials_strip_and_share_code() {
     let lib = Library::from_dir(fixture().join("lib")).unwrap();
-    let o = AuditOptions {
-        materials: Some(fixture_materials()),
-        ..AuditOptions::default()
-    };
+    let mut o = AuditOptions::default();
+    o.materials = Some(fixture_materials());
     let a = audit_of(&lib, "fx", "Main", &o);
     // Four material combinations (Plain, Rimmed, RimOnly, Shadowed) × fog 2 (after skip) ×
     // UNUSED_DEBUG 2 × quality 3 = 48.
@@ -709,20 +697,16 @@ fn an_oversized_group_is_enumerated_or_reported_as_a_bound() {
     assert_eq!(a.distinct.count, big(2));
     assert!(a.distinct.exact && a.distinct.method == Method::Enumeration);
     // Without room to enumerate, the group's size is reported, as a bound.
-    let small = AuditOptions {
-        enumeration_limit: 1000,
-        ..AuditOptions::default()
-    };
+    let mut small = AuditOptions::default();
+    small.enumeration_limit = 1000;
     let b = audit_of(&lib, "big", "P", &small);
     assert_eq!(b.distinct.count, pow2(17));
     assert!(!b.distinct.exact && b.distinct.method == Method::Bound);
     assert!(!b.findings_exact);
     // A larger group limit makes it exact again, by components.
-    let wide = AuditOptions {
-        component_limit: 1 << 17,
-        enumeration_limit: 1000,
-        ..AuditOptions::default()
-    };
+    let mut wide = AuditOptions::default();
+    wide.component_limit = 1 << 17;
+    wide.enumeration_limit = 1000;
     let c = audit_of(&lib, "big", "P", &wide);
     assert_eq!(c.distinct.count, big(2));
     assert!(c.distinct.exact && c.distinct.method == Method::Components);

@@ -139,20 +139,16 @@ fn hash_signs_inside_comments_are_not_directives() {
 
 #[test]
 fn every_limit_is_configurable_with_a_clear_error() {
-    let options = LoadOptions {
-        max_total_bytes: 100,
-        ..LoadOptions::default()
-    };
+    let mut options = LoadOptions::default();
+    options.max_total_bytes = 100;
     let err = Library::from_sources_with([("m.wgsl", "x".repeat(200))], &options).unwrap_err();
     assert!(err.to_string().contains("past the limit of 100"), "{err}");
     let dir = tempfile::tempdir().unwrap();
     for i in 0..5 {
         std::fs::write(dir.path().join(format!("{i}.wgsl")), "").unwrap();
     }
-    let options = LoadOptions {
-        max_files: 3,
-        ..LoadOptions::default()
-    };
+    let mut options = LoadOptions::default();
+    options.max_files = 3;
     let err = Library::from_dir_with(dir.path(), &options).unwrap_err();
     assert!(err.to_string().contains("more than 3 .wgsl files"), "{err}");
     let mut options = LoadOptions::default();

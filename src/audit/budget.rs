@@ -86,6 +86,7 @@ pub struct Limit {
 ///
 /// Serialized as `limit`, `source` and `exceeded`.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
 pub struct Verdict {
     /// The tightest budget that applies.
     #[serde(flatten)]

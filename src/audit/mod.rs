@@ -56,6 +56,7 @@ pub enum Method {
 
 /// What to audit against, and the limits of the analysis.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct AuditOptions {
     /// Materials for the `shader_feature` stripping stage (the build set).
     pub materials: Option<Vec<Material>>,

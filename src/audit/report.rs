@@ -20,6 +20,7 @@ const MAX_MEMBERS: usize = 16;
 
 /// A distinct-variant count.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct Distinct {
     /// Number of distinct composed texts (an upper bound when not `exact`).
     pub count: BigUint,
@@ -31,6 +32,7 @@ pub struct Distinct {
 
 /// A keyword that changes code only when other keywords are on.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
 pub struct Together {
     /// The keyword.
     pub keyword: String,
@@ -41,6 +43,7 @@ pub struct Together {
 
 /// Keyword sets whose choices, everything else equal, can generate identical code.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
 pub struct CodeGroup {
     /// The keywords of the sets involved.
     pub keywords: Vec<String>,
@@ -61,6 +64,7 @@ pub struct CodeGroup {
 ///
 /// Serialized without `together` (listed in the pass's [`PassAudit::together`]) and `known`.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
 pub struct SetAudit {
     /// The pragma as written, e.g. `shader_feature _ _NORMAL_MAP`.
     pub declaration: String,
@@ -110,6 +114,7 @@ pub struct SetAudit {
 /// `distinct`, `distinct_exact` and `distinct_method`, only the counts of the other stages'
 /// distinct variants, and without `materials`.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[non_exhaustive]
 pub struct PassAudit {
     /// Shader name.
     pub shader: String,

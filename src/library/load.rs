@@ -16,6 +16,7 @@ use super::error::{LinkError, LoadError, LoadProblem};
 
 /// Limits applied while loading a library. Each has a clear error when passed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct LoadOptions {
     /// `#if` and expression nesting limits.
     pub parse: ParseLimits,

@@ -303,7 +303,7 @@ impl Library {
 
     /// The parsed modules with their imports resolved (module ids index
     /// [`Library::module_paths`]), e.g. to compose or export a module on its own.
-    pub fn module_graph(&self) -> ModuleGraph<'_> {
+    pub(crate) fn module_graph(&self) -> ModuleGraph<'_> {
         ModuleGraph {
             modules: &self.modules,
             resolved: &self.resolved,

@@ -1,18 +1,23 @@
 //! The preprocessor: directive lines, `#if` expressions, and composition of one variant.
 //!
-//! Parsing ([`parse::parse_module`]) happens once per module file; composing
-//! ([`compose::compose`]) walks the parsed tree for one keyword set and copies WGSL lines,
-//! keeping a [`line_map::LineMap`] so errors in the output point back at original files.
-//! The directive syntax is documented in the README.
+//! Parsing (within [`ParseLimits`]; failures are [`ParseError`]s) happens once per module file
+//! when a [`Library`](crate::Library) loads; composing one variant
+//! ([`Library::compose`](crate::Library::compose)) walks the parsed tree for one keyword set and
+//! copies WGSL lines into a [`Composed`] text, keeping a [`LineMap`] so errors in the output
+//! point back at original files. The parsed tree itself is internal. [`lines`] splits WGSL
+//! lines and [`expr`] parses `#if` expressions. The directive syntax is documented in the
+//! README.
 
-pub mod compose;
+pub(crate) mod compose;
 pub mod error;
 pub mod expr;
-pub mod line_map;
+pub(crate) mod line_map;
 pub mod lines;
-pub mod parse;
-pub mod tree;
+pub(crate) mod parse;
+pub(crate) mod tree;
 
 pub use compose::Composed;
 pub use error::ParseError;
-pub use parse::{ParseLimits, parse_module};
+pub use line_map::LineMap;
+pub use parse::ParseLimits;
+pub(crate) use parse::parse_module;

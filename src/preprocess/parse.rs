@@ -13,6 +13,7 @@ use super::tree::{
 
 /// Nesting limits applied while parsing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ParseLimits {
     /// Deepest `#if` nesting.
     pub if_depth: usize,

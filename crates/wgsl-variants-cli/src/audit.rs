@@ -49,12 +49,10 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
         }
         None => None,
     };
-    let options = AuditOptions {
-        materials: load_materials(&build.materials)?,
-        // The whole-stage fallback composes at most this many variants (memory stays small).
-        enumeration_limit: build.max_variants.min(MAX_ENUMERATION),
-        ..AuditOptions::default()
-    };
+    let mut options = AuditOptions::default();
+    options.materials = load_materials(&build.materials)?;
+    // The whole-stage fallback composes at most this many variants (memory stays small).
+    options.enumeration_limit = build.max_variants.min(MAX_ENUMERATION);
     let passes = select_passes(&ctx.lib, build.shader.as_deref(), build.pass.as_deref())?;
     let audits = audit::audit_passes(&ctx.lib, &passes, &options)?;
     if let Some(path) = &args.chart {
@@ -200,8 +198,8 @@ fn pass_details(a: &PassAudit) -> String {
             (None, None) => "?".into(),
         };
         let kind = match s.kind {
-            wgsl_variants::preprocess::tree::SetKind::MultiCompile => "multi_compile",
-            wgsl_variants::preprocess::tree::SetKind::ShaderFeature => "shader_feature",
+            wgsl_variants::keywords::SetKind::MultiCompile => "multi_compile",
+            wgsl_variants::keywords::SetKind::ShaderFeature => "shader_feature",
         };
         rows.push(vec![
             s.name.clone(),

@@ -35,14 +35,13 @@ pub struct CheckGpuArgs {
 }
 
 pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
-    let options = CheckOptions {
-        shader: args.shader.clone(),
-        pass: args.pass.clone(),
-        adapter: args.adapter.clone(),
-        threads: args.workers,
-        sample: args.sample,
-        shard: args.shard,
-    };
+    let mut options = CheckOptions::default();
+    options.shader = args.shader.clone();
+    options.pass = args.pass.clone();
+    options.adapter = args.adapter.clone();
+    options.threads = args.workers;
+    options.sample = args.sample;
+    options.shard = args.shard;
     let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {
         print_json(&report)?;

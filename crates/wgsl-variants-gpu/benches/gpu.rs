@@ -11,8 +11,8 @@ use serde_json::json;
 use wgsl_variants::Library;
 use wgsl_variants::reference::surface::Keywords;
 use wgsl_variants_gpu::check::TestScene;
-use wgsl_variants_gpu::check::passes::standard_job;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
+use wgsl_variants_gpu::check::standard_job;
 use wgsl_variants_gpu::{
     BoundResource, GpuContext, GpuResources, RenderJob, Resource, render, render_with,
 };

@@ -13,14 +13,13 @@ use wgsl_variants::source::{RawFile, bundled_files};
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, KERNELS, kernels};
 
 fn run(lib: &Library, pass: Option<&str>) -> Option<CheckReport> {
-    let options = CheckOptions {
-        shader: Some(KERNELS.to_owned()),
-        pass: pass.map(str::to_owned),
-        adapter: common::gpu::adapter_filter(),
-        threads: 1,
-        sample: 1,
-        shard: None,
-    };
+    let mut options = CheckOptions::default();
+    options.shader = Some(KERNELS.to_owned());
+    options.pass = pass.map(str::to_owned);
+    options.adapter = common::gpu::adapter_filter();
+    options.threads = 1;
+    options.sample = 1;
+    options.shard = None;
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
 

@@ -45,14 +45,13 @@ fn run_shard(
     sample: usize,
     shard: Option<wgsl_variants::variants::Shard>,
 ) -> Option<CheckReport> {
-    let options = CheckOptions {
-        shader: shader.map(str::to_owned),
-        pass: pass.map(str::to_owned),
-        adapter: common::gpu::adapter_filter(),
-        threads: 0,
-        sample,
-        shard,
-    };
+    let mut options = CheckOptions::default();
+    options.shader = shader.map(str::to_owned);
+    options.pass = pass.map(str::to_owned);
+    options.adapter = common::gpu::adapter_filter();
+    options.threads = 0;
+    options.sample = sample;
+    options.shard = shard;
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
 

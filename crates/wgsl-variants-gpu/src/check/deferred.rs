@@ -436,8 +436,6 @@ pub fn ldr_ramp() -> Vec<u8> {
 /// RT3 after Add, and (LDR) the final frame.
 #[derive(Clone, Debug)]
 pub struct ChainImages {
-    /// The G-buffer.
-    pub gbuffer: GBufferImage,
     /// The reflection buffer (`Rgba16Float`).
     pub reflections: Vec<u8>,
     /// RT3 after adding the reflections.
@@ -451,10 +449,10 @@ pub fn render_chain(
     ctx: &GpuContext,
     lib: &Library,
     scene: &TestScene,
-    gbuffer: GBufferImage,
+    gbuffer: &GBufferImage,
 ) -> Result<ChainImages, GpuError> {
-    let refl = run_reflections(ctx, lib, scene, &gbuffer, None)?.last;
-    let rt3 = run_add(ctx, lib, scene, &gbuffer, &refl, None)?;
+    let refl = run_reflections(ctx, lib, scene, gbuffer, None)?.last;
+    let rt3 = run_add(ctx, lib, scene, gbuffer, &refl, None)?;
     let frame = if gbuffer.hdr {
         None
     } else {
@@ -469,7 +467,6 @@ pub fn render_chain(
         )?)
     };
     Ok(ChainImages {
-        gbuffer,
         reflections: refl,
         rt3,
         frame,

@@ -13,22 +13,23 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | [`passes`] | `standard/Deferred` (3072 variants) and `standard/ForwardBase` (1536) on [`scene::TestScene`] |
-//! | [`deferred`] | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
+//! | passes | `standard/Deferred` (3072 variants) and `standard/ForwardBase` (1536) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
 
-pub mod compare;
-pub mod deferred;
+pub(crate) mod compare;
+pub(crate) mod deferred;
 pub mod kernels;
-pub mod passes;
+pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
 
 use std::time::Instant;
 
-pub use passes::Worker;
+use passes::Worker;
+pub use passes::standard_job;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
 pub use scene::TestScene;
 
@@ -37,6 +38,7 @@ use wgsl_variants::Library;
 
 /// What to check.
 #[derive(Clone, Debug, Default)]
+#[non_exhaustive]
 pub struct CheckOptions {
     /// Only this shader (`standard`, `deferred_reflections`, `deferred_final`, or `kernels`
     /// for the compute kernels alone).

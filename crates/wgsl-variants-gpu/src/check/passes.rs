@@ -117,11 +117,11 @@ pub fn standard_job(
 /// Lavapipe compiles a pipeline's shaders when the first draw executes, on the queue's thread
 /// of the device; one device per worker is what lets several cores compile at once.
 #[derive(Debug)]
-pub struct Worker<'c> {
+pub(crate) struct Worker<'c> {
     /// The worker's context.
-    pub ctx: &'c GpuContext,
+    pub(crate) ctx: &'c GpuContext,
     /// Resources uploaded to `ctx`'s device.
-    pub resources: GpuResources,
+    pub(crate) resources: GpuResources,
 }
 
 /// Renders `jobs` on `workers`, one thread per worker (wgpu error scopes are per thread, so

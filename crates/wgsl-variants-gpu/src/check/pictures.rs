@@ -181,7 +181,7 @@ pub fn render_pictures(
                 ),
             ];
             let (frame, refl) = if keywords.contains(&"UNITY_ENABLE_REFLECTION_BUFFERS") {
-                let chain = render_chain(ctx, lib, scene, g.clone())?;
+                let chain = render_chain(ctx, lib, scene, &g)?;
                 let frame = match &chain.frame {
                     Some(frame) => frame.clone(),
                     None => hdr_frame(&chain.rt3, w, h),

@@ -9,6 +9,7 @@ pub const MAX_LISTED_MISMATCHES: usize = 20;
 
 /// One value the GPU produced that the reference does not accept.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct Mismatch {
     /// Shader (or `kernels`).
     pub shader: String,
@@ -49,6 +50,7 @@ impl fmt::Display for Mismatch {
 
 /// Whether toggling one keyword changed any output.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct KeywordCoverage {
     /// The keyword.
     pub keyword: String,
@@ -60,6 +62,7 @@ pub struct KeywordCoverage {
 
 /// The result of one pass.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct PassReport {
     /// Shader name.
     pub shader: String,
@@ -129,6 +132,7 @@ impl PassReport {
 
 /// The result of one compute kernel.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct KernelReport {
     /// Kernel name (`shader/pass` of the kernel library).
     pub name: String,
@@ -176,6 +180,7 @@ impl KernelReport {
 
 /// Everything one run of the GPU check compared.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[non_exhaustive]
 pub struct CheckReport {
     /// The adapter's name.
     pub adapter: String,
