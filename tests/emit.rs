@@ -338,14 +338,11 @@ fn outputs_do_not_depend_on_the_build_or_run() {
     // keep_coordinate_space drops the Y flip in GLSL.
     let (m, i) = compile(&lib, &v).unwrap();
     let glsl = Target::Glsl(Target::GLSL_DEFAULT);
-    let kept = translate(
-        &m,
-        &i,
-        &glsl,
-        &Options {
-            keep_coordinate_space: true,
-        },
-    )
+    let kept = translate(&m, &i, &glsl, &{
+        let mut o = Options::default();
+        o.keep_coordinate_space = true;
+        o
+    })
     .unwrap();
     let vertex = |o: &[wgsl_variants::emit::backends::Output]| {
         o.iter()

@@ -286,6 +286,7 @@ pub fn parse_msl_version(text: &str) -> Result<(u8, u8), VersionError> {
 
 /// Options shared by the back ends.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct Options {
     /// Keep WGSL's coordinate space in SPIR-V and GLSL instead of adjusting it to the target
     /// API's (naga's `ADJUST_COORDINATE_SPACE`, on by default as in the `naga` CLI: flips Y

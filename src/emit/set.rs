@@ -26,6 +26,7 @@ use crate::reflect::{EntryPoint, Stage};
 
 /// One back end's name and version in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct ManifestTarget {
     /// `wgsl`, `spirv`, `glsl`, `hlsl` or `msl`.
     pub target: String,
@@ -36,6 +37,7 @@ pub struct ManifestTarget {
 
 /// One written file.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct ManifestFile {
     /// The back end that wrote it.
     pub target: String,
@@ -58,6 +60,7 @@ pub struct ManifestFile {
 
 /// One variant in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct ManifestVariant {
     /// Shader name.
     pub shader: String,
@@ -73,6 +76,7 @@ pub struct ManifestVariant {
 
 /// `manifest.json`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub struct Manifest {
     /// `wgsl-variants <version>`.
     pub generator: String,

@@ -127,9 +127,8 @@ fn render_failure(ctx: &Context, e: &TranslateError) -> String {
 
 pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
     let targets = targets(args)?;
-    let options = Options {
-        keep_coordinate_space: args.keep_coordinate_space,
-    };
+    let mut options = Options::default();
+    options.keep_coordinate_space = args.keep_coordinate_space;
     let (shader, pass) = match (&args.shader_name, &args.pass_name) {
         (Some(s), Some(p)) => (s, p),
         (Some(_), None) => {
