@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzz every target for a fixed budget: `bash scripts/fuzz.sh [SECONDS_PER_TARGET]` (default 60).
 #
-# Targets (fuzz/fuzz_targets/, properties in fuzz/src/checks.rs): preprocess (directives of any
+# Targets (fuzz/fuzz_targets/, properties in crates/fuzz-checks): preprocess (directives of any
 # module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
 # imports), lean (naga gives the lean and the emitted text of every variant the same outcome).
 # Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is

@@ -1,8 +1,7 @@
 //! Replays the fuzz seeds and every input the fuzzers ever found (`fuzz/regressions/<target>/`)
-//! through the same checks the fuzz targets run (`fuzz/src/checks.rs`).
+//! through the same checks the fuzz targets run (`crates/fuzz-checks`).
 
-#[path = "../fuzz/src/checks.rs"]
-mod checks;
+use wgsl_variants_fuzz_checks as checks;
 
 use std::path::Path;
 

@@ -3,8 +3,7 @@
 //! generated modules where naga must give the lean text, the emitted text and an independent
 //! expectation the same outcome.
 
-#[path = "../fuzz/src/checks.rs"]
-mod checks;
+use wgsl_variants_fuzz_checks as checks;
 
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Variant};

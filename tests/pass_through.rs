@@ -4,8 +4,7 @@
 //! module into a one-pass shader, must compose (full and lean) to a text naga treats exactly
 //! as the file itself: the same module written back to WGSL, or the same error message.
 
-#[path = "../fuzz/src/checks.rs"]
-mod checks;
+use wgsl_variants_fuzz_checks as checks;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,7 +1,6 @@
 //! Fuzz target `loader`: see `checks::loader`.
 #![no_main]
 
-#[path = "../src/checks.rs"]
-mod checks;
+use wgsl_variants_fuzz_checks as checks;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| checks::loader(data));

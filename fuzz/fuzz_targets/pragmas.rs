@@ -1,7 +1,6 @@
 //! Fuzz target `pragmas`: see `checks::pragmas`.
 #![no_main]
 
-#[path = "../src/checks.rs"]
-mod checks;
+use wgsl_variants_fuzz_checks as checks;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| checks::pragmas(data));

@@ -1,6 +1,6 @@
-#![allow(dead_code)] // each fuzz binary uses one of these
-//! The properties each fuzz target checks, shared with `tests/fuzz_regressions.rs` so every
-//! saved input is replayed through exactly the same code.
+//! The properties each fuzz target checks, shared with `tests/fuzz_regressions.rs` (every saved
+//! input is replayed through exactly the same code), `tests/line_breaks.rs` and
+//! `tests/pass_through.rs`.
 
 use std::collections::HashSet;
 
