@@ -212,3 +212,153 @@ fn nearest(space: &Space<'_>, choice: &Choice, n: usize, budget: u64) -> Vec<Cho
     scored.sort();
     scored.into_iter().take(n).map(|(_, c)| c).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Library;
+
+    /// Sets `A B`, `_ C D`, `E F`; `skip_variants C`.
+    fn library() -> Library {
+        Library::from_sources([(
+            "s.wgsl",
+            "#shader s\n#pass P\n#pragma multi_compile A B\n#pragma multi_compile _ C D\n\
+             #pragma multi_compile E F\n#pragma skip_variants C\n#endpass\n",
+        )])
+        .unwrap()
+    }
+
+    fn choice(options: &[u16]) -> Choice {
+        Choice(options.into())
+    }
+
+    /// An exact keyword set finds its variant, whatever the order; an omitted set with a
+    /// "none" option takes it.
+    #[test]
+    fn strict_exact() {
+        let lib = library();
+        let pass = lib.pass("s", "P").unwrap();
+        let space = Space::after_skip(pass);
+        assert_eq!(
+            lookup_strict(&space, &["B", "D", "F"], 100).unwrap(),
+            choice(&[1, 2, 1])
+        );
+        assert_eq!(
+            lookup_strict(&space, &["F", "B"], 100).unwrap(),
+            choice(&[1, 0, 1])
+        );
+        // The same keyword twice is not a conflict.
+        assert_eq!(
+            lookup_strict(&space, &["A", "A", "E"], 100).unwrap(),
+            choice(&[0, 0, 0])
+        );
+    }
+
+    /// An undeclared keyword fails, suggesting the closest declared one.
+    #[test]
+    fn strict_unknown_keyword() {
+        let lib = library();
+        let pass = lib.pass("s", "P").unwrap();
+        let err = lookup_strict(&Space::full(pass), &["A", "FF"], 100).unwrap_err();
+        assert_eq!(
+            err,
+            LookupError::UnknownKeyword {
+                shader: "s".into(),
+                pass: "P".into(),
+                keyword: "FF".into(),
+                suggestion: Some("F".into()),
+            }
+        );
+        let err = lookup_strict(&Space::full(pass), &["A", "NOTHING_LIKE_IT"], 100).unwrap_err();
+        assert!(matches!(
+            err,
+            LookupError::UnknownKeyword {
+                suggestion: None,
+                ..
+            }
+        ));
+    }
+
+    /// Two keywords of one set conflict; a set with no "none" option and no keyword is
+    /// missing.
+    #[test]
+    fn strict_conflict_and_missing() {
+        let lib = library();
+        let pass = lib.pass("s", "P").unwrap();
+        let err = lookup_strict(&Space::full(pass), &["A", "C", "D"], 100).unwrap_err();
+        assert!(
+            matches!(&err, LookupError::Conflicting { first, second, .. } if first == "C" && second == "D"),
+            "{err:?}"
+        );
+        let err = lookup_strict(&Space::full(pass), &["C"], 100).unwrap_err();
+        assert!(matches!(err, LookupError::Missing { .. }), "{err:?}");
+    }
+
+    /// A skipped variant is not built: the error says why and names built neighbours, the
+    /// nearest first; in the full space the same keywords resolve.
+    #[test]
+    fn strict_skipped_variant() {
+        let lib = library();
+        let pass = lib.pass("s", "P").unwrap();
+        let err = lookup_strict(&Space::after_skip(pass), &["B", "C", "F"], 100).unwrap_err();
+        let LookupError::NotBuilt {
+            keywords,
+            reason,
+            nearest,
+            ..
+        } = err
+        else {
+            panic!("expected NotBuilt: {err:?}");
+        };
+        assert_eq!(keywords, "{B, C, F}");
+        assert!(reason.contains("`C` is in skip_variants"), "{reason}");
+        assert_eq!(nearest, vec!["{B, F}", "{B, D, F}", "{A, F}"]);
+        assert_eq!(
+            lookup_strict(&Space::full(pass), &["B", "C", "F"], 100).unwrap(),
+            choice(&[1, 1, 1])
+        );
+    }
+
+    /// Closest lookup returns a built variant unchanged, else the one differing in the fewest
+    /// sets, ties going to the first in enumeration order.
+    #[test]
+    fn closest() {
+        let lib = library();
+        let pass = lib.pass("s", "P").unwrap();
+        let space = Space::after_skip(pass);
+        assert_eq!(
+            lookup_closest(&space, &["B", "D", "E"], 100).unwrap(),
+            choice(&[1, 2, 0])
+        );
+        // {B, C, F}: {B, F} and {B, D, F} differ in one set; {B, F} comes first. {A, E}, the
+        // first variant of all, differs in three.
+        assert_eq!(
+            lookup_closest(&space, &["B", "C", "F"], 100).unwrap(),
+            choice(&[1, 0, 1])
+        );
+        assert_eq!(
+            lookup_closest(&space, &["A", "C", "E"], 100).unwrap(),
+            choice(&[0, 0, 0])
+        );
+        // Keyword errors still come first.
+        assert!(matches!(
+            lookup_closest(&space, &["A", "B"], 100),
+            Err(LookupError::Conflicting { .. })
+        ));
+        // Past the budget no neighbour is searched.
+        assert!(matches!(
+            lookup_closest(&space, &["B", "C", "F"], 1),
+            Err(LookupError::NotBuilt { .. })
+        ));
+    }
+
+    /// `suggest` picks the closest candidate within the distance limit.
+    #[test]
+    fn suggest_closest_within_limit() {
+        assert_eq!(
+            suggest("_NORMAL_MAPP", ["_NORMAL_MAP", "_EMISSION"]),
+            Some("_NORMAL_MAP".into())
+        );
+        assert_eq!(suggest("XYZW", ["_NORMAL_MAP", "A"]), None);
+    }
+}

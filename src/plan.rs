@@ -139,3 +139,129 @@ pub fn plan<'l>(lib: &'l Library, options: &PlanOptions) -> Result<Plan<'l>, Pla
         None => plan,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Shader `a` with passes `P` (2 variants) and `Q` (3, one skipped); shader `b` with pass
+    /// `P` (3 variants).
+    fn library() -> Library {
+        Library::from_sources([
+            (
+                "a.wgsl",
+                "#shader a\n#pass P\n#pragma multi_compile A B\n#endpass\n\
+                 #pass Q\n#pragma multi_compile _ C D\n#pragma skip_variants D\n#endpass\n",
+            ),
+            (
+                "b.wgsl",
+                "#shader b\n#pass P\n#pragma multi_compile X Y Z\n#endpass\n",
+            ),
+        ])
+        .unwrap()
+    }
+
+    fn names(passes: &[&Pass]) -> Vec<String> {
+        passes
+            .iter()
+            .map(|p| format!("{}/{}", p.shader, p.name))
+            .collect()
+    }
+
+    /// The shader and pass filters select in library order, alone or together.
+    #[test]
+    fn select_passes_filters() {
+        let lib = library();
+        let all = select_passes(&lib, None, None).unwrap();
+        assert_eq!(names(&all), ["a/P", "a/Q", "b/P"]);
+        let a = select_passes(&lib, Some("a"), None).unwrap();
+        assert_eq!(names(&a), ["a/P", "a/Q"]);
+        let p = select_passes(&lib, None, Some("P")).unwrap();
+        assert_eq!(names(&p), ["a/P", "b/P"]);
+        let bp = select_passes(&lib, Some("b"), Some("P")).unwrap();
+        assert_eq!(names(&bp), ["b/P"]);
+    }
+
+    /// An unknown shader is `UnknownShader` (with a suggestion); filters that match nothing
+    /// are `NoMatch`.
+    #[test]
+    fn select_passes_errors() {
+        let lib = library();
+        let err = select_passes(&lib, Some("bb"), None).unwrap_err();
+        assert!(
+            matches!(&err, PlanError::UnknownShader(LookupError::UnknownShader { name, .. }) if name == "bb"),
+            "{err:?}"
+        );
+        let err = select_passes(&lib, Some("b"), Some("Q")).unwrap_err();
+        assert!(
+            matches!(&err, PlanError::NoMatch { shader: Some(s), pass: Some(p) } if s == "b" && p == "Q"),
+            "{err:?}"
+        );
+        let err = select_passes(&lib, None, Some("R")).unwrap_err();
+        assert!(
+            matches!(&err, PlanError::NoMatch { shader: None, pass: Some(p) } if p == "R"),
+            "{err:?}"
+        );
+    }
+
+    /// Without `all` the build set (skipped variants left out) is built; with `all` the full
+    /// space; past the budget, an error naming the pass.
+    #[test]
+    fn variants_to_build_all_and_budget() {
+        let lib = library();
+        let q = lib.pass("a", "Q").unwrap();
+        let mut options = PlanOptions::default();
+        let built = variants_to_build(&lib, q, &options).unwrap();
+        assert_eq!(built, vec![Choice(vec![0].into()), Choice(vec![1].into())]);
+        options.all = true;
+        let full = variants_to_build(&lib, q, &options).unwrap();
+        assert_eq!(full.len(), 3);
+        assert_eq!(full[2], Choice(vec![2].into()));
+        options.budget = 2;
+        let err = variants_to_build(&lib, q, &options).unwrap_err();
+        let PlanError::Budget {
+            shader,
+            pass,
+            error,
+        } = err
+        else {
+            panic!("expected Budget: {err:?}");
+        };
+        assert_eq!((shader.as_str(), pass.as_str()), ("a", "Q"));
+        assert_eq!(error.count, 3u32.into());
+        assert_eq!(error.budget, 2);
+        options.all = false;
+        assert_eq!(variants_to_build(&lib, q, &options).unwrap().len(), 2);
+    }
+
+    /// `plan` builds every selected pass; a budget error in any pass fails the plan; a shard
+    /// keeps every N-th variant numbered across passes, and the shards cover the plan once.
+    #[test]
+    fn plan_with_shard() {
+        let lib = library();
+        let mut options = PlanOptions::default();
+        let whole = plan(&lib, &options).unwrap();
+        let sizes: Vec<usize> = whole.iter().map(|(_, c)| c.len()).collect();
+        assert_eq!(sizes, [2, 2, 3]);
+        options.shard = Some("2/2".parse().unwrap());
+        let second = plan(&lib, &options).unwrap();
+        // Global numbers 0..7; shard 2/2 keeps 1, 3, 5: a/P's second, a/Q's second, b/P's
+        // second.
+        assert_eq!(second.len(), 3);
+        assert_eq!(second[0].1, vec![whole[0].1[1].clone()]);
+        assert_eq!(second[1].1, vec![whole[1].1[1].clone()]);
+        assert_eq!(second[2].1, vec![whole[2].1[1].clone()]);
+        options.shard = Some("1/2".parse().unwrap());
+        let first = plan(&lib, &options).unwrap();
+        let first_sizes: Vec<usize> = first.iter().map(|(_, c)| c.len()).collect();
+        assert_eq!(first_sizes, [1, 1, 2]);
+        options.shard = None;
+        options.budget = 2;
+        assert!(matches!(
+            plan(&lib, &options),
+            Err(PlanError::Budget { shader, .. }) if shader == "b"
+        ));
+        options.pass = Some("Q".into());
+        assert_eq!(plan(&lib, &options).unwrap().len(), 1);
+    }
+}

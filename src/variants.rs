@@ -456,3 +456,161 @@ impl std::fmt::Display for Shard {
         write!(f, "{}/{}", self.index + 1, self.count)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Library;
+
+    /// Sets of sizes 2 (`A B`), 3 (`_ C D`) and 2 (`E F`), with `skip` as its
+    /// `skip_variants` (empty: none).
+    fn library(skip: &str) -> Library {
+        let skip = if skip.is_empty() {
+            String::new()
+        } else {
+            format!("#pragma skip_variants {skip}\n")
+        };
+        Library::from_sources([(
+            "s.wgsl",
+            format!(
+                "#shader s\n#pass P\n#pragma multi_compile A B\n#pragma multi_compile _ C D\n\
+                 #pragma multi_compile E F\n{skip}#endpass\n"
+            ),
+        )])
+        .unwrap()
+    }
+
+    fn choice(options: &[u16]) -> Choice {
+        Choice(options.into())
+    }
+
+    /// The full space is the product of the set sizes: 2 × 3 × 2.
+    #[test]
+    fn full_count() {
+        let lib = library("");
+        let pass = lib.pass("s", "P").unwrap();
+        assert_eq!(Space::full(pass).count(), BigUint::from(12u32));
+        assert_eq!(Space::after_skip(pass).count(), BigUint::from(12u32));
+    }
+
+    /// `skip_variants C` removes exactly the variants with `C` on; `after_skip` keeps the
+    /// full space's other variants, and `is_skipped` agrees.
+    #[test]
+    fn skip_variants_removes_the_right_ones() {
+        let lib = library("C");
+        let pass = lib.pass("s", "P").unwrap();
+        let full = Space::full(pass);
+        let kept = Space::after_skip(pass);
+        assert_eq!(kept.count(), BigUint::from(8u32));
+        assert_eq!(kept.options(1), vec![0, 2]);
+        let all = full.enumerate(100).unwrap();
+        let expected: Vec<Choice> = all.iter().filter(|c| c.0[1] != 1).cloned().collect();
+        assert_eq!(kept.enumerate(100).unwrap(), expected);
+        for c in &all {
+            assert_eq!(c.is_skipped(pass), c.keywords(pass).contains(&"C"));
+            assert_eq!(kept.contains(c), !c.is_skipped(pass));
+            assert!(full.contains(c));
+        }
+        // Skipping two keywords of two sets.
+        let lib = library("B D");
+        let pass = lib.pass("s", "P").unwrap();
+        assert_eq!(Space::after_skip(pass).count(), BigUint::from(4u32));
+    }
+
+    /// Enumeration is lexicographic, last set fastest.
+    #[test]
+    fn enumerate_order() {
+        let lib = library("");
+        let pass = lib.pass("s", "P").unwrap();
+        let all = Space::full(pass).enumerate(12).unwrap();
+        assert_eq!(all.len(), 12);
+        assert_eq!(all[0], choice(&[0, 0, 0]));
+        assert_eq!(all[1], choice(&[0, 0, 1]));
+        assert_eq!(all[2], choice(&[0, 1, 0]));
+        assert_eq!(all[6], choice(&[1, 0, 0]));
+        assert_eq!(all[11], choice(&[1, 2, 1]));
+        assert!(all.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(all[3].keywords(pass), vec!["A", "C", "F"]);
+        assert_eq!(all[0].label(pass), "{A, E}");
+    }
+
+    /// Past the budget, enumeration fails with the exact count and the budget.
+    #[test]
+    fn enumerate_budget() {
+        let lib = library("");
+        let pass = lib.pass("s", "P").unwrap();
+        let err = Space::full(pass).enumerate(11).unwrap_err();
+        assert_eq!(
+            err,
+            BudgetError {
+                count: BigUint::from(12u32),
+                budget: 11
+            }
+        );
+        assert!(Space::full(pass).enumerate(12).is_ok());
+        assert_eq!(Space::after_skip(pass).enumerate(0).unwrap_err().budget, 0);
+    }
+
+    /// `iter` yields the same variants as `enumerate`, in the same order.
+    #[test]
+    fn iter_matches_enumerate() {
+        for skip in ["", "C", "A E"] {
+            let lib = library(skip);
+            let pass = lib.pass("s", "P").unwrap();
+            for space in [Space::full(pass), Space::after_skip(pass)] {
+                let iterated: Vec<Choice> = space.iter().collect();
+                assert_eq!(iterated, space.enumerate(1000).unwrap(), "skip {skip:?}");
+                assert_eq!(BigUint::from(iterated.len()), space.count());
+            }
+        }
+    }
+
+    /// `K/N` parses to 0-based index K-1 of N; 0, K > N and non-numbers are rejected.
+    #[test]
+    fn shard_parsing() {
+        let s: Shard = "2/3".parse().unwrap();
+        assert_eq!(s, Shard { index: 1, count: 3 });
+        assert_eq!(s.to_string(), "2/3");
+        for bad in ["0/3", "4/3", "x", "1/0", "1", "a/3", "/"] {
+            assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
+        assert!("3/3".parse::<Shard>().is_ok());
+    }
+
+    /// The shards of a split partition every pass's variants: together they are the whole,
+    /// no variant is in two, and numbering continues across passes.
+    #[test]
+    fn shard_select_partitions() {
+        let lib = library("");
+        let pass = lib.pass("s", "P").unwrap();
+        let all = Space::full(pass).enumerate(12).unwrap();
+        let plans = vec![
+            ("p1", all[..5].to_vec()),
+            ("p2", Vec::new()),
+            ("p3", all[5..].to_vec()),
+        ];
+        let n = 3;
+        let shards: Vec<Vec<(&str, Vec<Choice>)>> = (1..=n)
+            .map(|k| {
+                format!("{k}/{n}")
+                    .parse::<Shard>()
+                    .unwrap()
+                    .select(plans.clone())
+            })
+            .collect();
+        // Shard 2/3 of global numbers 0..12 is 1, 4, 7, 10: two in p1, two in p3.
+        assert_eq!(shards[1][0].1, vec![all[1].clone(), all[4].clone()]);
+        assert_eq!(shards[1][2].1, vec![all[7].clone(), all[10].clone()]);
+        for (i, (name, choices)) in plans.iter().enumerate() {
+            let mut union: Vec<Choice> = Vec::new();
+            for shard in &shards {
+                assert_eq!(shard[i].0, *name);
+                union.extend(shard[i].1.iter().cloned());
+            }
+            let total: usize = shards.iter().map(|s| s[i].1.len()).sum();
+            assert_eq!(total, choices.len(), "overlap in {name}");
+            union.sort();
+            assert_eq!(&union, choices, "union of {name}");
+        }
+    }
+}

@@ -171,3 +171,205 @@ impl Sink for TextSink<'_, '_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preprocess::parse::{ParseLimits, parse_module};
+
+    /// A hand-built library: `(path, text, module ids of its imports)`, module id = index.
+    struct Fixture {
+        files: SourceFiles,
+        modules: Vec<ParsedModule>,
+        resolved: Vec<Vec<usize>>,
+    }
+
+    impl Fixture {
+        fn new(sources: &[(&str, &str, &[usize])]) -> Fixture {
+            let mut files = SourceFiles::new();
+            let mut modules = Vec::new();
+            let mut resolved = Vec::new();
+            for (path, text, imports) in sources {
+                let file = files.add(path.to_string(), text.to_string());
+                let parsed = parse_module(file, text, ParseLimits::default()).unwrap();
+                assert_eq!(parsed.imports.len(), imports.len());
+                modules.push(parsed);
+                resolved.push(imports.to_vec());
+            }
+            Fixture {
+                files,
+                modules,
+                resolved,
+            }
+        }
+
+        /// Composes the body of module `module` with `defines` on.
+        fn compose(&self, module: usize, defines: &[&str], with_map: bool) -> Composed {
+            let graph = ModuleGraph {
+                modules: &self.modules,
+                resolved: &self.resolved,
+                files: &self.files,
+            };
+            let defines = defines.iter().map(|d| (Box::from(*d), 1)).collect();
+            compose(
+                &graph,
+                module,
+                &self.modules[module].body,
+                defines,
+                with_map,
+            )
+        }
+    }
+
+    /// The branch taken is the one whose condition the starting defines make true; directive
+    /// lines produce no output.
+    #[test]
+    fn branch_taken_by_define() {
+        let f = Fixture::new(&[(
+            "m.wgsl",
+            "a\n#ifdef RED\nred\n#elif GREEN\ngreen\n#else\nblue\n#endif\nz",
+            &[],
+        )]);
+        assert_eq!(f.compose(0, &["RED"], true).text, "a\nred\nz\n");
+        assert_eq!(f.compose(0, &["RED", "GREEN"], true).text, "a\nred\nz\n");
+        assert_eq!(f.compose(0, &["GREEN"], true).text, "a\ngreen\nz\n");
+        assert_eq!(f.compose(0, &[], true).text, "a\nblue\nz\n");
+    }
+
+    /// Defines flow through an import in text order: the imported module sees what was
+    /// defined before the `#import`, the importer sees what the module defines, and an
+    /// `#undef` after the import takes effect from there on.
+    #[test]
+    fn define_undef_order_across_import() {
+        let f = Fixture::new(&[
+            (
+                "m.wgsl",
+                "#ifdef X\nm_x\n#else\nm_no_x\n#endif\n#define Y",
+                &[],
+            ),
+            (
+                "main.wgsl",
+                "#define X\n#import m\n#undef X\n#ifdef X\nmain_x\n#endif\n#ifdef Y\nmain_y\n#endif",
+                &[0],
+            ),
+            (
+                "late.wgsl",
+                "#import m\n#define X\n#ifdef X\nlate_x\n#endif",
+                &[0],
+            ),
+        ]);
+        assert_eq!(f.compose(1, &[], true).text, "m_x\nmain_y\n");
+        // Defined after the import: the module does not see it.
+        assert_eq!(f.compose(2, &[], true).text, "m_no_x\nlate_x\n");
+        // A starting define removed by `#undef` is off afterwards.
+        assert_eq!(f.compose(1, &["X"], true).text, "m_x\nmain_y\n");
+    }
+
+    /// A module imported by two others (a diamond) is emitted once, at its first import.
+    #[test]
+    fn diamond_included_once() {
+        let f = Fixture::new(&[
+            ("common.wgsl", "common", &[]),
+            ("a.wgsl", "#import common\na", &[0]),
+            ("b.wgsl", "#import common\nb", &[0]),
+            (
+                "main.wgsl",
+                "#import a\n#import b\n#import common\nmain",
+                &[1, 2, 0],
+            ),
+        ]);
+        let out = f.compose(3, &[], true).text;
+        assert_eq!(out, "common\na\nb\nmain\n");
+        assert_eq!(out.matches("common").count(), 1);
+    }
+
+    /// A module imported only inside a branch that is not taken is not emitted, and a later
+    /// import still emits it.
+    #[test]
+    fn import_in_untaken_branch() {
+        let f = Fixture::new(&[
+            ("m.wgsl", "m", &[]),
+            (
+                "main.wgsl",
+                "#ifdef X\n#import m\n#endif\nx\n#import m",
+                &[0, 0],
+            ),
+        ]);
+        assert_eq!(f.compose(1, &[], true).text, "x\nm\n");
+        assert_eq!(f.compose(1, &["X"], true).text, "m\nx\n");
+    }
+
+    /// The lean text drops blank and comment-only lines and keeps no map; the code lines are
+    /// the same, in the same order, as in the full text.
+    #[test]
+    fn lean_versus_full() {
+        let text = "// header\nfn a() {}\n\n   // indented\nfn b() {} // trailing\n\t\nfn c() {}";
+        let f = Fixture::new(&[("m.wgsl", text, &[])]);
+        let full = f.compose(0, &[], true);
+        let lean = f.compose(0, &[], false);
+        assert_eq!(full.text, format!("{text}\n"));
+        assert_eq!(full.map.len(), 7);
+        assert_eq!(lean.text, "fn a() {}\nfn b() {} // trailing\nfn c() {}\n");
+        assert!(lean.map.is_empty());
+        let code: Vec<&str> = full
+            .text
+            .lines()
+            .filter(|l| {
+                let t = l.trim();
+                !t.is_empty() && !t.starts_with("//")
+            })
+            .collect();
+        assert_eq!(code, lean.text.lines().collect::<Vec<_>>());
+    }
+
+    /// Every offset of every output line maps back to the same byte of the source file and
+    /// line it was copied from, across imports.
+    #[test]
+    fn line_map_points_back() {
+        let f = Fixture::new(&[
+            (
+                "lib.wgsl",
+                "// lib\nfn helper() -> f32 { return 1.0; }",
+                &[],
+            ),
+            (
+                "main.wgsl",
+                "#ifdef X\nfn x() {}\n#endif\n#import lib\nfn main() { helper(); }",
+                &[0],
+            ),
+        ]);
+        let out = f.compose(1, &["X"], true);
+        assert_eq!(
+            out.text,
+            "fn x() {}\n// lib\nfn helper() -> f32 { return 1.0; }\nfn main() { helper(); }\n"
+        );
+        assert_eq!(out.map.len(), 4);
+        let mut start = 0;
+        for line in out.text.split_inclusive('\n') {
+            let content = line.trim_end_matches('\n');
+            for col in 0..content.len() {
+                let span = out
+                    .map
+                    .to_original(start + col, start + col + 1, &out.text)
+                    .unwrap();
+                let source = f.files.text(span.file);
+                assert_eq!(
+                    &source[span.start as usize..span.end as usize],
+                    &content[col..col + 1],
+                    "output offset {}",
+                    start + col
+                );
+            }
+            start += line.len();
+        }
+        // `helper` in `fn main() { helper(); }` points into main.wgsl.
+        let at = out.text.rfind("helper").unwrap();
+        let span = out.map.to_original(at, at + 6, &out.text).unwrap();
+        assert_eq!(span.file, f.modules[1].file);
+        assert_eq!(
+            span.start as usize,
+            "#ifdef X\nfn x() {}\n#endif\n#import lib\nfn main() { ".len()
+        );
+        assert_eq!(span.end - span.start, 6);
+    }
+}

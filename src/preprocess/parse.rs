@@ -675,3 +675,293 @@ impl<'a> ModuleParser<'a> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<ParsedModule, Vec<ParseError>> {
+        parse_module(0, text, ParseLimits::default())
+    }
+
+    fn span(range: Range<usize>) -> Span {
+        Span::new(0, range)
+    }
+
+    /// Consecutive WGSL lines form one `Text` run; an `#ifdef … #else … #endif` becomes an
+    /// `If` with one branch and an `otherwise` body.
+    #[test]
+    fn text_runs_and_if_else() {
+        let m = parse("a\nb\n#ifdef X\nc\n#else\nd\n#endif\ne").unwrap();
+        assert_eq!(m.lines.len(), 8);
+        assert_eq!(
+            m.body,
+            vec![
+                Node::Text(0..2),
+                Node::If(Box::new(Conditional {
+                    branches: vec![(Expr::Defined("X".into()), vec![Node::Text(3..4)])],
+                    otherwise: vec![Node::Text(5..6)],
+                })),
+                Node::Text(7..8),
+            ]
+        );
+    }
+
+    /// `#elif` adds a branch in order; without `#else` the `otherwise` body is empty.
+    #[test]
+    fn elif_branches_without_else() {
+        let m = parse("#ifdef A\na\n#elif B\nb\n#endif").unwrap();
+        let [Node::If(cond)] = m.body.as_slice() else {
+            panic!("expected one `If`: {:?}", m.body);
+        };
+        assert_eq!(cond.branches.len(), 2);
+        assert_eq!(cond.branches[0].0, Expr::Defined("A".into()));
+        assert_eq!(cond.branches[0].1, vec![Node::Text(1..2)]);
+        assert_eq!(cond.branches[1].0, Expr::Name("B".into()));
+        assert_eq!(cond.branches[1].1, vec![Node::Text(3..4)]);
+        assert!(cond.otherwise.is_empty());
+    }
+
+    /// `#ifndef` is the negation of `defined`.
+    #[test]
+    fn ifndef_negates() {
+        let m = parse("#ifndef A\n#endif").unwrap();
+        let [Node::If(cond)] = m.body.as_slice() else {
+            panic!("expected one `If`: {:?}", m.body);
+        };
+        assert_eq!(
+            cond.branches[0].0,
+            Expr::Not(Box::new(Expr::Defined("A".into())))
+        );
+    }
+
+    /// `#define` takes value 1 when none is written, or one (possibly negative) integer;
+    /// `#undef` names one name.
+    #[test]
+    fn define_and_undef() {
+        let m = parse("#define A\n#define B 16\n#define C -3\n#undef A").unwrap();
+        assert_eq!(
+            m.body,
+            vec![
+                Node::Define {
+                    name: "A".into(),
+                    value: 1
+                },
+                Node::Define {
+                    name: "B".into(),
+                    value: 16
+                },
+                Node::Define {
+                    name: "C".into(),
+                    value: -3
+                },
+                Node::Undef { name: "A".into() },
+            ]
+        );
+    }
+
+    /// Each `#import` gets the next index into `imports`, also inside an `#if`, and a
+    /// `.wgsl` suffix is dropped from the path.
+    #[test]
+    fn import_indices() {
+        let m = parse("#import a\n#ifdef X\n#import b.wgsl\n#endif\n#import a").unwrap();
+        let paths: Vec<&str> = m.imports.iter().map(|i| i.path.as_str()).collect();
+        assert_eq!(paths, ["a", "b", "a"]);
+        assert_eq!(m.imports[0].span, span(8..9));
+        assert_eq!(m.body[0], Node::Import(0));
+        let Node::If(cond) = &m.body[1] else {
+            panic!("expected an `If`: {:?}", m.body);
+        };
+        assert_eq!(cond.branches[0].1, vec![Node::Import(1)]);
+        assert_eq!(m.body[2], Node::Import(2));
+    }
+
+    /// A shader file's pass keeps its name, tags and pragmas in order, and its body; a plain
+    /// module body stays empty.
+    #[test]
+    fn pass_with_tags_and_pragmas() {
+        let text = "#shader s\n#pass P\n#tag LightMode Deferred\n\
+                    #pragma multi_compile_local _ A B\n#pragma shader_feature F\n\
+                    #pragma skip_variants B\n#pragma exclude_renderers gles\nx\n#endpass";
+        let m = parse(text).unwrap();
+        assert!(m.body.is_empty());
+        let shader = m.shader.unwrap();
+        assert_eq!(shader.name, "s");
+        assert_eq!(shader.passes.len(), 1);
+        let pass = &shader.passes[0];
+        assert_eq!(pass.name, "P");
+        assert_eq!(pass.span, span(16..17));
+        assert_eq!(pass.tags, vec![("LightMode".into(), "Deferred".into())]);
+        assert_eq!(pass.pragmas.len(), 4);
+        let Pragma::Keywords {
+            kind,
+            local,
+            names,
+            span: whole,
+        } = &pass.pragmas[0]
+        else {
+            panic!("expected keywords: {:?}", pass.pragmas[0]);
+        };
+        assert_eq!(*kind, SetKind::MultiCompile);
+        assert!(*local);
+        let words: Vec<&str> = names.iter().map(|(n, _)| &**n).collect();
+        assert_eq!(words, ["_", "A", "B"]);
+        let a = text.find(" A B").unwrap() + 1;
+        assert_eq!(names[1].1, span(a..a + 1));
+        let line = text.find("#pragma multi").unwrap();
+        let line_end = line + text[line..].find('\n').unwrap();
+        assert_eq!(*whole, span(line..line_end));
+        assert!(matches!(
+            &pass.pragmas[1],
+            Pragma::Keywords { kind: SetKind::ShaderFeature, local: false, names, .. } if names.len() == 1
+        ));
+        assert!(
+            matches!(&pass.pragmas[2], Pragma::SkipVariants(n) if n.len() == 1 && &*n[0].0 == "B")
+        );
+        assert_eq!(
+            pass.pragmas[3],
+            Pragma::ExcludeRenderers(vec!["gles".into()])
+        );
+        assert_eq!(pass.body, vec![Node::Text(7..8)]);
+    }
+
+    /// `#endif`, `#else`, `#elif` and `#endpass` with nothing open are unmatched, at the
+    /// directive's name.
+    #[test]
+    fn unmatched() {
+        let errors = parse("a\n#endif").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unmatched {
+                directive: "endif",
+                span: span(2..8)
+            }]
+        );
+        let errors = parse("#else").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unmatched {
+                directive: "else",
+                span: span(0..5)
+            }]
+        );
+        let errors = parse("#elif 1").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unmatched {
+                directive: "elif",
+                span: span(0..5)
+            }]
+        );
+        let errors = parse("#shader s\n#endpass").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unmatched {
+                directive: "endpass",
+                span: span(10..18)
+            }]
+        );
+    }
+
+    /// An `#if` left open is reported once, at the outermost open directive; so is an open
+    /// `#pass`.
+    #[test]
+    fn unterminated() {
+        let errors = parse("x\n#ifdef A\n#if B\ny").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unterminated {
+                directive: "ifdef",
+                span: span(2..8)
+            }]
+        );
+        let errors = parse("#shader s\n#pass P\nx").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::Unterminated {
+                directive: "pass",
+                span: span(16..17)
+            }]
+        );
+    }
+
+    /// `#else` or `#elif` after an `#else` points at both directives.
+    #[test]
+    fn after_else() {
+        let errors = parse("#ifdef A\n#else\n#else\n#endif").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::AfterElse {
+                directive: "else",
+                span: span(15..20),
+                else_span: span(9..14)
+            }]
+        );
+        let errors = parse("#ifdef A\n#else\n#elif 1\n#endif").unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::AfterElse {
+                directive: "elif",
+                span: span(15..20),
+                else_span: span(9..14)
+            }]
+        );
+    }
+
+    /// Malformed arguments are reported at the arguments, every error of the file at once.
+    #[test]
+    fn malformed() {
+        let errors = parse("#define 1x\n#import ../up\n#endif extra\n#undef").unwrap_err();
+        assert_eq!(errors.len(), 4, "{errors:?}");
+        assert!(matches!(
+            &errors[0],
+            ParseError::Malformed { directive: "define", span: s, .. } if *s == span(8..10)
+        ));
+        assert!(matches!(
+            &errors[1],
+            ParseError::Malformed { directive: "import", span: s, .. } if *s == span(19..24)
+        ));
+        // `#endif extra` is malformed, not unmatched.
+        assert!(matches!(
+            &errors[2],
+            ParseError::Malformed { directive: "endif", span: s, .. } if *s == span(32..37)
+        ));
+        // No argument: the span is the directive's name.
+        assert!(matches!(
+            &errors[3],
+            ParseError::Malformed { directive: "undef", span: s, .. } if *s == span(38..44)
+        ));
+        let errors = parse("#define A 1 2").unwrap_err();
+        assert!(matches!(
+            &errors[..],
+            [ParseError::Malformed {
+                directive: "define",
+                ..
+            }]
+        ));
+    }
+
+    /// `if_depth` allows exactly that many nested `#if`s, and one more is reported once, at
+    /// the `#if` that passes the limit.
+    #[test]
+    fn if_depth_limit() {
+        let text = "#ifdef A\n#ifdef B\n#ifdef C\n#endif\n#endif\n#endif";
+        let limits = |if_depth| ParseLimits {
+            if_depth,
+            ..ParseLimits::default()
+        };
+        assert!(parse_module(0, text, limits(3)).is_ok());
+        let errors = parse_module(0, text, limits(2)).unwrap_err();
+        assert_eq!(
+            errors,
+            vec![ParseError::TooDeep {
+                what: "`#if`",
+                limit: 2,
+                span: span(18..24)
+            }]
+        );
+        let errors = parse_module(0, text, limits(1)).unwrap_err();
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        assert_eq!(errors[0].span(), span(9..15));
+    }
+}
