@@ -93,57 +93,45 @@ pub fn suggest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) ->
         .map(|(_, c)| c.to_string())
 }
 
-impl Pass {
-    /// The variant with exactly these keywords on, in the full space.
-    ///
-    /// Every keyword must be declared by the pass, at most one per set; a set none of whose
-    /// keywords is given takes its "none" option.
-    ///
-    /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
-    /// let pass = lib.pass("standard", "Deferred").unwrap();
-    /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
-    /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
-    /// ```
-    pub fn resolve<S: AsRef<str>>(&self, keywords: &[S]) -> Result<Choice, LookupError> {
-        let mut options: Vec<Option<u16>> = vec![None; self.sets.len()];
-        for keyword in keywords {
-            let keyword = keyword.as_ref();
-            let (set, option) =
-                self.keyword(keyword)
-                    .ok_or_else(|| LookupError::UnknownKeyword {
-                        shader: self.shader.clone(),
-                        pass: self.name.clone(),
-                        keyword: keyword.to_string(),
-                        suggestion: suggest(keyword, self.keywords()),
-                    })?;
-            if let Some(previous) = options[set] {
-                let first = self.sets[set].options[previous as usize]
-                    .clone()
-                    .unwrap_or_default();
-                if first != keyword {
-                    return Err(LookupError::Conflicting {
-                        first,
-                        second: keyword.to_string(),
-                        set: self.sets[set].to_string(),
-                    });
-                }
-            }
-            options[set] = Some(option as u16);
-        }
-        let mut choice = Vec::with_capacity(options.len());
-        for (set, option) in options.into_iter().enumerate() {
-            match option.or(self.sets[set].none_index().map(|i| i as u16)) {
-                Some(o) => choice.push(o),
-                None => {
-                    return Err(LookupError::Missing {
-                        set: self.sets[set].to_string(),
-                    });
-                }
+/// The strict lookup of [`Pass::resolve`].
+pub(crate) fn resolve<S: AsRef<str>>(pass: &Pass, keywords: &[S]) -> Result<Choice, LookupError> {
+    let mut options: Vec<Option<u16>> = vec![None; pass.sets.len()];
+    for keyword in keywords {
+        let keyword = keyword.as_ref();
+        let (set, option) = pass
+            .keyword(keyword)
+            .ok_or_else(|| LookupError::UnknownKeyword {
+                shader: pass.shader.clone(),
+                pass: pass.name.clone(),
+                keyword: keyword.to_string(),
+                suggestion: suggest(keyword, pass.keywords()),
+            })?;
+        if let Some(previous) = options[set] {
+            let first = pass.sets[set].options[previous as usize]
+                .clone()
+                .unwrap_or_default();
+            if first != keyword {
+                return Err(LookupError::Conflicting {
+                    first,
+                    second: keyword.to_string(),
+                    set: pass.sets[set].to_string(),
+                });
             }
         }
-        Ok(Choice(choice.into_boxed_slice()))
+        options[set] = Some(option as u16);
     }
+    let mut choice = Vec::with_capacity(options.len());
+    for (set, option) in options.into_iter().enumerate() {
+        match option.or(pass.sets[set].none_index().map(|i| i as u16)) {
+            Some(o) => choice.push(o),
+            None => {
+                return Err(LookupError::Missing {
+                    set: pass.sets[set].to_string(),
+                });
+            }
+        }
+    }
+    Ok(Choice(choice.into_boxed_slice()))
 }
 
 /// Strict lookup of `keywords` in `space`: exactly that variant, or an error naming the nearest

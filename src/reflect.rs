@@ -489,24 +489,18 @@ pub fn reflect_module(module: &naga::Module, info: &naga::valid::ModuleInfo) -> 
     }
 }
 
-impl Library {
-    /// The entry points and bindings of a variant (validated first).
-    ///
-    /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
-    /// let v = lib.variant("deferred_final", "Final", &[] as &[&str]).unwrap();
-    /// let r = lib.reflect(&v).unwrap();
-    /// assert_eq!(r.bindings[0].name, "rt3");
-    /// ```
-    pub fn reflect(&self, variant: &Variant<'_>) -> Result<Reflection, VariantError> {
-        let (module, info) = self.naga_module(variant)?;
-        Ok(Reflection {
-            shader: variant.pass.shader.clone(),
-            pass: variant.pass.name.clone(),
-            keywords: variant.keywords().into_iter().map(str::to_string).collect(),
-            ..reflect_module(&module, &info)
-        })
-    }
+/// The reflection of a variant, validated first (see [`Library::reflect`]).
+pub(crate) fn reflect_variant(
+    lib: &Library,
+    variant: &Variant<'_>,
+) -> Result<Reflection, VariantError> {
+    let (module, info) = lib.naga_module(variant)?;
+    Ok(Reflection {
+        shader: variant.pass.shader.clone(),
+        pass: variant.pass.name.clone(),
+        keywords: variant.keywords().into_iter().map(str::to_string).collect(),
+        ..reflect_module(&module, &info)
+    })
 }
 
 impl Reflection {

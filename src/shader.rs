@@ -6,7 +6,9 @@ use num_bigint::BigUint;
 
 use crate::diagnostic::{FileId, Span};
 use crate::keywords::{KeywordError, KeywordSet};
+use crate::lookup::LookupError;
 use crate::preprocess::tree::{Node, PassDecl, Pragma, SetKind};
+use crate::variants::Choice;
 
 /// A shader: a named set of passes declared by one `#shader` file.
 #[derive(Clone, Debug)]
@@ -171,6 +173,21 @@ impl Pass {
             module,
             index,
         })
+    }
+
+    /// The variant with exactly these keywords on, in the full space.
+    ///
+    /// Every keyword must be declared by the pass, at most one per set; a set none of whose
+    /// keywords is given takes its "none" option.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
+    /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
+    /// ```
+    pub fn resolve<S: AsRef<str>>(&self, keywords: &[S]) -> Result<Choice, LookupError> {
+        crate::lookup::resolve(self, keywords)
     }
 
     /// The value of a tag, e.g. `tag("LightMode")`.

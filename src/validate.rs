@@ -164,23 +164,6 @@ pub fn compile(
     Ok((module, info))
 }
 
-impl Library {
-    /// Composes, parses and validates one variant.
-    ///
-    /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
-    /// let v = lib.variant("standard", "Deferred", &["UNITY_HDR_ON"]).unwrap();
-    /// let (module, _info) = lib.naga_module(&v).unwrap();
-    /// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
-    /// ```
-    pub fn naga_module(
-        &self,
-        variant: &Variant<'_>,
-    ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-        validate_composed(&self.compose(variant), &variant.label())
-    }
-}
-
 /// A distinct composed text that naga rejected, with every keyword set that produces it.
 ///
 /// Serialized (in `validate --json`) as `stage`, `message`, `location`, `keyword_sets` and

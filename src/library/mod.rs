@@ -11,8 +11,10 @@ use crate::materials::{self, Material, MaterialsError};
 use crate::preprocess::Composed;
 use crate::preprocess::compose::{ModuleGraph, compose};
 use crate::preprocess::tree::ParsedModule;
+use crate::reflect::Reflection;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
+use crate::validate::VariantError;
 use crate::variants::{Choice, Space};
 
 pub use error::{LinkError, LoadError, LoadProblem};
@@ -315,5 +317,34 @@ impl Library {
     /// [`Library::compose`] for the text with every line and its map to the sources).
     pub fn wgsl(&self, variant: &Variant<'_>) -> String {
         self.compose_text(variant).text
+    }
+
+    /// Composes, parses and validates one variant (the validation stage:
+    /// [`validate`](crate::validate)).
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let v = lib.variant("standard", "Deferred", &["UNITY_HDR_ON"]).unwrap();
+    /// let (module, _info) = lib.naga_module(&v).unwrap();
+    /// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
+    /// ```
+    pub fn naga_module(
+        &self,
+        variant: &Variant<'_>,
+    ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+        crate::validate::validate_composed(&self.compose(variant), &variant.label())
+    }
+
+    /// The entry points and bindings of a variant, validated first (the reflection stage:
+    /// [`reflect`](crate::reflect)).
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let v = lib.variant("deferred_final", "Final", &[] as &[&str]).unwrap();
+    /// let r = lib.reflect(&v).unwrap();
+    /// assert_eq!(r.bindings[0].name, "rt3");
+    /// ```
+    pub fn reflect(&self, variant: &Variant<'_>) -> Result<Reflection, VariantError> {
+        crate::reflect::reflect_variant(self, variant)
     }
 }
