@@ -51,6 +51,7 @@ pub mod keywords;
 pub mod library;
 pub mod lookup;
 pub mod materials;
+pub mod merge;
 pub mod plan;
 pub mod preprocess;
 pub mod reference;

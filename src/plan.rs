@@ -53,6 +53,18 @@ impl Default for PlanOptions {
     }
 }
 
+impl PlanOptions {
+    /// These options as text for [`crate::merge::fingerprint`]: everything but the shard, so
+    /// every shard of one plan has the same fingerprint.
+    pub fn fingerprint_text(&self) -> String {
+        let whole = PlanOptions {
+            shard: None,
+            ..self.clone()
+        };
+        format!("{whole:?}")
+    }
+}
+
 /// The variants to build, pass by pass, in enumeration order.
 pub type Plan<'l> = Vec<(&'l Pass, Vec<Choice>)>;
 

@@ -14,7 +14,7 @@ use crate::shader::Pass;
 use crate::variants::{Choice, Shard, Space};
 
 /// Which naga stage rejected a variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stage {
     /// The WGSL front end (syntax, name resolution, types).
@@ -167,7 +167,7 @@ pub fn compile(
 /// A distinct composed text that naga rejected, with every keyword set that produces it.
 ///
 /// Serialized (in `validate --json`) as `stage`, `message`, `location`, `keyword_sets` and
-/// `diagnostic`.
+/// `diagnostic`; a shard's report adds `text` and `numbers`, which [`crate::merge`] needs.
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Failure {
@@ -179,17 +179,33 @@ pub struct Failure {
     pub keyword_sets: Vec<Vec<String>>,
     /// The error's diagnostic, rendered without colours.
     pub diagnostic: String,
+    /// In a shard's report: the text's dedup key (hex), to join it with the same text in
+    /// other shards.
+    pub text: Option<String>,
+    /// In a shard's report: the variant number (across passes, as [`Shard`] counts) of each
+    /// keyword set; empty otherwise.
+    pub numbers: Vec<u64>,
+    /// Position of each keyword set in the sequence validated.
+    positions: Vec<u64>,
+    /// The text's dedup key.
+    key: u128,
 }
 
 impl serde::Serialize for Failure {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeStruct;
-        let mut out = s.serialize_struct("Failure", 5)?;
+        let mut out = s.serialize_struct("Failure", 7)?;
         out.serialize_field("stage", &self.error.stage)?;
         out.serialize_field("message", &self.error.message)?;
         out.serialize_field("location", &self.location.as_ref().map(|l| l.to_string()))?;
         out.serialize_field("keyword_sets", &self.keyword_sets)?;
         out.serialize_field("diagnostic", &self.diagnostic)?;
+        if let Some(text) = &self.text {
+            out.serialize_field("text", text)?;
+        }
+        if !self.numbers.is_empty() {
+            out.serialize_field("numbers", &self.numbers)?;
+        }
         out.end()
     }
 }
@@ -215,10 +231,18 @@ pub struct PassReport {
     pub invalid: u64,
     /// The failures, one per distinct failing text.
     pub failures: Vec<Failure>,
+    /// In a shard's report, when the audit cannot prove every text of the pass distinct: the
+    /// dedup keys (hex, sorted) of the distinct texts, so that [`crate::merge`] counts texts
+    /// shared between shards once.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texts: Option<Vec<String>>,
+    /// Dedup keys of the texts seen (when kept; see [`validate_pass_with`]).
+    #[serde(skip)]
+    seen: Option<HashSet<u128>>,
 }
 
 /// Which variants a validation covered.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Selection {
     /// Each pass's build set.
@@ -228,7 +252,7 @@ pub enum Selection {
 }
 
 /// Sums over the passes of a [`ValidateReport`].
-#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub struct ValidateTotals {
     /// Number of passes.
@@ -251,8 +275,15 @@ pub struct ValidateReport {
     pub ok: bool,
     /// Build sets or full spaces.
     pub selection: Selection,
+    /// What the report was made from (see [`crate::merge::fingerprint`]); the same for every
+    /// shard of one run and for the run on one machine.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub fingerprint: String,
     /// The shard validated, if only one was (`K/N` in JSON).
-    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "shard_text")]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::merge::shard_text"
+    )]
     pub shard: Option<Shard>,
     /// One report per pass, in plan order.
     pub passes: Vec<PassReport>,
@@ -260,15 +291,8 @@ pub struct ValidateReport {
     pub totals: ValidateTotals,
 }
 
-fn shard_text<S: serde::Serializer>(shard: &Option<Shard>, s: S) -> Result<S::Ok, S::Error> {
-    match shard {
-        Some(shard) => s.collect_str(shard),
-        None => s.serialize_none(),
-    }
-}
-
 impl ValidateReport {
-    /// The report of `passes`, with its totals.
+    /// The report of `passes`, with its totals (and no fingerprint).
     pub fn new(passes: Vec<PassReport>, selection: Selection, shard: Option<Shard>) -> Self {
         let mut totals = ValidateTotals {
             passes: passes.len(),
@@ -283,6 +307,7 @@ impl ValidateReport {
         ValidateReport {
             ok: totals.invalid == 0,
             selection,
+            fingerprint: String::new(),
             shard,
             passes,
             totals,
@@ -311,10 +336,32 @@ pub fn validate_plan(
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ValidateReport {
+    // Variants of the shard before the current pass: with the shard, they give each keyword
+    // set's number across passes.
+    let mut offset = 0u64;
     let passes = plan
         .iter()
         .map(|(pass, choices)| {
-            validate_pass_with(lib, pass, choices.iter().cloned(), cache, progress)
+            let mut report =
+                validate_pass_with(lib, pass, choices.iter().cloned(), cache, progress);
+            let seen = report.seen.take();
+            if let Some(shard) = options.shard {
+                report.texts = seen.map(|seen| {
+                    let mut keys: Vec<u128> = seen.into_iter().collect();
+                    keys.sort_unstable();
+                    keys.iter().map(|k| format!("{k:032x}")).collect()
+                });
+                for f in &mut report.failures {
+                    f.text = Some(format!("{:032x}", f.key));
+                    f.numbers = f
+                        .positions
+                        .iter()
+                        .map(|p| shard.index + (offset + p) * shard.count)
+                        .collect();
+                }
+            }
+            offset += report.built;
+            report
         })
         .collect();
     let selection = if options.all {
@@ -322,7 +369,9 @@ pub fn validate_plan(
     } else {
         Selection::BuildSet
     };
-    ValidateReport::new(passes, selection, options.shard)
+    let mut report = ValidateReport::new(passes, selection, options.shard);
+    report.fingerprint = crate::merge::fingerprint(lib, "validate", &options.fingerprint_text());
+    report
 }
 
 /// Validates one pass's variants; `progress(n)` is called as each batch of `n` variants is done.
@@ -362,8 +411,9 @@ pub fn validate_pass_with(
     // that no two variants share a text, so memory does not grow with the space.
     let mut seen: Option<HashSet<u128>> =
         (!crate::audit::proves_all_distinct(lib, pass)).then(HashSet::new);
-    // One entry per failing text, in order of first appearance: error and keyword sets.
-    let mut failures: Vec<(VariantError, Vec<Choice>)> = Vec::new();
+    // One entry per failing text, in order of first appearance: error, text key and keyword
+    // sets with their positions.
+    let mut failures: Vec<(VariantError, u128, Vec<(u64, Choice)>)> = Vec::new();
     let mut failing: HashMap<u128, usize> = HashMap::new();
     let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
     let mut choices = choices.into_iter();
@@ -417,19 +467,20 @@ pub fn validate_pass_with(
         for (&j, result) in fresh.iter().zip(results) {
             if let Some(error) = result {
                 failing.insert(keys[j], failures.len());
-                failures.push((error, Vec::new()));
+                failures.push((error, keys[j], Vec::new()));
             }
         }
+        let first = built - keys.len() as u64;
         if !failing.is_empty() {
-            for (choice, k) in chunk.into_iter().zip(&keys) {
+            for (j, (choice, k)) in chunk.into_iter().zip(&keys).enumerate() {
                 if let Some(&f) = failing.get(k) {
-                    failures[f].1.push(choice);
+                    failures[f].2.push((first + j as u64, choice));
                 }
             }
         }
         progress(keys.len() as u64);
     }
-    let invalid: u64 = failures.iter().map(|(_, sets)| sets.len() as u64).sum();
+    let invalid: u64 = failures.iter().map(|(_, _, sets)| sets.len() as u64).sum();
     PassReport {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
@@ -440,16 +491,22 @@ pub fn validate_pass_with(
         invalid,
         failures: failures
             .into_iter()
-            .map(|(error, sets)| Failure {
+            .map(|(error, key, sets)| Failure {
                 location: error.location(lib.files()),
                 diagnostic: error.diagnostic().render(lib.files(), false),
                 error,
                 keyword_sets: sets
                     .iter()
-                    .map(|c| c.keywords(pass).into_iter().map(str::to_string).collect())
+                    .map(|(_, c)| c.keywords(pass).into_iter().map(str::to_string).collect())
                     .collect(),
+                text: None,
+                numbers: Vec::new(),
+                positions: sets.iter().map(|(p, _)| *p).collect(),
+                key,
             })
             .collect(),
+        texts: None,
+        seen,
     }
 }
 

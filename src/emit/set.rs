@@ -2,14 +2,16 @@
 //! plus a `manifest.json` describing it.
 //!
 //! Layout: `DIR/<shader>/<pass>/<name>.<ext>`, where `<name>` is the variant's keywords joined
-//! with `+` (`none` when no keyword is on; `v<N>`, N its index in the pass's enumeration, when
-//! that would be longer than 100 bytes), and GLSL adds the entry point:
-//! `<name>.<entry point>.<vert|frag|comp>`. The manifest lists, for each variant in
+//! with `+` (`none` when no keyword is on; `v-<16 hex digits>`, a hash of the keywords, when
+//! that would be longer than 100 bytes, when a keyword has characters other than ASCII
+//! letters, digits, `_` and `-`, or when the only keyword is `none`), and GLSL adds the entry
+//! point: `<name>.<entry point>.<vert|frag|comp>`. A name depends on the variant alone, so the
+//! shards of a build set (`--shard K/N`) name files as one run does. The manifest records
+//! the set's [`crate::merge::fingerprint`] (and its shard), and lists, for each variant in
 //! enumeration order: shader, pass, keywords, entry points with their stage, and each file
 //! with its target, entry point, size and BLAKE3 content hash (hex). Files and manifest are
 //! byte-identical across runs and thread counts.
 
-use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
@@ -21,8 +23,9 @@ use crate::variants::Choice;
 
 use super::backends::{Options, Output, Slot, Target, TranslateError, translate_all};
 use super::write_if_changed;
-use crate::plan::Plan;
+use crate::plan::{Plan, PlanOptions};
 use crate::reflect::{EntryPoint, Stage};
+use crate::variants::Shard;
 
 /// One back end's name and version in a manifest.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -80,6 +83,15 @@ pub struct ManifestVariant {
 pub struct Manifest {
     /// `wgsl-variants <version>`.
     pub generator: String,
+    /// What the set was made from (see [`crate::merge::fingerprint`]); empty when unknown.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub fingerprint: String,
+    /// The shard written, if only one was (`K/N`).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::merge::shard_text"
+    )]
+    pub shard: Option<Shard>,
     /// The back ends, in the order given.
     pub targets: Vec<ManifestTarget>,
     /// Every variant, pass by pass in enumeration order.
@@ -148,21 +160,57 @@ pub fn file_safe(text: &str) -> String {
         .collect()
 }
 
-/// The file stem of a variant (see the module docs).
-pub fn variant_stem(keywords: &[&str], index: usize) -> String {
-    let joined = if keywords.is_empty() {
-        "none".to_string()
-    } else {
-        keywords
-            .iter()
-            .map(|k| file_safe(k))
-            .collect::<Vec<_>>()
-            .join("+")
-    };
-    if joined.len() > 100 {
-        format!("v{index}")
-    } else {
-        joined
+/// The file stem of a variant (see the module docs): its keywords joined with `+`, or a hash
+/// of them where that name would be too long or could collide with another's.
+///
+/// ```
+/// use wgsl_variants::emit::set::variant_stem;
+/// assert_eq!(variant_stem(&[]), "none");
+/// assert_eq!(variant_stem(&["_NORMAL_MAP", "FOG"]), "_NORMAL_MAP+FOG");
+/// assert!(variant_stem(&["A.B"]).starts_with("v-"));
+/// assert_ne!(variant_stem(&["A.B"]), variant_stem(&["A-B"]));
+/// ```
+pub fn variant_stem(keywords: &[&str]) -> String {
+    if keywords.is_empty() {
+        return "none".to_string();
+    }
+    let joined = keywords.join("+");
+    let plain = keywords.iter().all(|k| *k == file_safe(k)) && joined != "none";
+    if plain && joined.len() <= 100 {
+        return joined;
+    }
+    // Keywords cannot hold a space: joined with one, different sets hash different bytes.
+    let hash = blake3::hash(keywords.join(" ").as_bytes()).to_hex();
+    format!("v-{}", &hash[..16])
+}
+
+/// Where a build set comes from, as its manifest records it: the fingerprint of the library,
+/// plan options, targets and back-end options, and the shard.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SetOrigin {
+    /// See [`crate::merge::fingerprint`].
+    pub fingerprint: String,
+    /// The shard written, if only one is.
+    pub shard: Option<Shard>,
+}
+
+impl SetOrigin {
+    /// The origin of the set that `plan_options` selects, written through `targets`.
+    pub fn new(
+        lib: &Library,
+        plan_options: &PlanOptions,
+        targets: &[Target],
+        options: &Options,
+    ) -> SetOrigin {
+        let text = format!(
+            "{} {targets:?} {options:?}",
+            plan_options.fingerprint_text()
+        );
+        SetOrigin {
+            fingerprint: crate::merge::fingerprint(lib, "emit", &text),
+            shard: plan_options.shard,
+        }
     }
 }
 
@@ -176,20 +224,26 @@ pub fn write_set(
     options: &Options,
     dir: &Path,
 ) -> Result<Manifest, SetError> {
+    write_set_from(lib, selection, &SetOrigin::default(), targets, options, dir)
+}
+
+/// [`write_set`], with the set's origin recorded in the manifest (what `emit --out` writes,
+/// and what [`crate::merge::manifest`] checks).
+pub fn write_set_from(
+    lib: &Library,
+    selection: &Plan<'_>,
+    origin: &SetOrigin,
+    targets: &[Target],
+    options: &Options,
+    dir: &Path,
+) -> Result<Manifest, SetError> {
     struct Job<'a> {
         pass: &'a Pass,
-        index: usize,
         choice: &'a Choice,
     }
     let jobs: Vec<Job<'_>> = selection
         .iter()
-        .flat_map(|(pass, choices)| {
-            choices.iter().enumerate().map(move |(index, choice)| Job {
-                pass,
-                index,
-                choice,
-            })
-        })
+        .flat_map(|(pass, choices)| choices.iter().map(move |choice| Job { pass, choice }))
         .collect();
     // First compile and translate everything (in parallel); write only when all succeeded.
     type Done = (Vec<EntryPoint>, Vec<(Target, Output, Vec<Slot>)>);
@@ -224,7 +278,6 @@ pub fn write_set(
 
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     let mut variants = Vec::with_capacity(jobs.len());
-    let mut files_seen: HashSet<String> = HashSet::new();
     for (job, result) in jobs.iter().zip(results) {
         let (eps, outputs) = result.expect("failures returned above");
         let keywords = job.choice.keywords(job.pass);
@@ -233,11 +286,7 @@ pub fn write_set(
             file_safe(&job.pass.shader),
             file_safe(&job.pass.name)
         );
-        let mut stem = variant_stem(&keywords, job.index);
-        if files_seen.contains(&format!("{folder}/{stem}")) {
-            stem = format!("v{}", job.index);
-        }
-        files_seen.insert(format!("{folder}/{stem}"));
+        let stem = variant_stem(&keywords);
         std::fs::create_dir_all(dir.join(&folder)).map_err(|e| io_error(dir, e))?;
         let mut files = Vec::new();
         for (target, output, slots) in outputs {
@@ -276,6 +325,8 @@ pub fn write_set(
     }
     let manifest = Manifest {
         generator: format!("wgsl-variants {}", env!("CARGO_PKG_VERSION")),
+        fingerprint: origin.fingerprint.clone(),
+        shard: origin.shard,
         targets: targets
             .iter()
             .map(|t| ManifestTarget {

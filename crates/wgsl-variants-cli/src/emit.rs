@@ -151,7 +151,8 @@ pub fn run(ctx: &Context, args: &EmitArgs) -> Result<ExitCode, Failed> {
 
     if let Some(dir) = &args.out {
         let selection = vec![(pass, vec![variant.choice.clone()])];
-        return write_selection(ctx, &selection, &targets, &options, dir);
+        let origin = set::SetOrigin::default();
+        return write_selection(ctx, &selection, &origin, &targets, &options, dir);
     }
 
     // The composed text, as written (the default).
@@ -241,18 +242,21 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let selection = ctx.plan(&ctx.plan_options(&args.build, args.all, args.shard)?)?;
-    write_selection(ctx, &selection, targets, options, dir)
+    let plan_options = ctx.plan_options(&args.build, args.all, args.shard)?;
+    let selection = ctx.plan(&plan_options)?;
+    let origin = set::SetOrigin::new(&ctx.lib, &plan_options, targets, options);
+    write_selection(ctx, &selection, &origin, targets, options, dir)
 }
 
 fn write_selection(
     ctx: &Context,
     selection: &wgsl_variants::plan::Plan<'_>,
+    origin: &set::SetOrigin,
     targets: &[Target],
     options: &Options,
     dir: &std::path::Path,
 ) -> Result<ExitCode, Failed> {
-    match set::write_set(&ctx.lib, selection, targets, options, dir) {
+    match set::write_set_from(&ctx.lib, selection, origin, targets, options, dir) {
         Ok(manifest) => {
             let summary = WriteSummary::new(dir, &manifest, targets);
             if ctx.json {

@@ -2,11 +2,13 @@
 //! own file and turns its flags into the library's options.
 
 mod audit;
+mod cache;
 #[cfg(feature = "gpu")]
 mod check_gpu;
 mod emit;
 mod export;
 mod list;
+mod merge;
 mod output;
 mod reflect;
 #[cfg(feature = "gpu")]
@@ -132,6 +134,12 @@ enum Command {
         #[arg(long)]
         summary: bool,
     },
+    /// Put the outputs of N shards (`--shard K/N`: validate and check-gpu reports, emit
+    /// folders) back together into what one run prints or writes; shards are checked to be
+    /// 1..N of the same library, selection and version.
+    Merge(merge::MergeArgs),
+    /// The shared cache of valid texts: its state, and export to or import from one file.
+    Cache(cache::CacheArgs),
     /// Variant counts per pass (full space, after skip_variants, build set, distinct), dead
     /// keywords, a multiplier table per keyword set, budgets (--budget) and a chart (--chart).
     Audit(audit::AuditArgs),
@@ -306,6 +314,8 @@ fn main() -> ExitCode {
         Command::Reflect(args) => reflect::run(&ctx, &args),
         Command::Export(args) => export::run(&ctx, &args),
         Command::Audit(args) => audit::run(&ctx, &args),
+        Command::Merge(args) => merge::run(&ctx, &args),
+        Command::Cache(args) => cache::run(&ctx, &args),
         Command::Manifest { summary } => manifest(&ctx, summary),
         #[cfg(feature = "gpu")]
         Command::CheckGpu(args) => check_gpu::run(&ctx, &args),

@@ -1,9 +1,8 @@
 //! `wgsl-variants validate`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-use wgsl_variants::cache::ValidCache;
 use wgsl_variants::validate::validate_plan;
 use wgsl_variants::variants::Shard;
 
@@ -16,8 +15,8 @@ pub struct RunArgs {
     /// Build only shard K of N (variants numbered across passes; `K/N`, 1 <= K <= N).
     #[arg(long, value_name = "K/N")]
     shard: Option<Shard>,
-    /// Cache of validated texts [default: target/wgsl-variants-cache when ./target or
-    /// ./Cargo.toml exists].
+    /// Cache of validated texts, safe to share between processes and machines at once
+    /// [default: target/wgsl-variants-cache when ./target or ./Cargo.toml exists].
     #[arg(long, value_name = "DIR")]
     cache: Option<PathBuf>,
     /// Validate everything again; neither read nor write the cache.
@@ -30,15 +29,12 @@ impl RunArgs {
         if self.no_cache {
             return None;
         }
-        self.cache.clone().or_else(|| {
-            (Path::new("target").is_dir() || Path::new("Cargo.toml").is_file())
-                .then(|| PathBuf::from("target/wgsl-variants-cache"))
-        })
+        super::cache::default_dir(self.cache.as_deref())
     }
 }
 
 pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result<ExitCode, Failed> {
-    let cache = run.cache_dir().map(|dir| ValidCache::open(&dir));
+    let cache = run.cache_dir().map(|dir| super::cache::open(&dir));
     let options = ctx.plan_options(build, all, run.shard)?;
     let plan = ctx.plan(&options)?;
     let bar = progress(plan.iter().map(|p| p.1.len() as u64).sum(), "validating");

@@ -238,17 +238,32 @@ fn the_cache_changes_speed_not_output() {
         "validate", "--all", "--json", "--pass", "Deferred", "--cache", cache,
     ];
     let first = run(&args);
-    let files: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    assert_eq!(files.len(), 1, "one cache file per crate and naga version");
-    assert_eq!(std::fs::metadata(&files[0]).unwrap().len(), 32 * 3072);
+    let folder = dir.path().join(wgsl_variants::cache::key());
+    let segments = || -> Vec<_> {
+        std::fs::read_dir(&folder)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect()
+    };
+    let files = segments();
+    assert_eq!(
+        files.len(),
+        1,
+        "one segment per save, in one folder per version"
+    );
+    assert_eq!(
+        wgsl_variants::cache::ValidCache::open(dir.path()).len(),
+        3072
+    );
     let second = run(&args);
     assert_eq!(first.stdout, second.stdout);
-    // A damaged cache is ignored record by record, never trusted blindly.
+    assert_eq!(segments(), files, "nothing new: nothing written");
+    // A damaged cache is ignored record by record, never trusted blindly, and reported.
     std::fs::write(&files[0], b"garbage").unwrap();
-    assert_eq!(run(&args).stdout, first.stdout);
+    let damaged = run(&args);
+    assert_eq!(damaged.stdout, first.stdout);
+    let stderr = String::from_utf8_lossy(&damaged.stderr);
+    assert!(stderr.contains("corrupt"), "{stderr}");
 }
 
 /// The cache is read: a cache entry for a text that does NOT validate makes `validate` report
@@ -270,7 +285,9 @@ fn a_cache_entry_is_a_hit() {
     let without = run(&["--root", root, "validate", "--all", "--no-cache"]);
     assert_eq!(without.status.code(), Some(1), "the BAD variant is invalid");
 
-    std::fs::write(cache.path().join(wgsl_variants::cache::file_name()), key).unwrap();
+    let planted = wgsl_variants::cache::ValidCache::open(cache.path());
+    planted.insert(key);
+    planted.save().unwrap();
     let with = run(&["--root", root, "validate", "--all", "--cache", dir]);
     assert_eq!(
         with.status.code(),

@@ -21,6 +21,7 @@
 pub(crate) mod compare;
 pub(crate) mod deferred;
 pub mod kernels;
+pub mod merge;
 pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
@@ -129,6 +130,17 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     let mut report = CheckReport {
         adapter: ctx.adapter_name().to_owned(),
         driver: format!("{:?}, {} {}", info.backend, info.driver, info.driver_info),
+        fingerprint: wgsl_variants::merge::fingerprint(
+            lib,
+            "check-gpu",
+            &format!(
+                "{:?} {:?} {}",
+                options.shader,
+                options.pass,
+                options.sample.max(1)
+            ),
+        ),
+        shard: options.shard,
         passes: Vec::new(),
         kernels: Vec::new(),
         seconds: 0.0,

@@ -186,6 +186,15 @@ pub struct CheckReport {
     pub adapter: String,
     /// The adapter's backend and driver.
     pub driver: String,
+    /// What the check was made from (see [`wgsl_variants::merge::fingerprint`]).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub fingerprint: String,
+    /// The shard checked, if only one was (`K/N`).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "wgsl_variants::merge::shard_text"
+    )]
+    pub shard: Option<wgsl_variants::variants::Shard>,
     /// Render passes checked.
     pub passes: Vec<PassReport>,
     /// Compute kernels checked.

@@ -1,0 +1,224 @@
+//! Merging the `validate --json` reports of N shards into the report of the whole run.
+//!
+//! Totals are sums, except distinct texts: a text produced in two shards is counted once
+//! (joined by the dedup keys a shard lists when the audit cannot prove every text distinct).
+//! Failures of one text in several shards become one failure whose keyword sets are in
+//! enumeration order (by the variant numbers a shard records), taken from the shard that saw
+//! the text first; failures are ordered by their first variant, as one machine orders them.
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+
+use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+
+use super::{MergeError, ShardInfo, order_shards, parse_shard};
+use crate::validate::{Selection, Stage, ValidateTotals};
+
+/// A failure as `validate --json` writes it (field order as [`crate::validate::Failure`]).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+struct FailureJson {
+    stage: Stage,
+    message: String,
+    location: Option<String>,
+    keyword_sets: Vec<Vec<String>>,
+    diagnostic: String,
+    #[serde(default, skip_serializing)]
+    text: Option<String>,
+    #[serde(default, skip_serializing)]
+    numbers: Vec<u64>,
+}
+
+/// A pass as `validate --json` writes it (field order as [`crate::validate::PassReport`]).
+#[derive(Debug, Deserialize, Serialize)]
+struct PassJson {
+    shader: String,
+    pass: String,
+    /// Written as an exact integer of any size: kept as written.
+    full_space: Box<RawValue>,
+    built: u64,
+    distinct: u64,
+    valid: u64,
+    invalid: u64,
+    failures: Vec<FailureJson>,
+    #[serde(default, skip_serializing)]
+    texts: Option<Vec<String>>,
+}
+
+/// A report as `validate --json` writes it (field order as
+/// [`crate::validate::ValidateReport`]).
+#[derive(Debug, Deserialize, Serialize)]
+struct ReportJson {
+    ok: bool,
+    selection: Selection,
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    fingerprint: String,
+    #[serde(default, skip_serializing)]
+    shard: Option<String>,
+    passes: Vec<PassJson>,
+    totals: ValidateTotals,
+}
+
+/// Merges shard reports, given as `(name, JSON text)` in any order, into the JSON text that
+/// `validate --json` prints for the whole run (pretty, with a final newline), byte for byte.
+/// Returns the text and whether no variant failed.
+pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), MergeError> {
+    let reports = inputs
+        .iter()
+        .map(|(name, text)| {
+            serde_json::from_str::<ReportJson>(text).map_err(|e| MergeError::Kind {
+                shard: name.clone(),
+                expected: "a `validate --json` report",
+                message: e.to_string(),
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let infos = inputs
+        .iter()
+        .zip(&reports)
+        .map(|((name, _), r)| {
+            Ok(ShardInfo {
+                name: name.clone(),
+                shard: parse_shard(name, r.shard.as_deref())?,
+                fingerprint: r.fingerprint.clone(),
+            })
+        })
+        .collect::<Result<Vec<_>, MergeError>>()?;
+    let order = order_shards(&infos)?;
+    let mut shards: Vec<(String, ReportJson)> = Vec::new();
+    let mut reports: Vec<Option<ReportJson>> = reports.into_iter().map(Some).collect();
+    for i in order {
+        if let Some(r) = reports[i].take() {
+            shards.push((inputs[i].0.clone(), r));
+        }
+    }
+    let merged = merge(shards)?;
+    let mut text = serde_json::to_string_pretty(&merged).map_err(|e| MergeError::Write {
+        path: "<stdout>".into(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    Ok((text, merged.ok))
+}
+
+fn mismatch(name: &str, message: String) -> MergeError {
+    MergeError::Mismatch {
+        shard: name.to_string(),
+        message,
+    }
+}
+
+/// Merges reports already in shard order.
+fn merge(shards: Vec<(String, ReportJson)>) -> Result<ReportJson, MergeError> {
+    let mut shards = shards.into_iter();
+    let (_, mut merged) = shards.next().ok_or(MergeError::Empty)?;
+    merged.shard = None;
+    // Per pass: distinct keys when listed, and failures by text key.
+    let mut keys: Vec<Option<HashSet<String>>> = Vec::new();
+    let mut failures: Vec<Vec<FailureJson>> = Vec::new();
+    for pass in &mut merged.passes {
+        keys.push(pass.texts.take().map(|t| t.into_iter().collect()));
+        failures.push(std::mem::take(&mut pass.failures));
+    }
+    for (name, r) in shards {
+        check(&name, &r, &merged)?;
+        for (i, p) in r.passes.into_iter().enumerate() {
+            let m = &mut merged.passes[i];
+            m.built += p.built;
+            m.distinct += p.distinct;
+            m.valid += p.valid;
+            m.invalid += p.invalid;
+            match (&mut keys[i], p.texts) {
+                (Some(k), Some(t)) => k.extend(t),
+                (None, None) => {}
+                _ => {
+                    return Err(mismatch(
+                        &name,
+                        format!("{}/{}: texts listed in some shards only", p.shader, p.pass),
+                    ));
+                }
+            }
+            failures[i].extend(p.failures);
+        }
+    }
+    for ((pass, keys), failures) in merged.passes.iter_mut().zip(keys).zip(failures) {
+        if let Some(keys) = keys {
+            pass.distinct = keys.len() as u64;
+        }
+        pass.failures = join_failures(failures);
+    }
+    let mut totals = ValidateTotals {
+        passes: merged.passes.len(),
+        ..ValidateTotals::default()
+    };
+    for p in &merged.passes {
+        totals.built += p.built;
+        totals.distinct += p.distinct;
+        totals.valid += p.valid;
+        totals.invalid += p.invalid;
+    }
+    merged.ok = totals.invalid == 0;
+    merged.totals = totals;
+    Ok(merged)
+}
+
+/// Checks that shard `r` selects what the first shard (`first`) does.
+fn check(name: &str, r: &ReportJson, first: &ReportJson) -> Result<(), MergeError> {
+    if r.selection != first.selection {
+        return Err(mismatch(
+            name,
+            format!("selection {:?} differs", r.selection),
+        ));
+    }
+    let a = r
+        .passes
+        .iter()
+        .map(|p| (&p.shader, &p.pass, p.full_space.get()));
+    let b = first
+        .passes
+        .iter()
+        .map(|p| (&p.shader, &p.pass, p.full_space.get()));
+    if !a.eq(b) {
+        return Err(mismatch(
+            name,
+            "its passes differ from the first shard's".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// One failure per text, keyword sets in variant order, failures by first variant.
+fn join_failures(failures: Vec<FailureJson>) -> Vec<FailureJson> {
+    // Text key -> (first variant, the failure from the shard that saw it first, keyword sets).
+    type Joined = (u64, FailureJson, BTreeMap<u64, Vec<String>>);
+    let mut by_text: HashMap<String, Joined> = HashMap::new();
+    for (i, f) in failures.into_iter().enumerate() {
+        // A report from before texts were recorded: keep the failure on its own.
+        let key = f.text.clone().unwrap_or_else(|| format!("#{i}"));
+        let first = f.numbers.first().copied().unwrap_or(u64::MAX);
+        let sets: Vec<(u64, Vec<String>)> = f
+            .numbers
+            .iter()
+            .copied()
+            .zip(f.keyword_sets.clone())
+            .collect();
+        let entry = by_text
+            .entry(key)
+            .or_insert_with(|| (first, f.clone(), BTreeMap::new()));
+        if first < entry.0 {
+            entry.0 = first;
+            entry.1 = f;
+        }
+        entry.2.extend(sets);
+    }
+    let mut joined: Vec<Joined> = by_text.into_values().collect();
+    joined.sort_by_key(|(first, _, _)| *first);
+    joined
+        .into_iter()
+        .map(|(_, mut f, sets)| {
+            if !sets.is_empty() {
+                f.keyword_sets = sets.into_values().collect();
+            }
+            f
+        })
+        .collect()
+}
