@@ -237,7 +237,7 @@ impl ValidCache {
                 Err(_) => {
                     cache.corrupt += 1;
                     cache.problems.push(format!(
-                        "{}: not a segment of this cache, ignored",
+                        "{}: corrupt (not a segment of this cache), ignored",
                         path.display()
                     ));
                 }

@@ -222,3 +222,78 @@ fn join_failures(failures: Vec<FailureJson>) -> Vec<FailureJson> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Library;
+    use crate::plan::{PlanOptions, plan};
+    use crate::validate::validate_plan;
+
+    /// Two failing keywords and a set of three keywords that change nothing: failing texts
+    /// shared by variants in different shards, and texts the audit cannot prove distinct.
+    fn library() -> Library {
+        Library::from_sources([(
+            "s.wgsl",
+            "#shader s\n#pass P\n#pragma multi_compile _ BAD\n#pragma multi_compile _ WORSE\n\
+             #pragma multi_compile X Y Z\n\
+             #ifdef BAD\nfn f() -> f32 { return vec2f(1.0); }\n#endif\n\
+             #ifdef WORSE\nfn g() -> i32 { return 1.0; }\n#endif\n\
+             @fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }\n#endpass\n",
+        )])
+        .unwrap()
+    }
+
+    fn report_json(lib: &Library, shard: Option<&str>) -> String {
+        let mut options = PlanOptions::default();
+        options.all = true;
+        options.shard = shard.map(|s| s.parse().unwrap());
+        let planned = plan(lib, &options).unwrap();
+        let report = validate_plan(lib, &planned, &options, None, &|_| {});
+        serde_json::to_string_pretty(&report).unwrap() + "\n"
+    }
+
+    #[test]
+    fn shards_merge_to_the_whole_report_byte_for_byte() {
+        let lib = library();
+        let whole = report_json(&lib, None);
+        for n in 1..=5 {
+            let mut inputs: Vec<(String, String)> = (1..=n)
+                .map(|k| {
+                    (
+                        format!("{k}/{n}"),
+                        report_json(&lib, Some(&format!("{k}/{n}"))),
+                    )
+                })
+                .collect();
+            inputs.reverse();
+            let (merged, ok) = merge_reports(&inputs).unwrap();
+            assert!(!ok);
+            assert_eq!(merged, whole, "{n} shards");
+        }
+        // The merge had something to join: shared failing texts and repeated texts.
+        let parsed: ReportJson = serde_json::from_str(&whole).unwrap();
+        assert_eq!((parsed.totals.built, parsed.totals.distinct), (12, 4));
+        assert_eq!(parsed.passes[0].failures.len(), 3);
+        assert!(
+            parsed.passes[0]
+                .failures
+                .iter()
+                .all(|f| f.keyword_sets.len() == 3)
+        );
+    }
+
+    #[test]
+    fn a_report_of_another_kind_is_named() {
+        let inputs = [(
+            "manifest.json".to_string(),
+            "{\"variants\": []}".to_string(),
+        )];
+        let err = merge_reports(&inputs).unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("`manifest.json` is not a `validate --json` report"),
+            "{err}"
+        );
+    }
+}
