@@ -413,7 +413,8 @@ pub fn validate_pass_with(
         (!crate::audit::proves_all_distinct(lib, pass)).then(HashSet::new);
     // One entry per failing text, in order of first appearance: error, text key and keyword
     // sets with their positions.
-    let mut failures: Vec<(VariantError, u128, Vec<(u64, Choice)>)> = Vec::new();
+    type Failing = (VariantError, u128, Vec<(u64, Choice)>);
+    let mut failures: Vec<Failing> = Vec::new();
     let mut failing: HashMap<u128, usize> = HashMap::new();
     let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
     let mut choices = choices.into_iter();

@@ -245,9 +245,11 @@ mod tests {
     }
 
     fn report_json(lib: &Library, shard: Option<&str>) -> String {
-        let mut options = PlanOptions::default();
-        options.all = true;
-        options.shard = shard.map(|s| s.parse().unwrap());
+        let options = PlanOptions {
+            all: true,
+            shard: shard.map(|s| s.parse().unwrap()),
+            ..PlanOptions::default()
+        };
         let planned = plan(lib, &options).unwrap();
         let report = validate_plan(lib, &planned, &options, None, &|_| {});
         serde_json::to_string_pretty(&report).unwrap() + "\n"
