@@ -33,6 +33,7 @@
 //!    explosion without building anything.
 //! 4. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
 //!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests.
+//!    [`merge`] puts the outputs of `--shard K/N` runs back together, byte for byte.
 //! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts, [`reference`](mod@reference) is the
 //!    CPU math of the bundled library.
 //!

@@ -19,3 +19,72 @@ fn check_gpu_with_an_adapter_that_is_not_there_is_a_clear_error() {
         "{stderr}"
     );
 }
+
+/// `check-gpu --shard K/3` in three processes, merged: the counts and verdict of one run.
+#[test]
+fn check_gpu_shards_merge_to_the_counts_of_one_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let check = |pass: &str, extra: &[&str]| -> Vec<u8> {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args([
+                "check-gpu",
+                "--json",
+                "--shader",
+                "standard",
+                "--pass",
+                pass,
+            ])
+            .args(["--sample", "5", "--workers", "1"])
+            .args(extra)
+            .output()
+            .expect("run check-gpu");
+        assert!(
+            out.status.code().is_some_and(|c| c <= 1),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out.stdout
+    };
+    let whole: serde_json::Value = serde_json::from_slice(&check("ForwardBase", &[])).unwrap();
+    let mut paths = Vec::new();
+    for k in 1..=3 {
+        let path = tmp.path().join(format!("check-{k}.json"));
+        std::fs::write(&path, check("ForwardBase", &["--shard", &format!("{k}/3")])).unwrap();
+        paths.push(path.display().to_string());
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .arg("merge")
+        .args(&paths)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let merged: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(merged.get("shard").is_none());
+    assert_eq!(merged["fingerprint"], whole["fingerprint"]);
+    let (a, b) = (&whole["passes"][0], &merged["passes"][0]);
+    for key in [
+        "variants_run",
+        "distinct_shaders",
+        "draws",
+        "pixels_compared",
+        "discarded_compared",
+        "mismatches",
+    ] {
+        assert_eq!(a[key], b[key], "{key}");
+    }
+    assert!(a["variants_run"].as_u64().unwrap() > 300);
+    // Another pass's report is from another selection: refused, naming it.
+    let other = tmp.path().join("other.json");
+    std::fs::write(&other, check("Deferred", &["--shard", "2/3"]).as_slice()).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["merge", &paths[0], other.to_str().unwrap(), &paths[2]])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr.contains("other.json` has fingerprint"), "{stderr}");
+}
