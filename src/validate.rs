@@ -342,8 +342,14 @@ pub fn validate_plan(
     let passes = plan
         .iter()
         .map(|(pass, choices)| {
-            let mut report =
-                validate_pass_with(lib, pass, choices.iter().cloned(), cache, progress);
+            let mut report = validate_keyed(
+                lib,
+                pass,
+                choices.iter().cloned(),
+                cache,
+                progress,
+                options.shard.is_some(),
+            );
             let seen = report.seen.take();
             if let Some(shard) = options.shard {
                 report.texts = seen.map(|seen| {
@@ -406,6 +412,19 @@ pub fn validate_pass_with(
     choices: impl IntoIterator<Item = Choice>,
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
+) -> PassReport {
+    validate_keyed(lib, pass, choices, cache, progress, false)
+}
+
+/// [`validate_pass_with`]; with `keep_seen`, the report keeps the dedup keys of the texts seen
+/// (when they were collected) for a shard's `texts`.
+fn validate_keyed(
+    lib: &Library,
+    pass: &Pass,
+    choices: impl IntoIterator<Item = Choice>,
+    cache: Option<&ValidCache>,
+    progress: &(dyn Fn(u64) + Sync),
+    keep_seen: bool,
 ) -> PassReport {
     // Keys (128 bits of the text's hash) of the texts seen; not kept when the audit proves
     // that no two variants share a text, so memory does not grow with the space.
@@ -507,7 +526,7 @@ pub fn validate_pass_with(
             })
             .collect(),
         texts: None,
-        seen,
+        seen: seen.filter(|_| keep_seen),
     }
 }
 
