@@ -198,3 +198,79 @@ fn check_file(s: &ShardSet, entry: &Value) -> Result<String, MergeError> {
     }
     Ok(file.to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::emit::backends::{Options, Target};
+    use crate::emit::set::{SetOrigin, write_set_from};
+    use crate::plan::{PlanOptions, plan};
+
+    fn write(lib: &crate::Library, shard: Option<&str>, dir: &Path) {
+        let options = PlanOptions {
+            shard: shard.map(|s| s.parse().unwrap()),
+            shader: Some("deferred_reflections".into()),
+            ..PlanOptions::default()
+        };
+        let targets = [Target::Wgsl];
+        let origin = SetOrigin::new(lib, &options, &targets, &Options::default());
+        let planned = plan(lib, &options).unwrap();
+        write_set_from(lib, &planned, &origin, &targets, &Options::default(), dir).unwrap();
+    }
+
+    fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+        let mut out = Vec::new();
+        let mut stack = vec![dir.to_path_buf()];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap() {
+                let p = e.unwrap().path();
+                if p.is_dir() {
+                    stack.push(p);
+                } else {
+                    out.push((
+                        p.strip_prefix(dir).unwrap().to_path_buf(),
+                        std::fs::read(&p).unwrap(),
+                    ));
+                }
+            }
+        }
+        out.sort();
+        out
+    }
+
+    #[test]
+    fn shard_folders_merge_to_the_whole_folder() {
+        let lib = crate::Library::bundled().unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        write(&lib, None, &tmp.path().join("whole"));
+        let shards: Vec<PathBuf> = (1..=2)
+            .map(|k| {
+                let dir = tmp.path().join(format!("s{k}"));
+                write(&lib, Some(&format!("{k}/2")), &dir);
+                dir
+            })
+            .collect();
+        let merged = merge_folders(
+            &[shards[1].clone(), shards[0].clone()],
+            &tmp.path().join("m"),
+        )
+        .unwrap();
+        assert_eq!((merged.variants, merged.files), (3, 3));
+        assert_eq!(
+            files(&tmp.path().join("whole")),
+            files(&tmp.path().join("m"))
+        );
+
+        // A file changed after it was written: refused, naming the shard, nothing written.
+        let manifest = std::fs::read_to_string(shards[1].join("manifest.json")).unwrap();
+        let value: Value = serde_json::from_str(&manifest).unwrap();
+        let file = value["variants"][0]["files"][0]["file"].as_str().unwrap();
+        std::fs::write(shards[1].join(file), "// changed\n").unwrap();
+        let err = merge_folders(&shards, &tmp.path().join("n")).unwrap_err();
+        assert!(
+            matches!(&err, MergeError::Mismatch { shard, .. } if *shard == shards[1].display().to_string()),
+            "{err}"
+        );
+        assert!(!tmp.path().join("n").exists());
+    }
+}
