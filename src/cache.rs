@@ -158,8 +158,11 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let name = path
         .file_name()
         .map_or("cache".into(), |n| n.to_string_lossy().into_owned());
-    // Unique per process and moment, so concurrent writers never share a temporary file.
-    let tmp = dir.join(format!(".{name}.{}.{nanos}.tmp", std::process::id()));
+    // Unique per process, thread-safe counter and moment, so concurrent writers (threads or
+    // processes, here or on other machines) never share a temporary file.
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.{}.{n}.{nanos}.tmp", std::process::id()));
     let written = (|| {
         let mut file = std::fs::File::create(&tmp)?;
         file.write_all(bytes)?;
