@@ -137,7 +137,7 @@ fn fullscreen_job(
 }
 
 /// A 2D texture resource from target bytes.
-fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
+pub(crate) fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
     Resource::Texture2d {
         format: format.wgpu_format(),
         width,
@@ -148,7 +148,7 @@ fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resour
 
 /// Records the comparison of one texel.
 #[allow(clippy::too_many_arguments)]
-fn compare_texel(
+pub(crate) fn compare_texel(
     report: &mut PassReport,
     keywords: &str,
     target: &str,

@@ -13,7 +13,8 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants) and `standard/ForwardBase` (1536) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (1920, one light of each type from [`LightRig`]) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
@@ -21,6 +22,7 @@
 pub(crate) mod compare;
 pub(crate) mod deferred;
 pub mod kernels;
+pub mod lights;
 pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
@@ -28,6 +30,7 @@ pub mod scene;
 
 use std::time::Instant;
 
+pub use lights::LightRig;
 use passes::Worker;
 pub use passes::standard_job;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
@@ -40,7 +43,7 @@ use wgsl_variants::Library;
 #[derive(Clone, Debug, Default)]
 #[non_exhaustive]
 pub struct CheckOptions {
-    /// Only this shader (`standard`, `deferred_reflections`, `deferred_final`, or `kernels`
+    /// Only this shader (`standard`, `deferred_shading`, `deferred_reflections`, `deferred_final`, or `kernels`
     /// for the compute kernels alone).
     pub shader: Option<String>,
     /// Only passes (or kernels) with this name.
@@ -58,9 +61,11 @@ pub struct CheckOptions {
 }
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 5] = [
+pub const PASSES: [(&str, &str); 7] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
+    ("standard", "ForwardAdd"),
+    ("deferred_shading", "Lighting"),
     ("deferred_reflections", "Reflections"),
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
@@ -134,6 +139,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         seconds: 0.0,
     };
     let scene = TestScene::default();
+    let rig = LightRig::new(&scene);
     let threads = options.threads();
 
     let standard: Vec<&str> = selected
@@ -164,16 +170,22 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 &workers,
                 lib,
                 &scene,
+                &rig,
                 pass,
                 options.sample,
                 options.shard,
             )?);
         }
     }
+    if selected.contains(&("deferred_shading", "Lighting")) {
+        report
+            .passes
+            .push(lights::check_deferred_shading(&ctx, lib, &scene, &rig)?);
+    }
     let chain: Vec<(&str, &str)> = selected
         .iter()
         .copied()
-        .filter(|(s, _)| *s != "standard")
+        .filter(|(s, _)| *s != "standard" && *s != "deferred_shading")
         .collect();
     if !chain.is_empty() {
         report
