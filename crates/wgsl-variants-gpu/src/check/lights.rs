@@ -262,7 +262,7 @@ fn run_lighting(
     scene: &TestScene,
     rig: &LightRig,
     gbuffer: &GBufferImage,
-    label: &str,
+    (label, keywords): (&str, &str),
     wgsl: &str,
     light: LightType,
     report: &mut PassReport,
@@ -331,7 +331,7 @@ fn run_lighting(
         cube: &rig.cube,
     };
     let input = format!(
-        "{label} over the G-buffer of standard/Deferred {{{}}}",
+        "{keywords} over the G-buffer of standard/Deferred {{{}}}",
         gbuffer.keywords.join(", ")
     );
     let target = format!("RT3 {}", format_name(format));
@@ -402,6 +402,7 @@ pub fn check_deferred_shading(
             })
         })?;
         let wgsl = lib.wgsl(&variant);
+        let keywords = choice.label(pass);
         let mut per_input = Vec::new();
         for n in 0..CHAIN_INPUTS.len() {
             let gbuffer = &gbuffers[&(n, hdr)];
@@ -410,7 +411,7 @@ pub fn check_deferred_shading(
                 scene,
                 rig,
                 gbuffer,
-                &label,
+                (&label, &keywords),
                 &wgsl,
                 light,
                 &mut report,
