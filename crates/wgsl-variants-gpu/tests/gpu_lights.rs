@@ -112,3 +112,69 @@ fn a_wrong_falloff_fails_the_check() {
         p.mismatches
     );
 }
+
+/// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every
+/// pixel within the bound derived from the G-buffer's quantization
+/// (`reference::tolerance::gbuffer_light_bound`), for every light type and two keyword sets.
+#[test]
+fn forward_and_deferred_light_agree_per_pixel() {
+    use wgsl_variants::reference::light::LightType;
+    use wgsl_variants::reference::surface::{Keywords, SmoothnessSource};
+    use wgsl_variants_gpu::check::forward_deferred::forward_vs_deferred;
+    use wgsl_variants_gpu::check::{LightRig, TestScene};
+
+    let ctx = match wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()) {
+        Ok(ctx) => ctx,
+        Err(e) => {
+            common::gpu::or_skip::<()>(Err(e), "creating the GPU context");
+            return;
+        }
+    };
+    let lib = Library::bundled().unwrap();
+    let scene = TestScene::default();
+    let rig = LightRig::new(&scene);
+    let inputs = [
+        Keywords::EVERY_MAP,
+        Keywords {
+            smoothness: SmoothnessSource::Albedo,
+            normal_map: true,
+            ..Keywords::NONE
+        },
+    ];
+    let (mut pixels, mut lit, mut worst, mut sum_light, mut sum_allowed) = (0, 0, 0.0f32, 0.0, 0.0);
+    for kw in &inputs {
+        for light in LightType::ALL {
+            let pairs = forward_vs_deferred(&ctx, &lib, &scene, &rig, kw, light).unwrap();
+            for p in &pairs {
+                assert!(
+                    p.agrees(),
+                    "{light:?} {:?} pixel {:?}: forward {} deferred {} allowed {}",
+                    kw.names(),
+                    p.pixel,
+                    p.forward,
+                    p.deferred,
+                    p.allowed
+                );
+                pixels += 1;
+                if p.forward.max_element() > 0.0 {
+                    lit += 1;
+                    let diff = (p.forward - p.deferred).abs();
+                    worst = worst.max((diff / p.allowed).max_element());
+                    sum_light += p.forward.element_sum();
+                    sum_allowed += p.allowed.element_sum();
+                }
+            }
+        }
+    }
+    eprintln!(
+        "forward = deferred: {pixels} pixels ({lit} lit), largest difference {:.0}% of its bound, bounds {:.2}% of the light on average",
+        worst * 100.0,
+        sum_allowed / sum_light * 100.0
+    );
+    assert!(lit > pixels / 2, "{lit} of {pixels} lit");
+    // The bound is not vacuous: a few percent of the light, not a multiple of it.
+    assert!(
+        sum_allowed < 0.1 * sum_light,
+        "{sum_allowed} vs {sum_light}"
+    );
+}

@@ -237,14 +237,6 @@ impl LightRig {
             ),
         ]
     }
-
-    /// The `DeferredCamera` uniform of `wgsl/internal/deferred_shading.wgsl`.
-    fn camera_uniform(&self, scene: &TestScene) -> Vec<u8> {
-        let mut out = Vec::new();
-        push_mat4(&mut out, self.view_proj.inverse());
-        push_vec4(&mut out, scene.scene.camera_position.extend(1.0));
-        out
-    }
 }
 
 /// The light type and HDR mode of a `deferred_shading/Lighting` keyword set.
@@ -255,18 +247,28 @@ fn lighting_keywords(names: &[&str]) -> Result<(LightType, bool), String> {
     Ok((light, kw.hdr))
 }
 
-/// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.
+/// What the lighting pass sees of the camera: `inv_view_proj` and position (the
+/// `DeferredCamera` uniform) and the depth buffer, one `f32` per pixel.
+pub(crate) struct LightingCamera<'a> {
+    pub(crate) inv_view_proj: Mat4,
+    pub(crate) position: Vec3,
+    pub(crate) depth: &'a [f32],
+}
+
+/// Renders one `Lighting` variant (light keyword `light`) over `gbuffer`'s RT0–RT2 onto
+/// `rt3` (the target's initial contents, `gbuffer`'s RT3 format), blended as the HDR mode says.
 #[allow(clippy::too_many_arguments)]
-fn run_lighting(
+pub(crate) fn render_lighting(
     ctx: &GpuContext,
     scene: &TestScene,
     rig: &LightRig,
     gbuffer: &GBufferImage,
-    (label, keywords): (&str, &str),
+    label: &str,
     wgsl: &str,
     light: LightType,
-    report: &mut PassReport,
-) -> Result<Vec<[f32; 4]>, GpuError> {
+    camera: &LightingCamera<'_>,
+    rt3: Vec<u8>,
+) -> Result<Vec<u8>, GpuError> {
     let (w, h) = (scene.width, scene.height);
     let format = gbuffer.rt3_format();
     let blend = if gbuffer.hdr {
@@ -287,12 +289,15 @@ fn run_lighting(
             color: blend,
             alpha: blend,
         })
-        .with_initial(gbuffer.targets[3].clone());
+        .with_initial(rt3);
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
     job.width = w;
     job.height = h;
     job.targets = vec![target];
-    let depth: Vec<u8> = rig.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+    let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+    let mut uniform = Vec::new();
+    push_mat4(&mut uniform, camera.inv_view_proj);
+    push_vec4(&mut uniform, camera.position.extend(1.0));
     job.resources = vec![
         BoundResource::new(
             0,
@@ -319,10 +324,42 @@ fn run_lighting(
                 data: depth,
             },
         ),
-        BoundResource::new(0, 4, Resource::Uniform(rig.camera_uniform(scene))),
+        BoundResource::new(0, 4, Resource::Uniform(uniform)),
     ];
     job.resources.extend(rig.resources(light));
-    let out = render(ctx, &job)?.remove(0);
+    Ok(render(ctx, &job)?.remove(0))
+}
+
+/// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.
+#[allow(clippy::too_many_arguments)]
+fn run_lighting(
+    ctx: &GpuContext,
+    scene: &TestScene,
+    rig: &LightRig,
+    gbuffer: &GBufferImage,
+    (label, keywords): (&str, &str),
+    wgsl: &str,
+    light: LightType,
+    report: &mut PassReport,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let (w, h) = (scene.width, scene.height);
+    let format = gbuffer.rt3_format();
+    let camera = LightingCamera {
+        inv_view_proj: rig.view_proj.inverse(),
+        position: scene.scene.camera_position,
+        depth: &rig.depth,
+    };
+    let out = render_lighting(
+        ctx,
+        scene,
+        rig,
+        gbuffer,
+        label,
+        wgsl,
+        light,
+        &camera,
+        gbuffer.targets[3].clone(),
+    )?;
     report.draws += 1;
 
     let cookie = rig.cookie_2d();

@@ -15,12 +15,14 @@
 //! |---|---|
 //! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (1920, one light of each type from [`LightRig`]) on [`scene::TestScene`] (one render job: [`standard_job`]) |
 //! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
+//! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
 
 pub(crate) mod compare;
 pub(crate) mod deferred;
+pub mod forward_deferred;
 pub mod kernels;
 pub mod lights;
 pub(crate) mod passes;
