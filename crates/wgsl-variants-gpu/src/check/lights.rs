@@ -393,7 +393,8 @@ fn run_lighting(
 }
 
 /// Checks every variant of `deferred_shading/Lighting` over the LDR and HDR G-buffers of each
-/// [`CHAIN_INPUTS`] keyword set, and that each keyword changes the result.
+/// `CHAIN_INPUTS` keyword set of the deferred chain check, and that each keyword changes the
+/// result.
 pub fn check_deferred_shading(
     ctx: &GpuContext,
     lib: &Library,
