@@ -15,7 +15,9 @@ use std::time::Instant;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::compare::{format_name, pixel};
-use super::deferred::{CHAIN_INPUTS, GBufferImage, compare_texel, render_gbuffer, texture};
+use super::deferred::{
+    CHAIN_INPUTS, GBufferImage, compare_texel, render_gbuffer, rt3_blend, texture,
+};
 use super::passes::keyword_coverage;
 use super::report::PassReport;
 use super::scene::{MapTexture, TestScene, cube_resource, push_mat4, push_vec4};
@@ -270,25 +272,8 @@ pub(crate) fn render_lighting(
     rt3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let (w, h) = (scene.width, scene.height);
-    let format = gbuffer.rt3_format();
-    let blend = if gbuffer.hdr {
-        wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        }
-    } else {
-        wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::Dst,
-            dst_factor: wgpu::BlendFactor::Zero,
-            operation: wgpu::BlendOperation::Add,
-        }
-    };
-    let target = ColorTarget::new(format)
-        .with_blend(wgpu::BlendState {
-            color: blend,
-            alpha: blend,
-        })
+    let target = ColorTarget::new(gbuffer.rt3_format())
+        .with_blend(rt3_blend(gbuffer.hdr))
         .with_initial(rt3);
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
     job.width = w;
