@@ -20,6 +20,7 @@
 //! | [`cube`] | the test scene's cube maps (one colour per face) |
 //! | [`probe`] | reflection probes: box projection, mip, RGBM, blending, falloff, draw order |
 //! | [`brdf`] | metallic workflow, ambient SH, indirect specular, direct light |
+//! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
 //!
 //! Everything is linear colour, `f32`, one pixel at a time. Special values (NaN, ±∞, zero
@@ -43,6 +44,7 @@ pub mod brdf;
 pub mod cube;
 pub mod gbuffer;
 pub mod ldr;
+pub mod light;
 pub mod probe;
 pub mod quantize;
 pub mod surface;
@@ -51,9 +53,10 @@ pub mod tolerance;
 pub use cube::CubeFaces;
 pub use gbuffer::{DecodedSurface, GBuffer, GBufferTexel, Rt3Texel, decode_normal, encode_normal};
 pub use ldr::{ldr_accumulate, ldr_decode, ldr_encode};
+pub use light::{Light, LightError, LightParams, LightType};
 pub use probe::Probe;
 pub use surface::{
     Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Surface, Texels,
     final_ldr, reflection_buffer, reflection_probe_pixel, reflections_add, shade_deferred,
-    shade_forward,
+    shade_forward, shade_forward_add,
 };

@@ -22,6 +22,7 @@ use super::brdf::{diffuse_and_specular_from_metallic, direct, indirect_specular,
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
 use super::ldr::{ldr_accumulate, ldr_decode};
+use super::light::{Cookies, LightParams, LightType, light_direct};
 use super::probe::{
     Probe, box_project, box_project_grown, composite_f16, draw_order, falloff, forward_blend,
     mip_from_smoothness, mix, sample_probe,
@@ -727,6 +728,68 @@ pub fn shade_forward(
         scene.light_color,
     );
     let rgb = s.emission + diffuse * indirect_diffuse + indirect_specular + d;
+    let a = match kw.rendering {
+        RenderingMode::Fade | RenderingMode::Transparent => alpha,
+        _ => 1.0,
+    };
+    Some(rgb.extend(a))
+}
+
+/// The ForwardAdd pass at one pixel (docs/shading.md §10): `None` when `_RENDERING_CUTOUT`
+/// discards, else the colour written before the pipeline blends it (One/One; SrcAlpha/One with
+/// fade and transparent): `rgb = light_direct(…)` of the one light, no ambient, reflections or
+/// emission; `a` as in [`shade_forward`]. The diffuse colour is premultiplied by alpha with
+/// `_RENDERING_TRANSPARENT`. The light's type comes from the variant's light keyword;
+/// `Keywords::occlusion_map` and `emission_map` have no effect (the pass has no such keywords).
+///
+/// ```
+/// use glam::{Vec3, Vec4};
+/// use wgsl_variants::reference::light::{Light, LightType};
+/// use wgsl_variants::reference::surface::*;
+/// let mat = Material { emission: Vec3::ONE, ..Material::default() };
+/// let geo = Geometry { world_position: Vec3::ZERO, normal: Vec3::Z, tangent: Vec4::X };
+/// let light = Light::point(Vec3::new(0.0, 0.0, 10.0), 1.0, Vec3::ONE).params().unwrap();
+/// // Out of range: black, whatever the emission.
+/// let c = shade_forward_add(&Keywords::NONE, &mat, &Texels::default(), &geo, Vec3::Z * 5.0, &light, LightType::Point, None);
+/// assert_eq!(c, Some(Vec4::new(0.0, 0.0, 0.0, 1.0)));
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn shade_forward_add(
+    kw: &Keywords,
+    mat: &Material,
+    tex: &Texels,
+    geo: &Geometry,
+    camera_position: Vec3,
+    light: &LightParams,
+    light_type: LightType,
+    cookies: Option<Cookies<'_>>,
+) -> Option<Vec4> {
+    let kw = Keywords {
+        occlusion_map: false,
+        emission_map: false,
+        ..*kw
+    };
+    let s = surface(&kw, mat, tex, geo);
+    if kw.cutout() && s.alpha < mat.cutoff {
+        return None;
+    }
+    let (mut diffuse, spec, omr) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
+    let mut alpha = s.alpha;
+    if kw.rendering == RenderingMode::Transparent {
+        diffuse *= alpha;
+        alpha = 1.0 - omr + alpha * omr;
+    }
+    let rgb = light_direct(
+        diffuse,
+        spec,
+        s.smoothness,
+        s.normal,
+        geo.world_position,
+        camera_position,
+        light,
+        light_type,
+        cookies,
+    );
     let a = match kw.rendering {
         RenderingMode::Fade | RenderingMode::Transparent => alpha,
         _ => 1.0,

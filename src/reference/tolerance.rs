@@ -7,6 +7,7 @@
 //! | unorm targets (8- and 10-bit, and the 2-bit alpha) | [`UNORM_LSB`] = 1 step, measured from either correct rounding | docs/shading.md §1: Vulkan may round a tie either way, and the GPU's `f32` value before quantization may differ from the CPU's by a few ULP, which can move it across a rounding boundary — by one step, never more |
 //! | `Rgba16Float` targets | [`F16_ULP`] = 1 f16 step from the round-to-nearest-even of the reference `f32` | docs/shading.md §1: the same argument; 1 f16 ULP is 2^13 f32 ULPs, far above any `f32` arithmetic difference |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
+//! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
 //!
 //! ```
 //! use wgsl_variants::reference::tolerance::{unorm_within, f16_within, f32_within};
@@ -17,6 +18,7 @@
 
 use glam::{Vec3, Vec4};
 
+use super::brdf::specular_power;
 use super::quantize::{f32_to_f16_bits, unorm_max};
 
 /// Allowed difference, in integer steps, between a unorm channel read back from the GPU and
@@ -245,6 +247,90 @@ pub fn vec3_within(got: Vec3, expected: Vec3) -> bool {
 /// ```
 pub fn vec4_within(got: Vec4, expected: Vec4) -> bool {
     (0..4).all(|i| f32_within(got[i], expected[i]))
+}
+
+/// The largest error, in steps, of a value read back from an 8-bit G-buffer channel (RT0, RT1):
+/// half a step of rounding, widened to [`UNORM_LSB`] + ½ for the GPU's rounding freedom.
+pub const GBUFFER_8BIT_STEP: f32 = (UNORM_LSB as f32 + 0.5) / 255.0;
+
+/// The largest angle (radians, ≈ length of the difference) between a unit normal and the one
+/// decoded from the 10-bit RT2: each component of `n` moves by at most
+/// ([`UNORM_LSB`] + ½)/1023 · 2 in `rgb · 2 − 1`, so the vector by `√3 · 3/1023 ≈ 5.1·10⁻³`
+/// before renormalization, which does not lengthen the error of a unit vector's direction.
+pub const GBUFFER_NORMAL_ANGLE: f32 = 1.732_050_8 * 3.0 / 1023.0;
+
+/// How far the deferred light of one pixel may be from the forward light of the same surface
+/// (docs/shading.md §10), per channel, before the targets round it.
+///
+/// Both passes evaluate `light = (diffuse + spec · S) · k · nl` with
+/// `S = (p + 8)/(8π) · nh^p`, `p = exp2(1 + 7 · smoothness)`, `k = colour · attenuation`; the
+/// deferred one reads `diffuse`, `spec` and `smoothness` from 8-bit targets, which clamp to
+/// [0, 1] and round (each off by at most `δ_x = |x − saturate(x)| + `[`GBUFFER_8BIT_STEP`] per
+/// channel: a detail albedo can push the colours above 1, and then forward and deferred
+/// differ by design), and `n` from the 10-bit RT2 (off by at most [`GBUFFER_NORMAL_ANGLE`] = ε,
+/// so `nl` and `nh` move by at most ε). With `S⁺` the largest and `ΔS` the largest change of
+/// `S` over `nh ± ε` and `smoothness ±` one step (checked at the corners of that box and at the
+/// interior maximum of `S` in `p`, `p = −1/ln(nh) − 8`):
+///
+/// ```text
+/// Δ ≤ k · [ (δ_diffuse + δ_spec · S⁺ + (spec + δ_spec) · ΔS) · min(nl + ε, 1) + (diffuse + spec · S) · ε ]
+/// ```
+///
+/// The arguments are the forward pass's exact values: `nl`, `nh` before saturation are taken
+/// as given in [0, 1]. Positions (interpolated vs. rebuilt from depth) differ by a few `f32`
+/// ULP, far below these terms.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::tolerance::gbuffer_light_bound;
+/// // A matte surface (no specular) under a unit light, head-on: the diffuse step and the
+/// // normal angle.
+/// let b = gbuffer_light_bound(Vec3::splat(0.5), Vec3::ZERO, 0.0, 1.0, 1.0, Vec3::ONE);
+/// assert!(b.x > 0.003 && b.x < 0.02, "{b}");
+/// ```
+pub fn gbuffer_light_bound(
+    diffuse: Vec3,
+    spec: Vec3,
+    smoothness: f32,
+    nl: f32,
+    nh: f32,
+    k: Vec3,
+) -> Vec3 {
+    let delta = GBUFFER_8BIT_STEP;
+    let eps = GBUFFER_NORMAL_ANGLE;
+    let lobe =
+        |nh: f32, p: f32| (p + 8.0) / (8.0 * std::f32::consts::PI) * nh.clamp(0.0, 1.0).powf(p);
+    let p = specular_power(smoothness);
+    let s0 = lobe(nh, p);
+    let mut s_max = s0;
+    let mut ds: f32 = 0.0;
+    let p_range = [
+        specular_power((smoothness - delta).max(0.0)),
+        specular_power((smoothness + delta).min(1.0)),
+    ];
+    let mut candidates = Vec::with_capacity(6);
+    for n in [(nh - eps).max(0.0), (nh + eps).min(1.0)] {
+        for q in p_range {
+            candidates.push((n, q));
+        }
+        // S is largest in p at p* = −1/ln(nh) − 8 when that lies inside the range.
+        if n > 0.0 && n < 1.0 {
+            let star = -1.0 / n.ln() - 8.0;
+            if star > p_range[0] && star < p_range[1] {
+                candidates.push((n, star));
+            }
+        }
+    }
+    for (n, q) in candidates {
+        let s = lobe(n, q);
+        s_max = s_max.max(s);
+        ds = ds.max((s - s0).abs());
+    }
+    let nl_max = (nl + eps).min(1.0);
+    let lit = diffuse + spec * s0;
+    let stored = |x: Vec3| (x - x.clamp(Vec3::ZERO, Vec3::ONE)).abs() + Vec3::splat(delta);
+    let (d_diffuse, d_spec) = (stored(diffuse), stored(spec));
+    k * ((d_diffuse + d_spec * s_max + (spec + d_spec) * ds) * nl_max + lit * eps)
 }
 
 #[cfg(test)]

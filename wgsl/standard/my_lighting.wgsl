@@ -1,16 +1,20 @@
 // standard/my_lighting: Catlike Coding's "My Lighting" program for the standard shader's
-// ForwardBase (FORWARD_BASE_PASS) and Deferred (DEFERRED_PASS) passes (docs/shading.md §4-§7).
+// ForwardBase (FORWARD_BASE_PASS), ForwardAdd (FORWARD_ADD_PASS) and Deferred (DEFERRED_PASS)
+// passes (docs/shading.md §4-§7, §10).
 //
 // Provides the entry points:
 //   @vertex   vs_main(VertexInput) -> VertexOutput
 //   @fragment fs_main(VertexOutput) -> GBufferOutput        (DEFERRED_PASS: RT0..RT3)
-//   @fragment fs_main(VertexOutput) -> @location(0) vec4f   (FORWARD_BASE_PASS)
+//   @fragment fs_main(VertexOutput) -> @location(0) vec4f   (FORWARD_BASE_PASS, FORWARD_ADD_PASS)
 
 #import standard/bindings
 #import standard/surface
 #import lighting/brdf
 #import deferred/probe
 #import deferred/gbuffer
+#if defined(FORWARD_ADD_PASS)
+#import lighting/light_bindings
+#endif
 
 struct VertexInput {
     @location(0) position: vec3f,
@@ -83,6 +87,10 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
     out_alpha = brdf_premultiply_alpha(alpha, setup.one_minus_reflectivity);
 #endif
 
+#if defined(FORWARD_ADD_PASS)
+    // One per-pixel light, nothing else: the same lighting code as the deferred lighting pass.
+    let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, light_at(in.world_position));
+#else
     let indirect_diffuse = brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b) * occlusion;
 #if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS
     // The per-pixel probes of internal/deferred_reflections add the indirect specular later.
@@ -93,10 +101,17 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
         brdf_indirect_specular(env, setup.spec_color, smoothness, setup.one_minus_reflectivity, n, v);
 #endif
     let c = emission + diffuse * indirect_diffuse + indirect_specular;
+#endif
 
 #if defined(DEFERRED_PASS)
     // No direct light here: the deferred light passes add it to RT3.
     return gbuffer_pack(diffuse, occlusion, setup.spec_color, smoothness, n, c);
+#elif defined(FORWARD_ADD_PASS)
+#if defined(_RENDERING_FADE) || defined(_RENDERING_TRANSPARENT)
+    return vec4f(c, out_alpha);
+#else
+    return vec4f(c, 1.0);
+#endif
 #else
     let direct = brdf_direct(
         diffuse,

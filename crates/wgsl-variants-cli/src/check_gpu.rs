@@ -12,7 +12,7 @@ use super::{Context, Failed};
 /// `check-gpu` arguments.
 #[derive(clap::Args, Debug)]
 pub struct CheckGpuArgs {
-    /// Only this shader (standard, deferred_reflections, deferred_final; kernels for the
+    /// Only this shader (standard, deferred_shading, deferred_reflections, deferred_final; kernels for the
     /// compute kernels).
     #[arg(long, value_name = "SHADER")]
     shader: Option<String>,

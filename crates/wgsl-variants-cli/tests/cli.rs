@@ -152,7 +152,10 @@ fn emit_prints_the_variant_and_fails_clearly_on_bad_keywords() {
     assert_eq!(conflict.status.code(), Some(1));
     let missing = run(&["emit", "standard", "NoSuchPass"]);
     assert_eq!(missing.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&missing.stderr).contains("passes: ForwardBase, Deferred"));
+    assert!(
+        String::from_utf8_lossy(&missing.stderr)
+            .contains("passes: ForwardBase, ForwardAdd, Deferred")
+    );
 }
 
 #[test]

@@ -78,8 +78,9 @@ fn emit_out_writes_a_build_set_with_a_deterministic_manifest() {
 
     let manifest: Value = serde_json::from_slice(&a["manifest.json"]).unwrap();
     let variants = manifest["variants"].as_array().unwrap();
-    // 2 materials: ForwardBase 2 variants; Deferred 2 × 4 multi_compile combinations.
-    assert_eq!(variants.len(), 2 + 8);
+    // 2 materials: ForwardBase 2 variants; ForwardAdd 2 × 5 lights; Deferred 2 × 4
+    // multi_compile combinations.
+    assert_eq!(variants.len(), 2 + 10 + 8);
     let targets: Vec<&str> = manifest["targets"]
         .as_array()
         .unwrap()

@@ -137,7 +137,7 @@ fn fullscreen_job(
 }
 
 /// A 2D texture resource from target bytes.
-fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
+pub(crate) fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
     Resource::Texture2d {
         format: format.wgpu_format(),
         width,
@@ -148,7 +148,7 @@ fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resour
 
 /// Records the comparison of one texel.
 #[allow(clippy::too_many_arguments)]
-fn compare_texel(
+pub(crate) fn compare_texel(
     report: &mut PassReport,
     keywords: &str,
     target: &str,
@@ -301,6 +301,25 @@ fn run_reflections(
     })
 }
 
+/// How a pass adds light to RT3: One/One onto the `Rgba16Float` RT3 (`hdr`), DstColor/Zero
+/// onto the `exp2(−c)` `Rgb10a2Unorm` one (the light then adds in the exponent).
+pub(crate) fn rt3_blend(hdr: bool) -> wgpu::BlendState {
+    let (src_factor, dst_factor) = if hdr {
+        (wgpu::BlendFactor::One, wgpu::BlendFactor::One)
+    } else {
+        (wgpu::BlendFactor::Dst, wgpu::BlendFactor::Zero)
+    };
+    let blend = wgpu::BlendComponent {
+        src_factor,
+        dst_factor,
+        operation: wgpu::BlendOperation::Add,
+    };
+    wgpu::BlendState {
+        color: blend,
+        alpha: blend,
+    }
+}
+
 /// Adds `refl` onto the G-buffer's RT3 with the Add pass of its HDR mode; compares when
 /// `report` is given. Returns RT3 after the draw.
 fn run_add(
@@ -315,24 +334,8 @@ fn run_add(
     let (label, wgsl) = pass_wgsl(lib, "deferred_reflections", "Add", keywords)?;
     let (w, h) = (scene.width, scene.height);
     let format = gbuffer.rt3_format();
-    let blend = if gbuffer.hdr {
-        wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        }
-    } else {
-        wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::Dst,
-            dst_factor: wgpu::BlendFactor::Zero,
-            operation: wgpu::BlendOperation::Add,
-        }
-    };
     let target = ColorTarget::new(format)
-        .with_blend(wgpu::BlendState {
-            color: blend,
-            alpha: blend,
-        })
+        .with_blend(rt3_blend(gbuffer.hdr))
         .with_initial(gbuffer.targets[3].clone());
     let mut job = fullscreen_job(&label, &wgsl, w, h, target);
     job.resources = vec![BoundResource::new(

@@ -13,14 +13,18 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants) and `standard/ForwardBase` (1536) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (1920, one light of each type from [`LightRig`]) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
+//! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
 
 pub(crate) mod compare;
 pub(crate) mod deferred;
+pub mod forward_deferred;
 pub mod kernels;
+pub mod lights;
 pub mod merge;
 pub(crate) mod passes;
 pub mod pictures;
@@ -29,6 +33,7 @@ pub mod scene;
 
 use std::time::Instant;
 
+pub use lights::LightRig;
 use passes::Worker;
 pub use passes::standard_job;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
@@ -41,7 +46,7 @@ use wgsl_variants::Library;
 #[derive(Clone, Debug, Default)]
 #[non_exhaustive]
 pub struct CheckOptions {
-    /// Only this shader (`standard`, `deferred_reflections`, `deferred_final`, or `kernels`
+    /// Only this shader (`standard`, `deferred_shading`, `deferred_reflections`, `deferred_final`, or `kernels`
     /// for the compute kernels alone).
     pub shader: Option<String>,
     /// Only passes (or kernels) with this name.
@@ -59,9 +64,11 @@ pub struct CheckOptions {
 }
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 5] = [
+pub const PASSES: [(&str, &str); 7] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
+    ("standard", "ForwardAdd"),
+    ("deferred_shading", "Lighting"),
     ("deferred_reflections", "Reflections"),
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
@@ -146,6 +153,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         seconds: 0.0,
     };
     let scene = TestScene::default();
+    let rig = LightRig::new(&scene);
     let threads = options.threads();
 
     let standard: Vec<&str> = selected
@@ -176,16 +184,22 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 &workers,
                 lib,
                 &scene,
+                &rig,
                 pass,
                 options.sample,
                 options.shard,
             )?);
         }
     }
+    if selected.contains(&("deferred_shading", "Lighting")) {
+        report
+            .passes
+            .push(lights::check_deferred_shading(&ctx, lib, &scene, &rig)?);
+    }
     let chain: Vec<(&str, &str)> = selected
         .iter()
         .copied()
-        .filter(|(s, _)| *s != "standard")
+        .filter(|(s, _)| *s != "standard" && *s != "deferred_shading")
         .collect();
     if !chain.is_empty() {
         report

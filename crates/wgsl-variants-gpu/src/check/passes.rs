@@ -1,4 +1,5 @@
-//! The standard shader's passes (`Deferred`, `ForwardBase`) over their full variant space:
+//! The standard shader's passes (`Deferred`, `ForwardBase`, `ForwardAdd`) over their full
+//! variant space:
 //! every variant rendered (each distinct composed text once), read back and compared pixel by
 //! pixel with the CPU reference of its keyword set; then, per keyword, whether toggling it
 //! changed any output.
@@ -11,13 +12,17 @@ use std::time::Instant;
 use glam::Vec4;
 
 use super::compare::{clear_value, format_name, pixel, texel_within};
+use super::lights::LightRig;
 use super::report::{KeywordCoverage, Mismatch, PassReport};
 use super::scene::TestScene;
 use crate::{
     CheckError, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat,
     render_with,
 };
-use wgsl_variants::reference::surface::{Keywords, shade_deferred, shade_forward};
+use wgsl_variants::reference::light::{Cookies, LightType};
+use wgsl_variants::reference::surface::{
+    Keywords, shade_deferred, shade_forward, shade_forward_add,
+};
 use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Space};
 use wgsl_variants::{Library, Variant};
@@ -89,6 +94,33 @@ pub fn reference_outputs(
     } else {
         shade_forward(kw, &scene.material, &texels, &geometry, &scene.scene).map(|c| vec![c])
     }
+}
+
+/// The reference output of `standard/ForwardAdd` at pixel `(x, y)` under the rig's light of
+/// type `light`; `None` where the pixel is discarded.
+pub fn forward_add_output(
+    scene: &TestScene,
+    rig: &LightRig,
+    kw: &Keywords,
+    light: LightType,
+    x: u32,
+    y: u32,
+) -> Option<Vec4> {
+    let cookie = rig.cookie_2d();
+    let cookies = Cookies {
+        texture: &cookie,
+        cube: &rig.cube,
+    };
+    shade_forward_add(
+        kw,
+        &scene.material,
+        &scene.texels(x, y),
+        &scene.geometry(x, y),
+        scene.scene.camera_position,
+        rig.params(light),
+        light,
+        Some(cookies),
+    )
 }
 
 /// The render job of one variant's composed text.
@@ -176,11 +208,14 @@ pub fn render_all(
     }
 }
 
-/// Checks every variant of a standard pass (`Deferred` or `ForwardBase`).
+/// Checks every variant of a standard pass (`Deferred`, `ForwardBase` or `ForwardAdd`; the
+/// last lit by the rig's light of each variant's light keyword).
+#[allow(clippy::too_many_arguments)]
 pub fn check_standard_pass(
     workers: &[Worker<'_>],
     lib: &Library,
     scene: &TestScene,
+    rig: &LightRig,
     pass: &Pass,
     sample: usize,
     shard: Option<wgsl_variants::variants::Shard>,
@@ -209,12 +244,14 @@ pub fn check_standard_pass(
     let mut jobs = Vec::new();
     let mut text_of = Vec::with_capacity(choices.len());
     let mut keywords = Vec::with_capacity(choices.len());
+    let mut lights = Vec::with_capacity(choices.len());
+    let mut job_light: Vec<Option<LightType>> = Vec::new();
     for choice in &choices {
         let variant = Variant {
             pass,
             choice: choice.clone(),
         };
-        let names = variant.keywords();
+        let (light, names) = LightType::split(&variant.keywords());
         let kw = Keywords::from_names(&names).map_err(|e| {
             GpuError::from(CheckError::UnknownToReference {
                 variant: variant.label(),
@@ -233,16 +270,18 @@ pub fn check_standard_pass(
                     deferred,
                     kw.hdr,
                 ));
+                job_light.push(light);
                 distinct.insert(text, index);
                 index
             }
         };
         text_of.push(index);
         keywords.push(kw);
+        lights.push(light);
     }
     report.distinct_shaders = jobs.len();
     report.draws = jobs.len();
-    let outputs = render_all(workers, &jobs)?;
+    let outputs = render_grouped_by_light(workers, scene, rig, &jobs, &job_light)?;
 
     // Compare every variant with its own reference.
     for (v, choice) in choices.iter().enumerate() {
@@ -251,7 +290,10 @@ pub fn check_standard_pass(
         let targets = standard_targets(deferred, kw.hdr);
         let bytes = &outputs[text_of[v]];
         for (i, (x, y)) in scene.pixels().enumerate() {
-            let expected = reference_outputs(scene, deferred, kw, x, y);
+            let expected = match lights[v] {
+                Some(light) => forward_add_output(scene, rig, kw, light, x, y).map(|c| vec![c]),
+                None => reference_outputs(scene, deferred, kw, x, y),
+            };
             if expected.is_none() {
                 report.discarded_compared += targets.len();
             }
@@ -317,6 +359,48 @@ pub fn check_standard_pass(
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// Renders `jobs`; those with a light keyword (`job_light[i]`, ForwardAdd) on workers whose
+/// resources add the rig's light of that type, one group per light type.
+fn render_grouped_by_light(
+    workers: &[Worker<'_>],
+    scene: &TestScene,
+    rig: &LightRig,
+    jobs: &[RenderJob],
+    job_light: &[Option<LightType>],
+) -> Result<Vec<Vec<Vec<u8>>>, GpuError> {
+    if job_light.iter().all(Option::is_none) {
+        return render_all(workers, jobs);
+    }
+    let mut outputs: Vec<Option<Vec<Vec<u8>>>> = (0..jobs.len()).map(|_| None).collect();
+    for light in LightType::ALL {
+        let group: Vec<usize> = (0..jobs.len())
+            .filter(|&i| job_light[i] == Some(light))
+            .collect();
+        if group.is_empty() {
+            continue;
+        }
+        let mut resources = scene.standard_resources();
+        resources.extend(rig.resources(light));
+        let lit = workers
+            .iter()
+            .map(|w| {
+                Ok(Worker {
+                    ctx: w.ctx,
+                    resources: GpuResources::upload(w.ctx, light.keyword(), &resources)?,
+                })
+            })
+            .collect::<Result<Vec<_>, GpuError>>()?;
+        let group_jobs: Vec<RenderJob> = group.iter().map(|&i| jobs[i].clone()).collect();
+        for (i, out) in group.into_iter().zip(render_all(&lit, &group_jobs)?) {
+            outputs[i] = Some(out);
+        }
+    }
+    outputs
+        .into_iter()
+        .map(|o| o.ok_or_else(|| GpuError::from(CheckError::NoWorker)))
+        .collect()
 }
 
 /// For each keyword of `pass`: the variant pairs that differ only in that keyword's set (the

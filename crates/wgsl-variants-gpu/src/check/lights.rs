@@ -1,0 +1,512 @@
+//! The per-pixel lights of the GPU check: one light of each type over the test scene
+//! ([`LightRig`]), and the check of `deferred_shading/Lighting` — every variant drawn full-screen
+//! over G-buffers rendered by `standard/Deferred` on the same GPU, with the world position
+//! rebuilt from a depth buffer of a perspective camera, and compared with
+//! [`wgsl_variants::reference::light::deferred_light`] blended as the pass's HDR mode says.
+//!
+//! Cookie textures use nearest sampling: the rig moves the cookies until every lookup the check
+//! makes (at the deferred pass's rebuilt positions and at the forward pass's pixel positions)
+//! is at least [`MIN_COOKIE_MARGIN`] away from a texel or cube-face edge, so a lookup cannot
+//! flip to a neighbouring texel through a few ULPs of position difference.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use super::compare::{format_name, pixel};
+use super::deferred::{
+    CHAIN_INPUTS, GBufferImage, compare_texel, render_gbuffer, rt3_blend, texture,
+};
+use super::passes::keyword_coverage;
+use super::report::PassReport;
+use super::scene::{MapTexture, TestScene, cube_resource, push_mat4, push_vec4};
+use crate::{
+    BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
+    TargetFormat, render,
+};
+use wgsl_variants::Library;
+use wgsl_variants::reference::cube::{CubeFaces, face_margin};
+use wgsl_variants::reference::light::{
+    Cookie2d, Cookies, Light, LightParams, LightShape, LightType, deferred_light, look_at_rh,
+    perspective_rh, world_from_depth,
+};
+use wgsl_variants::reference::quantize::unorm_to_f32;
+use wgsl_variants::reference::surface::{Keywords, reflections_add};
+use wgsl_variants::variants::Space;
+
+/// The smallest distance, in texels (2D cookie) or [`face_margin`] units (cube cookie), between
+/// a cookie lookup of the check and an edge.
+pub const MIN_COOKIE_MARGIN: f32 = 0.02;
+
+/// Edge length of the 2D cookie in texels.
+const COOKIE_SIZE: u32 = 4;
+
+/// One light of each type over the test scene, their cookies, and the perspective camera and
+/// depth buffer of the deferred lighting check.
+///
+/// Cookies are sampled nearest, so each lookup must stay clear of texel and cube-face edges:
+/// - at the forward pass's pixel positions (a 0.25-unit grid on the plane `z = 0`), by
+///   construction: the cookie light travels along −Z with 1-unit tiles of 4 texels whose
+///   centres are the pixel centres, and the point light sits at `(0.5625, −0.5, 1)` with an
+///   axis-aligned cookie, so `|dx|` (odd multiples of 1/16), `|dy|` (odd multiples of 1/8) and
+///   `|dz| = 1` never come closer than 1/16;
+/// - at the deferred pass's rebuilt positions, by the depth buffer: each pixel's depth puts its
+///   point on the pixel's camera ray at the first height `z` in `0, ±0.03, ±0.06, …` (at most
+///   ±0.48) where both lookups are [`MIN_COOKIE_MARGIN`] clear. So depth varies from pixel to
+///   pixel and the reconstruction is checked on a non-planar surface.
+#[derive(Clone, Debug)]
+pub struct LightRig {
+    /// The directional light (`DIRECTIONAL`), slanted.
+    pub directional: LightParams,
+    /// The directional light with the cookie (`DIRECTIONAL_COOKIE`), travelling along −Z.
+    pub directional_cookie: LightParams,
+    /// The point light (`POINT`, `POINT_COOKIE`).
+    pub point: LightParams,
+    /// The spot light (`SPOT`).
+    pub spot: LightParams,
+    /// The 2D cookie (`Rgba8Unorm`, alpha read).
+    pub cookie: MapTexture,
+    /// The cube cookie (one colour per face; alpha read).
+    pub cube: CubeFaces,
+    /// World-to-clip of the deferred check's perspective camera (at the scene's camera).
+    pub view_proj: Mat4,
+    /// The depth buffer of the deferred check: one `f32` per pixel, row by row.
+    pub depth: Vec<f32>,
+}
+
+impl LightRig {
+    /// The rig over `scene`.
+    ///
+    /// # Panics
+    /// If some pixel has no depth whose lookups are [`MIN_COOKIE_MARGIN`] clear of an edge
+    /// (never for the default scene; a unit test checks it).
+    pub fn new(scene: &TestScene) -> LightRig {
+        let (w, h) = (scene.width, scene.height);
+        let eye = scene.scene.camera_position;
+        let target = scene.centre.extend(0.0);
+        let view_proj =
+            perspective_rh(0.6, w as f32 / h as f32, 0.5, 20.0) * look_at_rh(eye, target, Vec3::Y);
+        let alpha = [
+            255u8, 40, 170, 90, 0, 220, 130, 60, 200, 10, 255, 150, 100, 180, 30, 240,
+        ];
+        let cookie = MapTexture {
+            width: COOKIE_SIZE,
+            height: COOKIE_SIZE,
+            texels: alpha.iter().map(|&a| [255, 255, 255, a]).collect(),
+        };
+        let face = |a: u8| Vec4::new(1.0, 1.0, 1.0, unorm_to_f32(u32::from(a), 8));
+        let cube = CubeFaces([face(255), face(60), face(200), face(0), face(140), face(30)]);
+        let params = |light: Light| {
+            light
+                .params()
+                .expect("the test lights have valid parameters")
+        };
+        let mut rig = LightRig {
+            directional: params(Light::directional(
+                Vec3::new(0.25, -0.35, -0.9),
+                Vec3::new(0.9, 0.8, 0.7),
+            )),
+            directional_cookie: params(Light {
+                shape: LightShape::Directional {
+                    direction: Vec3::NEG_Z,
+                    cookie_size: 1.0,
+                    cookie_origin: Vec3::ZERO,
+                },
+                color: Vec3::new(0.8, 0.85, 0.9),
+            }),
+            point: params(Light::point(
+                Vec3::new(0.5625, -0.5, 1.0),
+                2.6,
+                Vec3::new(2.2, 1.8, 1.4),
+            )),
+            spot: params(Light::spot(
+                Vec3::new(-0.4, 0.6, 2.2),
+                Vec3::new(0.8, -1.1, -2.2),
+                70.0,
+                5.0,
+                Vec3::new(3.0, 2.5, 2.0),
+            )),
+            cookie,
+            cube,
+            view_proj,
+            depth: Vec::new(),
+        };
+        rig.depth = scene
+            .pixels()
+            .map(|(x, y)| rig.clear_depth(scene, x, y))
+            .collect();
+        rig
+    }
+
+    /// The depth at pixel `(x, y)` whose rebuilt point lies on the camera ray at the first
+    /// height `z = 0, ±0.03, …` where the cookie lookups are clear of edges.
+    fn clear_depth(&self, scene: &TestScene, x: u32, y: u32) -> f32 {
+        let (w, h) = (scene.width, scene.height);
+        let inv = self.view_proj.inverse();
+        let near = world_from_depth(inv, x, y, w, h, 0.0);
+        let far = world_from_depth(inv, x, y, w, h, 1.0);
+        for k in 0..33 {
+            let step = ((k + 1) / 2) as f32 * 0.03;
+            let z = if k % 2 == 1 { step } else { -step };
+            let p = near + (far - near) * ((near.z - z) / (near.z - far.z));
+            let clip = self.view_proj * p.extend(1.0);
+            let depth = clip.z / clip.w;
+            let rebuilt = world_from_depth(inv, x, y, w, h, depth);
+            if self.cookie_margin(&[rebuilt]) >= MIN_COOKIE_MARGIN {
+                return depth;
+            }
+        }
+        panic!("pixel ({x}, {y}): no depth keeps the cookie lookups off texel edges");
+    }
+
+    /// The parameters the light keyword `t` uses.
+    pub fn params(&self, t: LightType) -> &LightParams {
+        match t {
+            LightType::Directional => &self.directional,
+            LightType::DirectionalCookie => &self.directional_cookie,
+            LightType::Point | LightType::PointCookie => &self.point,
+            LightType::Spot => &self.spot,
+        }
+    }
+
+    /// The 2D cookie as the reference samples it.
+    pub fn cookie_2d(&self) -> Cookie2d {
+        Cookie2d {
+            width: self.cookie.width,
+            height: self.cookie.height,
+            alpha: self
+                .cookie
+                .texels
+                .iter()
+                .map(|t| unorm_to_f32(u32::from(t[3]), 8))
+                .collect(),
+        }
+    }
+
+    /// The world position the deferred lighting pass rebuilds at pixel `(x, y)`.
+    pub fn deferred_position(&self, scene: &TestScene, x: u32, y: u32) -> Vec3 {
+        let d = self.depth[(y * scene.width + x) as usize];
+        world_from_depth(self.view_proj.inverse(), x, y, scene.width, scene.height, d)
+    }
+
+    /// Every position a cookie is looked up at: the deferred check's and the forward pass's.
+    pub fn lookup_positions(&self, scene: &TestScene) -> Vec<Vec3> {
+        scene
+            .pixels()
+            .flat_map(|(x, y)| {
+                [
+                    self.deferred_position(scene, x, y),
+                    scene.world_position(x, y),
+                ]
+            })
+            .collect()
+    }
+
+    /// The smallest margin of the cookie lookups at `positions`: texels of the 2D cookie,
+    /// [`face_margin`] of the cube cookie.
+    pub fn cookie_margin(&self, positions: &[Vec3]) -> f32 {
+        let cookie = self.cookie_2d();
+        positions
+            .iter()
+            .map(|&p| {
+                let q = self.directional_cookie.light_coords(p);
+                let uv = cookie.edge_margin(Vec2::new(q.x, q.y));
+                uv.min(face_margin(self.point.light_coords(p).truncate()))
+            })
+            .fold(f32::INFINITY, f32::min)
+    }
+
+    /// The light's bindings (group 0, 6–9 of `wgsl/lighting/light_bindings.wgsl`) for keyword `t`.
+    pub fn resources(&self, t: LightType) -> Vec<BoundResource> {
+        let uniform: Vec<u8> = self
+            .params(t)
+            .uniform()
+            .into_iter()
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        vec![
+            BoundResource::new(0, 6, Resource::Uniform(uniform)),
+            BoundResource::new(0, 7, self.cookie.resource()),
+            BoundResource::new(0, 8, cube_resource(&self.cube)),
+            BoundResource::new(
+                0,
+                9,
+                Resource::SamplerAddressed {
+                    nearest: true,
+                    address_mode: wgpu::AddressMode::Repeat,
+                },
+            ),
+        ]
+    }
+}
+
+/// The light type and HDR mode of a `deferred_shading/Lighting` keyword set.
+fn lighting_keywords(names: &[&str]) -> Result<(LightType, bool), String> {
+    let (light, rest) = LightType::split(names);
+    let light = light.ok_or_else(|| format!("no light keyword in {names:?}"))?;
+    let kw = Keywords::from_names(&rest).map_err(|e| e.to_string())?;
+    Ok((light, kw.hdr))
+}
+
+/// What the lighting pass sees of the camera: `inv_view_proj` and position (the
+/// `DeferredCamera` uniform) and the depth buffer, one `f32` per pixel.
+pub(crate) struct LightingCamera<'a> {
+    pub(crate) inv_view_proj: Mat4,
+    pub(crate) position: Vec3,
+    pub(crate) depth: &'a [f32],
+}
+
+/// Renders one `Lighting` variant (light keyword `light`) over `gbuffer`'s RT0–RT2 onto
+/// `rt3` (the target's initial contents, `gbuffer`'s RT3 format), blended as the HDR mode says.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn render_lighting(
+    ctx: &GpuContext,
+    scene: &TestScene,
+    rig: &LightRig,
+    gbuffer: &GBufferImage,
+    label: &str,
+    wgsl: &str,
+    light: LightType,
+    camera: &LightingCamera<'_>,
+    rt3: Vec<u8>,
+) -> Result<Vec<u8>, GpuError> {
+    let (w, h) = (scene.width, scene.height);
+    let target = ColorTarget::new(gbuffer.rt3_format())
+        .with_blend(rt3_blend(gbuffer.hdr))
+        .with_initial(rt3);
+    let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
+    job.width = w;
+    job.height = h;
+    job.targets = vec![target];
+    let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+    let mut uniform = Vec::new();
+    push_mat4(&mut uniform, camera.inv_view_proj);
+    push_vec4(&mut uniform, camera.position.extend(1.0));
+    job.resources = vec![
+        BoundResource::new(
+            0,
+            0,
+            texture(TargetFormat::Rgba8Unorm, w, h, &gbuffer.targets[0]),
+        ),
+        BoundResource::new(
+            0,
+            1,
+            texture(TargetFormat::Rgba8Unorm, w, h, &gbuffer.targets[1]),
+        ),
+        BoundResource::new(
+            0,
+            2,
+            texture(TargetFormat::Rgb10a2Unorm, w, h, &gbuffer.targets[2]),
+        ),
+        BoundResource::new(
+            0,
+            3,
+            Resource::Texture2d {
+                format: wgpu::TextureFormat::R32Float,
+                width: w,
+                height: h,
+                data: depth,
+            },
+        ),
+        BoundResource::new(0, 4, Resource::Uniform(uniform)),
+    ];
+    job.resources.extend(rig.resources(light));
+    Ok(render(ctx, &job)?.remove(0))
+}
+
+/// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.
+#[allow(clippy::too_many_arguments)]
+fn run_lighting(
+    ctx: &GpuContext,
+    scene: &TestScene,
+    rig: &LightRig,
+    gbuffer: &GBufferImage,
+    (label, keywords): (&str, &str),
+    wgsl: &str,
+    light: LightType,
+    report: &mut PassReport,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let (w, h) = (scene.width, scene.height);
+    let format = gbuffer.rt3_format();
+    let camera = LightingCamera {
+        inv_view_proj: rig.view_proj.inverse(),
+        position: scene.scene.camera_position,
+        depth: &rig.depth,
+    };
+    let out = render_lighting(
+        ctx,
+        scene,
+        rig,
+        gbuffer,
+        label,
+        wgsl,
+        light,
+        &camera,
+        gbuffer.targets[3].clone(),
+    )?;
+    report.draws += 1;
+
+    let cookie = rig.cookie_2d();
+    let cookies = Cookies {
+        texture: &cookie,
+        cube: &rig.cube,
+    };
+    let input = format!(
+        "{keywords} over the G-buffer of standard/Deferred {{{}}}",
+        gbuffer.keywords.join(", ")
+    );
+    let target = format!("RT3 {}", format_name(format));
+    for (i, (x, y)) in scene.pixels().enumerate() {
+        let stored = gbuffer.texel(i);
+        let rt3 = stored.rt3.to_vec4();
+        let p = rig.deferred_position(scene, x, y);
+        let c = deferred_light(
+            &stored.to_gbuffer(),
+            p,
+            scene.scene.camera_position,
+            rig.params(light),
+            light,
+            Some(cookies),
+        );
+        let want = reflections_add(rt3.truncate(), c, gbuffer.hdr).extend(rt3.w);
+        compare_texel(report, &input, &target, format, &out, i, w, want, false);
+    }
+    Ok((0..(w * h) as usize)
+        .map(|i| pixel(format, &out, i).1)
+        .collect())
+}
+
+/// Checks every variant of `deferred_shading/Lighting` over the LDR and HDR G-buffers of each
+/// `CHAIN_INPUTS` keyword set of the deferred chain check, and that each keyword changes the
+/// result.
+pub fn check_deferred_shading(
+    ctx: &GpuContext,
+    lib: &Library,
+    scene: &TestScene,
+    rig: &LightRig,
+) -> Result<PassReport, GpuError> {
+    let start = Instant::now();
+    let what = "deferred_shading/Lighting";
+    let pass = lib
+        .pass("deferred_shading", "Lighting")
+        .map_err(|e| CheckError::lookup(what, e))?;
+    let choices = Space::full(pass).enumerate(1000).map_err(|source| {
+        GpuError::from(CheckError::Budget {
+            what: what.to_owned(),
+            source,
+        })
+    })?;
+    let mut report = PassReport::new("deferred_shading", "Lighting");
+    // The G-buffers, rendered once per input and HDR mode.
+    let mut gbuffers: HashMap<(usize, bool), GBufferImage> = HashMap::new();
+    for (n, keywords) in CHAIN_INPUTS.iter().enumerate() {
+        for hdr in [false, true] {
+            let mut kw: Vec<&str> = keywords.names();
+            if hdr {
+                kw.push("UNITY_HDR_ON");
+            }
+            gbuffers.insert((n, hdr), render_gbuffer(ctx, lib, scene, &kw)?);
+        }
+    }
+    // outputs[v][n]: variant v over input n.
+    let mut outputs: Vec<Vec<Vec<[f32; 4]>>> = Vec::new();
+    for choice in &choices {
+        let variant = wgsl_variants::Variant {
+            pass,
+            choice: choice.clone(),
+        };
+        let label = variant.label();
+        let names = variant.keywords();
+        let (light, hdr) = lighting_keywords(&names).map_err(|message| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: label.clone(),
+                message,
+            })
+        })?;
+        let wgsl = lib.wgsl(&variant);
+        let keywords = choice.label(pass);
+        let mut per_input = Vec::new();
+        for n in 0..CHAIN_INPUTS.len() {
+            let gbuffer = &gbuffers[&(n, hdr)];
+            per_input.push(run_lighting(
+                ctx,
+                scene,
+                rig,
+                gbuffer,
+                (&label, &keywords),
+                &wgsl,
+                light,
+                &mut report,
+            )?);
+        }
+        outputs.push(per_input);
+        report.variants_run += 1;
+        report.distinct_shaders += 1;
+    }
+    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
+    report.untested_keywords = report
+        .keywords
+        .iter()
+        .filter(|k| k.pairs_changed == 0)
+        .map(|k| k.keyword.clone())
+        .collect();
+    report.notes.push(format!(
+        "full-screen draws over {} G-buffers (LDR and HDR); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
+        CHAIN_INPUTS.len() * 2
+    ));
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cookie_lookups_are_off_edges_and_lights_reach_part_of_the_scene() {
+        let scene = TestScene::default();
+        let rig = &LightRig::new(&scene);
+        assert!(rig.cookie_margin(&rig.lookup_positions(&scene)) >= MIN_COOKIE_MARGIN);
+        let cookie = rig.cookie_2d();
+        let cookies = Some(Cookies {
+            texture: &cookie,
+            cube: &rig.cube,
+        });
+        for t in LightType::ALL {
+            let attenuations: Vec<f32> = scene
+                .pixels()
+                .map(|(x, y)| {
+                    rig.params(t)
+                        .sample(t, rig.deferred_position(&scene, x, y), cookies)
+                        .1
+                })
+                .collect();
+            let lit = attenuations.iter().filter(|&&a| a > 0.0).count();
+            let distinct = {
+                let mut v: Vec<u32> = attenuations.iter().map(|a| a.to_bits()).collect();
+                v.sort_unstable();
+                v.dedup();
+                v.len()
+            };
+            assert!(lit > 20, "{t:?} lights {lit} pixels");
+            if t != LightType::Directional {
+                assert!(distinct > 3, "{t:?}: {distinct} distinct attenuations");
+            }
+            if !t.is_directional() {
+                assert!(lit < 256, "{t:?}: some pixels must be out of reach");
+            }
+        }
+    }
+
+    #[test]
+    fn depth_rebuilds_points_on_the_plane() {
+        let scene = TestScene::default();
+        let rig = &LightRig::new(&scene);
+        for (x, y) in scene.pixels() {
+            let p = rig.deferred_position(&scene, x, y);
+            assert!(p.z.abs() < 0.5, "({x}, {y}): {p}");
+            assert!((0.0..1.0).contains(&rig.depth[(y * scene.width + x) as usize]));
+        }
+    }
+}

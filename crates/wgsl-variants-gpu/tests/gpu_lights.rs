@@ -1,0 +1,180 @@
+//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (10) and
+//! of `standard/ForwardAdd` (1920) rendered on lavapipe (or any GPU) and compared pixel by pixel
+//! with the CPU reference (`wgsl_variants::reference::light`), each keyword proven to change at
+//! least one pixel; and a library with a wrong falloff is caught.
+//!
+//! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
+//! print SKIPPED and pass, unless `CI=true` or `WGSL_VARIANTS_REQUIRE_GPU=1`.
+//! `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th ForwardAdd variant only.
+
+mod common;
+
+use wgsl_variants::Library;
+use wgsl_variants::source::{RawFile, bundled_files};
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
+
+fn run(lib: &Library, shader: &str, pass: &str, sample: usize) -> Option<CheckReport> {
+    let mut options = CheckOptions::default();
+    options.shader = Some(shader.to_owned());
+    options.pass = Some(pass.to_owned());
+    options.adapter = common::gpu::adapter_filter();
+    options.sample = sample;
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+fn sample() -> usize {
+    std::env::var("WGSL_VARIANTS_GPU_SAMPLE")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(1usize)
+        .max(1)
+}
+
+#[test]
+fn deferred_shading_every_variant_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    eprintln!(
+        "deferred_shading/Lighting on {}: {} pixels over {} variants ({} draws) in {:.1} s",
+        report.adapter, p.pixels_compared, p.variants_run, p.draws, p.seconds
+    );
+    assert!(p.passed(), "{report}");
+    assert_eq!(p.mismatches, 0, "{report}");
+    assert_eq!(p.variants_run, 10);
+    // Every variant over two G-buffers of its HDR mode, 16 × 16 pixels each.
+    assert_eq!((p.draws, p.pixels_compared), (20, 20 * 256));
+    // Five light keywords (four against POINT, the set's first) and UNITY_HDR_ON.
+    assert_eq!(p.keywords.len(), 5, "{report}");
+    assert!(
+        p.keywords
+            .iter()
+            .all(|k| k.pairs_changed == k.pairs && k.pairs > 0),
+        "{report}"
+    );
+    assert!(p.untested_keywords.is_empty(), "{report}");
+}
+
+#[test]
+fn forward_add_every_variant_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let n = sample();
+    let Some(report) = run(&lib, "standard", "ForwardAdd", n) else {
+        return;
+    };
+    let p = &report.passes[0];
+    let variants = 1920usize.div_ceil(n);
+    eprintln!(
+        "standard/ForwardAdd on {}: {} pixels over {} variants ({} discarded) in {:.1} s",
+        report.adapter, p.pixels_compared, p.variants_run, p.discarded_compared, p.seconds
+    );
+    assert_eq!(p.mismatches, 0, "{report}");
+    assert_eq!(p.variants_run, variants, "{report}");
+    assert_eq!(p.pixels_compared, variants * 256);
+    if n == 1 {
+        // 4 light keywords (against DIRECTIONAL) + 10 material keywords.
+        assert_eq!(p.keywords.len(), 14, "{report}");
+        assert!(p.untested_keywords.is_empty(), "{report}");
+        assert!(p.passed(), "{report}");
+    }
+}
+
+/// The check is not vacuous: a falloff of 1/(1 + 24t) instead of 1/(1 + 25t) fails it.
+#[test]
+fn a_wrong_falloff_fails_the_check() {
+    let raw: Vec<RawFile> = bundled_files()
+        .into_iter()
+        .map(|mut f| {
+            if f.path == "lighting/light.wgsl" {
+                let text = String::from_utf8(f.bytes).unwrap();
+                let wrong = text.replace("/ (1.0 + 25.0 * t)", "/ (1.0 + 24.0 * t)");
+                assert_ne!(text, wrong, "the mutation applies");
+                f.bytes = wrong.into_bytes();
+            }
+            f
+        })
+        .collect();
+    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0 && !report.passed());
+    let m = &p.first_mismatches[0];
+    assert!(
+        m.keywords.contains("POINT") || m.keywords.contains("SPOT"),
+        "{m}"
+    );
+    eprintln!(
+        "a wrong falloff is caught: {} mismatches, e.g. {m}",
+        p.mismatches
+    );
+}
+
+/// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every
+/// pixel within the bound derived from the G-buffer's quantization
+/// (`reference::tolerance::gbuffer_light_bound`), for every light type and two keyword sets.
+#[test]
+fn forward_and_deferred_light_agree_per_pixel() {
+    use wgsl_variants::reference::light::LightType;
+    use wgsl_variants::reference::surface::{Keywords, SmoothnessSource};
+    use wgsl_variants_gpu::check::forward_deferred::forward_vs_deferred;
+    use wgsl_variants_gpu::check::{LightRig, TestScene};
+
+    let ctx = match wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()) {
+        Ok(ctx) => ctx,
+        Err(e) => {
+            common::gpu::or_skip::<()>(Err(e), "creating the GPU context");
+            return;
+        }
+    };
+    let lib = Library::bundled().unwrap();
+    let scene = TestScene::default();
+    let rig = LightRig::new(&scene);
+    let inputs = [
+        Keywords::EVERY_MAP,
+        Keywords {
+            smoothness: SmoothnessSource::Albedo,
+            normal_map: true,
+            ..Keywords::NONE
+        },
+    ];
+    let (mut pixels, mut lit, mut worst, mut sum_light, mut sum_allowed) = (0, 0, 0.0f32, 0.0, 0.0);
+    for kw in &inputs {
+        for light in LightType::ALL {
+            let pairs = forward_vs_deferred(&ctx, &lib, &scene, &rig, kw, light).unwrap();
+            for p in &pairs {
+                assert!(
+                    p.agrees(),
+                    "{light:?} {:?} pixel {:?}: forward {} deferred {} allowed {}",
+                    kw.names(),
+                    p.pixel,
+                    p.forward,
+                    p.deferred,
+                    p.allowed
+                );
+                pixels += 1;
+                if p.forward.max_element() > 0.0 {
+                    lit += 1;
+                    let diff = (p.forward - p.deferred).abs();
+                    worst = worst.max((diff / p.allowed).max_element());
+                    sum_light += p.forward.element_sum();
+                    sum_allowed += p.allowed.element_sum();
+                }
+            }
+        }
+    }
+    eprintln!(
+        "forward = deferred: {pixels} pixels ({lit} lit), largest difference {:.0}% of its bound, bounds {:.2}% of the light on average",
+        worst * 100.0,
+        sum_allowed / sum_light * 100.0
+    );
+    assert!(lit > pixels / 2, "{lit} of {pixels} lit");
+    // The bound is not vacuous: a few percent of the light, not a multiple of it.
+    assert!(
+        sum_allowed < 0.1 * sum_light,
+        "{sum_allowed} vs {sum_light}"
+    );
+}

@@ -1,0 +1,64 @@
+#shader deferred_shading
+// Unity's Internal-DeferredShading lighting pass (docs/shading.md §10): one draw per light adds
+// its direct light to RT3, read from the G-buffer and the depth buffer.
+//   group 0: 0 rt0, 1 rt1, 2 rt2 (the G-buffer, read with textureLoad),
+//            3 depth (the depth buffer's depth aspect, or an R32Float copy, read with textureLoad),
+//            4 camera (DeferredCamera), 6-9 the light (lighting/light_bindings)
+// The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
+// a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
+// RT3's alpha of 1 as it is. Depth test and stencil (light volumes) are the host's choice: the
+// result at a pixel does not depend on how the light was drawn.
+
+#pass Lighting
+#pragma multi_compile POINT DIRECTIONAL SPOT POINT_COOKIE DIRECTIONAL_COOKIE
+#pragma multi_compile _ UNITY_HDR_ON
+#import internal/fullscreen
+#import deferred/gbuffer
+#import deferred/ldr
+#import deferred/depth
+#import lighting/light_bindings
+
+// inv_view_proj: clip to world (the inverse of the G-buffer pass's view_proj);
+// position.xyz: the camera's world position.
+struct DeferredCamera {
+    inv_view_proj: mat4x4f,
+    position: vec4f,
+}
+
+@group(0) @binding(0) var rt0: texture_2d<f32>;
+@group(0) @binding(1) var rt1: texture_2d<f32>;
+@group(0) @binding(2) var rt2: texture_2d<f32>;
+@group(0) @binding(3) var depth_tex: texture_2d<f32>;
+@group(0) @binding(4) var<uniform> deferred_camera: DeferredCamera;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
+    return fullscreen_position(vertex_index);
+}
+
+// The light: the Standard BRDF's direct term with diffuse = RT0.rgb, spec colour = RT1.rgb,
+// smoothness = RT1.a, n = decode(RT2.rgb), at the position rebuilt from depth. (The BRDF's
+// 1 - max(spec.rgb) only weighs indirect terms, which this pass leaves out; occlusion RT0.a
+// only darkens indirect light, as in Unity.)
+@fragment
+fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
+    let pixel = fullscreen_pixel(frag_position);
+    let gbuffer0 = textureLoad(rt0, pixel, 0);
+    let gbuffer1 = textureLoad(rt1, pixel, 0);
+    let gbuffer2 = textureLoad(rt2, pixel, 0);
+    let depth = textureLoad(depth_tex, pixel, 0).r;
+    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+
+    let n = gbuffer_decode_normal(gbuffer2.rgb);
+    let v = brdf_view_dir(deferred_camera.position.xyz, p);
+    let s = light_at(p);
+    let c = light_direct(gbuffer0.rgb, gbuffer1.rgb, gbuffer1.a, n, v, light, s);
+#if UNITY_HDR_ON
+    // One / One: RT3 += c (alpha 0 leaves RT3's a = 1).
+    return vec4f(c, 0.0);
+#else
+    // DstColor / Zero: RT3 · exp2(-c), so the light adds in the exponent (alpha 1 keeps a = 1).
+    return vec4f(ldr_encode(c), 1.0);
+#endif
+}
+#endpass
