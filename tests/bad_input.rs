@@ -46,6 +46,9 @@ fn kind(problem: &LoadProblem) -> &'static str {
             KeywordError::TwoPlaceholders { .. } => "keyword::two_placeholders",
             KeywordError::InTwoSets { .. } => "keyword::in_two_sets",
             KeywordError::UnknownSkip { .. } => "keyword::unknown_skip",
+            KeywordError::UnknownConstraintKeyword { .. } => "keyword::unknown_constraint_keyword",
+            KeywordError::Contradictory { .. } => "keyword::contradictory",
+            KeywordError::TooCoupled { .. } => "keyword::too_coupled",
         },
         _ => "other",
     }
