@@ -98,6 +98,10 @@ pub struct BuildArgs {
     /// Only passes with this name.
     #[arg(long, value_name = "PASS")]
     pass: Option<String>,
+    /// Build a t-wise covering set (T from 1 to 4) of each pass instead of every variant:
+    /// every combination of options of every T keyword sets, in a few variants.
+    #[arg(long, value_name = "T")]
+    cover: Option<usize>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -215,6 +219,7 @@ impl Context {
         options.shader = build.shader.clone();
         options.pass = build.pass.clone();
         options.shard = shard;
+        options.cover = build.cover;
         Ok(options)
     }
 
