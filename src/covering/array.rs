@@ -41,6 +41,17 @@ pub fn covering_array(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
 }
 
 fn cover_live(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
+    let rows = construct(levels, t);
+    // Binary strength 2 is optimal already (Kleitman–Spencer).
+    if levels.len() > t && t > 2 && levels.iter().all(|&l| l == 2) {
+        shrink_binary(rows, t)
+    } else {
+        rows
+    }
+}
+
+/// The constructions, without the row-removal search.
+fn construct(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
     let k = levels.len();
     if k <= t {
         return product(levels);
@@ -63,6 +74,262 @@ fn cover_live(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
         }
     }
     best
+}
+
+/// Most counters the binary row-removal search keeps (one per t-subset and pattern).
+const SHRINK_MAX_TUPLES: usize = 1 << 20;
+/// Budget of the row-removal search, in counter updates (deterministic, not timed).
+const SHRINK_BUDGET: u64 = 1 << 30;
+/// Repair steps tried per removed row before giving up on it.
+const SHRINK_STEPS: usize = 2000;
+
+/// Binary row removal: drops a row, then repairs the tuples it alone covered by flipping
+/// single cells of rows that differ from a missing tuple in one place (the flip that uncovers
+/// least, from a few seeded candidates), until nothing is missing (then drops another) or the
+/// budget is spent. Returns the smallest complete array found.
+fn shrink_binary(rows: Vec<Vec<u16>>, t: usize) -> Vec<Vec<u16>> {
+    let k = rows.first().map_or(0, Vec::len);
+    let subsets = binomial(k, t) as usize;
+    if rows.len() < 2 || subsets.saturating_mul(1 << t) > SHRINK_MAX_TUPLES {
+        return rows;
+    }
+    let mut search = Search::new(rows, t);
+    let mut best = search.rows.clone();
+    let mut rng = SplitMix(0x5EED);
+    'shrink: loop {
+        // Drop the row whose loss uncovers least (the first on ties).
+        let victim = (0..search.rows.len())
+            .min_by_key(|&r| search.unique(r))
+            .unwrap_or(0);
+        search.remove(victim);
+        let mut steps = 0;
+        while !search.missing.is_empty() {
+            steps += 1;
+            if search.spent > SHRINK_BUDGET || steps > SHRINK_STEPS {
+                break 'shrink;
+            }
+            let tuple = search.missing[rng.below(search.missing.len())];
+            let (cols, pattern) = search.decode(tuple);
+            // Rows one flip away from the tuple.
+            let mut candidates: Vec<(usize, usize)> = Vec::new();
+            for (r, row) in search.rows.iter().enumerate() {
+                let mut off = None;
+                let mut misses = 0;
+                for (j, &c) in cols[..t].iter().enumerate() {
+                    if row[c] != (pattern >> j & 1) as u16 {
+                        misses += 1;
+                        off = Some(c);
+                    }
+                }
+                if misses == 1 {
+                    candidates.push((r, off.unwrap_or(0)));
+                }
+            }
+            if candidates.is_empty() {
+                let r = rng.below(search.rows.len());
+                for (j, &c) in cols[..t].iter().enumerate() {
+                    if search.rows[r][c] != (pattern >> j & 1) as u16 {
+                        search.flip(r, c);
+                    }
+                }
+                continue;
+            }
+            let picks = candidates.len().min(6);
+            let mut chosen = candidates[rng.below(candidates.len())];
+            if rng.below(10) != 0 {
+                let mut best_delta = i64::MAX;
+                for _ in 0..picks {
+                    let cand = candidates[rng.below(candidates.len())];
+                    let delta = search.flip_cost(cand.0, cand.1);
+                    if delta < best_delta {
+                        best_delta = delta;
+                        chosen = cand;
+                    }
+                }
+            }
+            search.flip(chosen.0, chosen.1);
+        }
+        best = search.rows.clone();
+        if search.rows.len() <= 1 << t {
+            break;
+        }
+    }
+    best
+}
+
+/// Counters of a binary array for the row-removal search: per t-subset of columns (colex
+/// rank) and pattern, how many rows have it.
+struct Search {
+    rows: Vec<Vec<u16>>,
+    t: usize,
+    k: usize,
+    counts: Vec<u16>,
+    /// Tuples (subset rank · 2^t + pattern) no row has, and where each is in `missing`.
+    missing: Vec<u32>,
+    at: Vec<u32>,
+    /// Binomials C(n, r) for n < k, r ≤ t.
+    choose: Vec<[usize; 5]>,
+    spent: u64,
+}
+
+impl Search {
+    fn new(rows: Vec<Vec<u16>>, t: usize) -> Search {
+        let k = rows[0].len();
+        let choose: Vec<[usize; 5]> = (0..=k)
+            .map(|n| {
+                let mut c = [0usize; 5];
+                for (r, slot) in c.iter_mut().enumerate() {
+                    *slot = binomial(n, r) as usize;
+                }
+                c
+            })
+            .collect();
+        let total = choose[k][t] << t;
+        let mut s = Search {
+            rows: Vec::new(),
+            t,
+            k,
+            counts: vec![0; total],
+            missing: Vec::new(),
+            at: vec![u32::MAX; total],
+            choose,
+            spent: 0,
+        };
+        for row in &rows {
+            s.each_subset(row, None, |s, idx| s.counts[idx] += 1);
+        }
+        for idx in 0..total {
+            if s.counts[idx] == 0 {
+                s.at[idx] = s.missing.len() as u32;
+                s.missing.push(idx as u32);
+            }
+        }
+        s.rows = rows;
+        s
+    }
+
+    /// Calls `f` with the tuple index of `row` on every t-subset (containing `only`, if
+    /// given).
+    fn each_subset(&mut self, row: &[u16], only: Option<usize>, mut f: impl FnMut(&mut Self, usize)) {
+        let (k, t) = (self.k, self.t);
+        let mut sub = [0usize; 4];
+        let mut visit = |s: &mut Self, sub: &[usize]| {
+            let mut rank = 0;
+            let mut pattern = 0;
+            for (j, &c) in sub.iter().enumerate() {
+                rank += s.choose[c][j + 1];
+                pattern |= (row[c] as usize) << j;
+            }
+            f(s, (rank << t) | pattern);
+        };
+        // Enumerate t-subsets in increasing order (with `only` forced in).
+        fn rec(
+            s: &mut Search,
+            sub: &mut [usize; 4],
+            depth: usize,
+            from: usize,
+            k: usize,
+            t: usize,
+            only: Option<usize>,
+            has: bool,
+            visit: &mut dyn FnMut(&mut Search, &[usize]),
+        ) {
+            if depth == t {
+                if has || only.is_none() {
+                    visit(s, &sub[..t]);
+                }
+                return;
+            }
+            for c in from..k {
+                if k - c < t - depth {
+                    break;
+                }
+                // Past `only` without it: no subset can contain it any more.
+                if let Some(o) = only
+                    && !has
+                    && c > o
+                {
+                    break;
+                }
+                sub[depth] = c;
+                rec(s, sub, depth + 1, c + 1, k, t, only, has || Some(c) == only, visit);
+            }
+        }
+        rec(self, &mut sub, 0, 0, k, t, only, false, &mut visit);
+    }
+
+    fn decode(&self, tuple: u32) -> ([usize; 4], usize) {
+        let t = self.t;
+        let pattern = tuple as usize & ((1 << t) - 1);
+        let mut rank = tuple as usize >> t;
+        let mut cols = [0usize; 4];
+        // Colex unranking: largest column first.
+        for j in (0..t).rev() {
+            let mut c = j;
+            while self.choose[c + 1][j + 1] <= rank {
+                c += 1;
+            }
+            cols[j] = c;
+            rank -= self.choose[c][j + 1];
+        }
+        (cols, pattern)
+    }
+
+    fn add(&mut self, idx: usize) {
+        if self.counts[idx] == 0 {
+            let pos = self.at[idx] as usize;
+            let last = *self.missing.last().unwrap_or(&0);
+            self.missing.swap_remove(pos);
+            if pos < self.missing.len() {
+                self.at[last as usize] = pos as u32;
+            }
+            self.at[idx] = u32::MAX;
+        }
+        self.counts[idx] += 1;
+    }
+
+    fn sub(&mut self, idx: usize) {
+        self.counts[idx] -= 1;
+        if self.counts[idx] == 0 {
+            self.at[idx] = self.missing.len() as u32;
+            self.missing.push(idx as u32);
+        }
+    }
+
+    /// Tuples only row `r` has.
+    fn unique(&mut self, r: usize) -> usize {
+        let row = self.rows[r].clone();
+        let mut n = 0;
+        self.each_subset(&row, None, |s, idx| n += (s.counts[idx] == 1) as usize);
+        n
+    }
+
+    fn remove(&mut self, r: usize) {
+        let row = self.rows.remove(r);
+        self.each_subset(&row, None, |s, idx| s.sub(idx));
+    }
+
+    /// Tuples lost minus tuples gained by flipping cell (r, c).
+    fn flip_cost(&mut self, r: usize, c: usize) -> i64 {
+        let row = self.rows[r].clone();
+        let mut flipped = row.clone();
+        flipped[c] ^= 1;
+        let mut lost = 0i64;
+        self.each_subset(&row, Some(c), |s, idx| lost += (s.counts[idx] == 1) as i64);
+        let mut gained = 0i64;
+        self.each_subset(&flipped, Some(c), |s, idx| gained += (s.counts[idx] == 0) as i64);
+        self.spent += 2 * self.choose[self.k - 1][self.t - 1] as u64;
+        lost - gained
+    }
+
+    fn flip(&mut self, r: usize, c: usize) {
+        let row = self.rows[r].clone();
+        self.each_subset(&row, Some(c), |s, idx| s.sub(idx));
+        self.rows[r][c] ^= 1;
+        let row = self.rows[r].clone();
+        self.each_subset(&row, Some(c), |s, idx| s.add(idx));
+        self.spent += 2 * self.choose[self.k - 1][self.t - 1] as u64;
+    }
 }
 
 /// The smallest of the seeded greedy runs (the first on ties).
@@ -160,7 +427,7 @@ fn next_subset(subset: &mut [usize], n: usize) {
 /// `[A | A]` and `[B | complement of B]` cover every triple of 2m columns.
 fn roux_doubling(k: usize) -> Vec<Vec<u16>> {
     let m = k.div_ceil(2);
-    let a = cover_live(&vec![2; m], 3);
+    let a = construct(&vec![2; m], 3);
     let b = kleitman_spencer(m.max(2));
     let mut rows: Vec<Vec<u16>> = a
         .iter()
