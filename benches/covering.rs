@@ -37,7 +37,9 @@ fn can2(k: usize) -> usize {
     let binomial = |n: usize, r: usize| -> u128 {
         (0..r).fold(1u128, |acc, i| acc * (n - i) as u128 / (i + 1) as u128)
     };
-    (2..).find(|&n: &usize| binomial(n - 1, n.div_ceil(2)) >= k as u128).unwrap()
+    (2..)
+        .find(|&n: &usize| binomial(n - 1, n.div_ceil(2)) >= k as u128)
+        .unwrap()
 }
 
 /// A pass of `sizes.len()` multi_compile sets, set i with `sizes[i]` options (`_` first).
@@ -65,7 +67,10 @@ fn main() {
     let baseline = common::median(rounds, || {
         std::hint::black_box(Space::full(pass20).enumerate(1 << 20).unwrap());
     });
-    println!("baseline (same run): enumerate 2^20 variants: {}", ms(baseline));
+    println!(
+        "baseline (same run): enumerate 2^20 variants: {}",
+        ms(baseline)
+    );
     println!();
     println!(
         "{:<26} {:>6} {:>12} {:>7} {:>12} {:>12}",
@@ -101,7 +106,10 @@ fn main() {
     );
     let mixed: Vec<(&str, Vec<usize>)> = vec![
         ("3^10 4^10", [vec![3; 10], vec![4; 10]].concat()),
-        ("2^40 3^10 4^5", [vec![2; 40], vec![3; 10], vec![4; 5]].concat()),
+        (
+            "2^40 3^10 4^5",
+            [vec![2; 40], vec![3; 10], vec![4; 5]].concat(),
+        ),
     ];
     for (name, sizes) in mixed {
         let lib = library(&sizes);

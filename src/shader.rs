@@ -156,11 +156,12 @@ impl Pass {
                 }
             }
         }
-        let constraints = crate::keywords::resolve_constraints(&decl.name, &constraint_decls, &index)
-            .unwrap_or_else(|mut e| {
-                errors.append(&mut e);
-                Vec::new()
-            });
+        let constraints =
+            crate::keywords::resolve_constraints(&decl.name, &constraint_decls, &index)
+                .unwrap_or_else(|mut e| {
+                    errors.append(&mut e);
+                    Vec::new()
+                });
         for (name, span) in &skip {
             if !index.contains_key(&**name) {
                 errors.push(KeywordError::UnknownSkip {

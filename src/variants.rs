@@ -450,7 +450,11 @@ pub(crate) fn check_constraints(pass: &Pass) -> Result<(), KeywordError> {
 /// Merges the factors that constraints couple into joint factors of the combinations that
 /// satisfy them (`sets` is the number of sets of the pass). Factors no constraint touches are
 /// kept as they are; a merged factor takes the place of its first member.
-pub(crate) fn constrain(factors: Vec<Factor>, constraints: &[Constraint], sets: usize) -> Vec<Factor> {
+pub(crate) fn constrain(
+    factors: Vec<Factor>,
+    constraints: &[Constraint],
+    sets: usize,
+) -> Vec<Factor> {
     if constraints.is_empty() {
         return factors;
     }
@@ -499,28 +503,30 @@ pub(crate) fn constrain(factors: Vec<Factor>, constraints: &[Constraint], sets: 
         let mut digits = vec![0usize; members.len()];
         let mut tuples = Vec::new();
         let empty = members.iter().any(|&j| factors[j].len() == 0);
-        while !empty {
-            for (&j, &d) in members.iter().zip(&digits) {
-                factors[j].apply(d, &mut scratch);
-            }
-            if local.iter().all(|c| c.holds(&scratch)) {
-                tuples.push(joint_sets.iter().map(|&s| scratch[s]).collect::<Vec<u16>>());
-            }
-            // Odometer over the members' choices, last fastest.
-            let mut m = members.len();
+        if !empty {
             loop {
-                if m == 0 {
+                for (&j, &d) in members.iter().zip(&digits) {
+                    factors[j].apply(d, &mut scratch);
+                }
+                if local.iter().all(|c| c.holds(&scratch)) {
+                    tuples.push(joint_sets.iter().map(|&s| scratch[s]).collect::<Vec<u16>>());
+                }
+                // Odometer over the members' choices, last fastest.
+                let mut m = members.len();
+                loop {
+                    if m == 0 {
+                        break;
+                    }
+                    m -= 1;
+                    digits[m] += 1;
+                    if digits[m] < factors[members[m]].len() {
+                        break;
+                    }
+                    digits[m] = 0;
+                }
+                if digits.iter().all(|&d| d == 0) {
                     break;
                 }
-                m -= 1;
-                digits[m] += 1;
-                if digits[m] < factors[members[m]].len() {
-                    break;
-                }
-                digits[m] = 0;
-            }
-            if digits.iter().all(|&d| d == 0) {
-                break;
             }
         }
         tuples.sort();

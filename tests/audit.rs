@@ -745,6 +745,9 @@ fn constraints_are_honoured_and_reported() {
     assert_eq!(a.distinct.count, big(15));
     assert_eq!(
         a.constraints,
-        ["require _DETAIL_NORMAL_MAP _NORMAL_MAP", "exclude FOG_B SHADOWS"]
+        [
+            "require _DETAIL_NORMAL_MAP _NORMAL_MAP",
+            "exclude FOG_B SHADOWS"
+        ]
     );
 }

@@ -58,7 +58,9 @@ fn covering_sets_catch_every_planted_fault() {
             if caught(&lib, &cover) {
                 covering_caught += 1;
             } else {
-                panic!("t={t} seed {seed}: the covering set missed the fault {fault:?} of {n} sets");
+                panic!(
+                    "t={t} seed {seed}: the covering set missed the fault {fault:?} of {n} sets"
+                );
             }
             let random: Vec<Choice> = (0..cover.len())
                 .map(|_| Choice((0..n).map(|_| (rng.next() & 1) as u16).collect()))
@@ -72,6 +74,9 @@ fn covering_sets_catch_every_planted_fault() {
         );
         assert_eq!(covering_caught, SEEDS);
         // The comparison must be a comparison: random samples do miss some.
-        assert!(random_caught < SEEDS as u32, "t={t}: random samples caught every fault");
+        assert!(
+            random_caught < SEEDS as u32,
+            "t={t}: random samples caught every fault"
+        );
     }
 }

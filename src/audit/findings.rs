@@ -52,8 +52,7 @@ pub(crate) fn findings(pass: &Pass, full: &Analysis) -> Vec<SetFindings> {
         let Some(table) = &c.table else { continue };
         // Per-set findings read the table one set per digit; a factor that constraints
         // merge spans several sets, so its sets' findings stay unknown.
-        if c
-            .factors
+        if c.factors
             .iter()
             .any(|&f| matches!(full.factors[f], Factor::Joint { .. }))
         {

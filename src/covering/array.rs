@@ -210,52 +210,64 @@ impl Search {
 
     /// Calls `f` with the tuple index of `row` on every t-subset (containing `only`, if
     /// given).
-    fn each_subset(&mut self, row: &[u16], only: Option<usize>, mut f: impl FnMut(&mut Self, usize)) {
+    fn each_subset(
+        &mut self,
+        row: &[u16],
+        only: Option<usize>,
+        mut f: impl FnMut(&mut Self, usize),
+    ) {
         let (k, t) = (self.k, self.t);
-        let mut sub = [0usize; 4];
-        let mut visit = |s: &mut Self, sub: &[usize]| {
+        // Subsets of the other columns, `only` put in its place.
+        let (width, universe) = match only {
+            Some(_) => (t - 1, k - 1),
+            None => (t, k),
+        };
+        let mut sub = [0usize, 1, 2, 3];
+        let mut cols = [0usize; 4];
+        loop {
+            let mut n = 0;
+            let mut pending = only;
+            for &x in &sub[..width] {
+                let c = match only {
+                    Some(o) if x >= o => x + 1,
+                    _ => x,
+                };
+                if let Some(o) = pending
+                    && o < c
+                {
+                    cols[n] = o;
+                    n += 1;
+                    pending = None;
+                }
+                cols[n] = c;
+                n += 1;
+            }
+            if let Some(o) = pending {
+                cols[n] = o;
+            }
             let mut rank = 0;
             let mut pattern = 0;
-            for (j, &c) in sub.iter().enumerate() {
-                rank += s.choose[c][j + 1];
+            for (j, &c) in cols[..t].iter().enumerate() {
+                rank += self.choose[c][j + 1];
                 pattern |= (row[c] as usize) << j;
             }
-            f(s, (rank << t) | pattern);
-        };
-        // Enumerate t-subsets in increasing order (with `only` forced in).
-        fn rec(
-            s: &mut Search,
-            sub: &mut [usize; 4],
-            depth: usize,
-            from: usize,
-            k: usize,
-            t: usize,
-            only: Option<usize>,
-            has: bool,
-            visit: &mut dyn FnMut(&mut Search, &[usize]),
-        ) {
-            if depth == t {
-                if has || only.is_none() {
-                    visit(s, &sub[..t]);
+            f(self, (rank << t) | pattern);
+            // Next width-subset of 0..universe.
+            let mut j = width;
+            loop {
+                if j == 0 {
+                    return;
                 }
-                return;
-            }
-            for c in from..k {
-                if k - c < t - depth {
+                j -= 1;
+                if sub[j] < universe - (width - j) {
+                    sub[j] += 1;
+                    for l in j + 1..width {
+                        sub[l] = sub[l - 1] + 1;
+                    }
                     break;
                 }
-                // Past `only` without it: no subset can contain it any more.
-                if let Some(o) = only
-                    && !has
-                    && c > o
-                {
-                    break;
-                }
-                sub[depth] = c;
-                rec(s, sub, depth + 1, c + 1, k, t, only, has || Some(c) == only, visit);
             }
         }
-        rec(self, &mut sub, 0, 0, k, t, only, false, &mut visit);
     }
 
     fn decode(&self, tuple: u32) -> ([usize; 4], usize) {
@@ -317,7 +329,9 @@ impl Search {
         let mut lost = 0i64;
         self.each_subset(&row, Some(c), |s, idx| lost += (s.counts[idx] == 1) as i64);
         let mut gained = 0i64;
-        self.each_subset(&flipped, Some(c), |s, idx| gained += (s.counts[idx] == 0) as i64);
+        self.each_subset(&flipped, Some(c), |s, idx| {
+            gained += (s.counts[idx] == 0) as i64
+        });
         self.spent += 2 * self.choose[self.k - 1][self.t - 1] as u64;
         lost - gained
     }
@@ -398,11 +412,15 @@ fn kleitman_spencer(k: usize) -> Vec<Vec<u16>> {
     let mut rows = vec![vec![0u16; k]; n];
     // Column j is the j-th weight-subset of rows 1..n in lexicographic order.
     let mut subset: Vec<usize> = (1..=weight).collect();
-    for col in 0..k {
-        for &r in &subset {
+    let mut columns = Vec::with_capacity(k);
+    for _ in 0..k {
+        columns.push(subset.clone());
+        next_subset(&mut subset, n - 1);
+    }
+    for (col, members) in columns.iter().enumerate() {
+        for &r in members {
             rows[r][col] = 1;
         }
-        next_subset(&mut subset, n - 1);
     }
     rows
 }
@@ -538,7 +556,7 @@ struct Bits(Vec<u64>);
 impl Bits {
     fn ones(n: usize) -> Bits {
         let mut w = vec![u64::MAX; n.div_ceil(64)];
-        if n % 64 != 0 {
+        if !n.is_multiple_of(64) {
             let last = w.len() - 1;
             w[last] = (1u64 << (n % 64)) - 1;
         }

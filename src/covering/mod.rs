@@ -59,7 +59,9 @@ pub enum CoverError {
         t: usize,
     },
     /// t is more than the number of keyword sets.
-    #[error("{shader}/{pass}: covering strength t = {t} is more than the pass's {sets} keyword sets")]
+    #[error(
+        "{shader}/{pass}: covering strength t = {t} is more than the pass's {sets} keyword sets"
+    )]
     TooStrong {
         /// Shader.
         shader: String,
@@ -81,7 +83,9 @@ pub enum CoverError {
         constraints: Vec<String>,
     },
     /// The t largest factors have too many value combinations to list.
-    #[error("{shader}/{pass}: t = {t} needs {combinations} combinations of the largest keyword sets together (at most {MAX_TUPLES})")]
+    #[error(
+        "{shader}/{pass}: t = {t} needs {combinations} combinations of the largest keyword sets together (at most {MAX_TUPLES})"
+    )]
     TooLarge {
         /// Shader.
         shader: String,

@@ -72,7 +72,9 @@ fn covers_the_build_set() {
 /// wherever its dependent is.
 #[test]
 fn constraints_count_and_hold() {
-    let lib = library(&format!("{MIXED}#pragma require E C\n#pragma exclude G1 B3\n"));
+    let lib = library(&format!(
+        "{MIXED}#pragma require E C\n#pragma exclude G1 B3\n"
+    ));
     let pass = lib.pass("s", "P").unwrap();
     let full = Space::full(pass);
     let listed = full.enumerate(100_000).unwrap();
@@ -114,11 +116,16 @@ fn errors() {
         space.covering(3),
         Err(CoverError::TooStrong { t: 3, sets: 2, .. })
     ));
-    assert!(matches!(space.covering(5), Err(CoverError::Unsupported { t: 5, .. })));
+    assert!(matches!(
+        space.covering(5),
+        Err(CoverError::Unsupported { t: 5, .. })
+    ));
     // t = the number of sets: the whole space.
     assert_eq!(space.covering(2).unwrap().len(), 4);
     // `require A B` with B skipped and a set without a "none" option for A: nothing left.
-    let lib = library("#pragma multi_compile A X\n#pragma multi_compile _ B\n#pragma require A B\n#pragma require X B\n#pragma skip_variants B\n");
+    let lib = library(
+        "#pragma multi_compile A X\n#pragma multi_compile _ B\n#pragma require A B\n#pragma require X B\n#pragma skip_variants B\n",
+    );
     let pass = lib.pass("s", "P").unwrap();
     let err = Space::after_skip(pass).covering(1).unwrap_err();
     assert!(
@@ -131,7 +138,9 @@ fn errors() {
 /// Same space, same covering set; with 64 binary sets, the optimum 10.
 #[test]
 fn deterministic_and_optimal_pairs() {
-    let head: String = (0..64).map(|i| format!("#pragma multi_compile _ K{i}\n")).collect();
+    let head: String = (0..64)
+        .map(|i| format!("#pragma multi_compile _ K{i}\n"))
+        .collect();
     let lib = library(&head);
     let pass = lib.pass("s", "P").unwrap();
     let a = Space::full(pass).covering(2).unwrap();
@@ -142,19 +151,25 @@ fn deterministic_and_optimal_pairs() {
 /// The first variant covers every tuple it has; later ones only new ones.
 #[test]
 fn first_covered_counts() {
-    let head: String = (0..4).map(|i| format!("#pragma multi_compile _ K{i}\n")).collect();
+    let head: String = (0..4)
+        .map(|i| format!("#pragma multi_compile _ K{i}\n"))
+        .collect();
     let lib = library(&head);
     let pass = lib.pass("s", "P").unwrap();
     let cover = Space::full(pass).covering(2).unwrap();
     assert_eq!(first_covered(&cover, 0, 2).len(), 6);
-    let total: usize = (0..cover.len()).map(|i| first_covered(&cover, i, 2).len()).sum();
+    let total: usize = (0..cover.len())
+        .map(|i| first_covered(&cover, i, 2).len())
+        .sum();
     assert_eq!(total, 6 * 4);
 }
 
 /// Shrinking keeps only the keywords the failure needs.
 #[test]
 fn shrink_to_the_culprits() {
-    let head: String = (0..6).map(|i| format!("#pragma multi_compile _ K{i}\n")).collect();
+    let head: String = (0..6)
+        .map(|i| format!("#pragma multi_compile _ K{i}\n"))
+        .collect();
     let lib = library(&head);
     let pass = lib.pass("s", "P").unwrap();
     let space = Space::full(pass);

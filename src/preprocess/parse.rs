@@ -647,7 +647,9 @@ impl<'a> ModuleParser<'a> {
                 if names.len() < 2 {
                     return Err(ParseError::Malformed {
                         directive: "pragma",
-                        message: format!("`{kind}` needs at least two keywords, e.g. `#pragma {kind} A B`"),
+                        message: format!(
+                            "`{kind}` needs at least two keywords, e.g. `#pragma {kind} A B`"
+                        ),
                         span: kind_span,
                     });
                 }

@@ -4,10 +4,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use wgsl_variants::cache::ValidCache;
-use wgsl_variants::validate::validate_plan;
 use wgsl_variants::covering::{first_covered, shrink, tuple_label};
 use wgsl_variants::plan::{Plan, PlanOptions};
 use wgsl_variants::validate::ValidateReport;
+use wgsl_variants::validate::validate_plan;
 use wgsl_variants::variants::Shard;
 use wgsl_variants::{Space, Variant};
 
@@ -139,12 +139,20 @@ fn cover_report(
                     .count();
                 (!shared, std::cmp::Reverse(on))
             });
-            let shown: Vec<String> = tuples.iter().take(8).map(|u| tuple_label(pass, u)).collect();
+            let shown: Vec<String> = tuples
+                .iter()
+                .take(8)
+                .map(|u| tuple_label(pass, u))
+                .collect();
             println!(
                 "    first to cover {} {t}-tuple(s): {}{}",
                 tuples.len(),
                 shown.join("; "),
-                if tuples.len() > shown.len() { "; …" } else { "" }
+                if tuples.len() > shown.len() {
+                    "; …"
+                } else {
+                    ""
+                }
             );
             println!("    smallest failing keyword subset: {}", small.label(pass));
         }

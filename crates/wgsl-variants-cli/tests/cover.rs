@@ -32,7 +32,11 @@ fn validate_cover_2_of_64_keywords() {
     let dir = write(shaders::keyword_shader(64, true));
     let out = run(dir.path(), &["validate", "--cover", "2", "--no-cache"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(
         stdout.contains(
             "synth/P: covering t=2: 10 variants cover every 2-way combination of keyword options of a 18446744073709551616-variant space"
@@ -49,12 +53,22 @@ fn a_planted_pair_is_reported_and_shrunk() {
     for threads in ["1", "2"] {
         let out = run(
             dir.path(),
-            &["--threads", threads, "validate", "--cover", "2", "--no-cache"],
+            &[
+                "--threads",
+                threads,
+                "validate",
+                "--cover",
+                "2",
+                "--no-cache",
+            ],
         );
         assert_eq!(out.status.code(), Some(1));
         outputs.push(out.stdout);
     }
-    assert_eq!(outputs[0], outputs[1], "output differs across thread counts");
+    assert_eq!(
+        outputs[0], outputs[1],
+        "output differs across thread counts"
+    );
     let stdout = String::from_utf8_lossy(&outputs[0]);
     assert!(stdout.contains("failing variant #"), "{stdout}");
     assert!(stdout.contains("first to cover"), "{stdout}");
@@ -70,7 +84,10 @@ fn bad_strength_is_an_error_naming_the_pass() {
     let out = run(dir.path(), &["validate", "--cover", "0"]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("synth/P: covering strength t = 0"), "{stderr}");
+    assert!(
+        stderr.contains("synth/P: covering strength t = 0"),
+        "{stderr}"
+    );
     let out = run(dir.path(), &["validate", "--cover", "5"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("past the supported 4"));
 }

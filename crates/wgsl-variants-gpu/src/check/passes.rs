@@ -193,12 +193,14 @@ pub fn check_standard_pass(
         Some(t) => Space::full(pass)
             .covering(t)
             .map_err(|e| GpuError::from(CheckError::from(e)))?,
-        None => Space::full(pass).enumerate(MAX_VARIANTS).map_err(|source| {
-            GpuError::from(CheckError::Budget {
-                what: format!("{}/{}", pass.shader, pass.name),
-                source,
-            })
-        })?,
+        None => Space::full(pass)
+            .enumerate(MAX_VARIANTS)
+            .map_err(|source| {
+                GpuError::from(CheckError::Budget {
+                    what: format!("{}/{}", pass.shader, pass.name),
+                    source,
+                })
+            })?,
     };
     let every = sample.max(1);
     let choices: Vec<Choice> = all
