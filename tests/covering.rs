@@ -3,6 +3,7 @@
 //! a random sample of the same size is measured for comparison (printed, not asserted).
 
 use test_support::shaders::planted_fault_shader;
+use wgsl_variants::covering::regions::region_aware;
 use wgsl_variants::{Choice, Library, Space, Variant};
 
 /// SplitMix64: a seeded generator so that every run plants the same faults.
@@ -38,7 +39,7 @@ fn caught(lib: &Library, variants: &[Choice]) -> bool {
 fn covering_sets_catch_every_planted_fault() {
     const SEEDS: u64 = 300;
     for t in [2usize, 3] {
-        let (mut covering_caught, mut random_caught, mut sizes) = (0, 0, 0);
+        let (mut covering_caught, mut random_caught, mut sizes, mut region_sizes) = (0, 0, 0, 0);
         for seed in 0..SEEDS {
             let mut rng = Rng(seed * 31 + t as u64);
             let n = 8 + rng.below(33);
@@ -62,14 +63,23 @@ fn covering_sets_catch_every_planted_fault() {
                     "t={t} seed {seed}: the covering set missed the fault {fault:?} of {n} sets"
                 );
             }
+            // The region-aware set (coupled keywords as one factor of their distinct code,
+            // dead ones fixed) must catch it too.
+            let regional = region_aware(&lib, &Space::full(pass), t).unwrap();
+            region_sizes += regional.len();
+            assert!(
+                caught(&lib, &regional),
+                "t={t} seed {seed}: the region-aware set missed {fault:?}"
+            );
             let random: Vec<Choice> = (0..cover.len())
                 .map(|_| Choice((0..n).map(|_| (rng.next() & 1) as u16).collect()))
                 .collect();
             random_caught += caught(&lib, &random) as u32;
         }
         println!(
-            "t={t}: {SEEDS} planted faults (8..40 sets); covering sets (mean {:.1} variants) caught {covering_caught}, random samples of the same sizes caught {random_caught} (missed {})",
+            "t={t}: {SEEDS} planted faults (8..40 sets); covering sets (mean {:.1} variants) caught {covering_caught}, region-aware sets (mean {:.1}) caught all, random samples of the covering sets' sizes caught {random_caught} (missed {})",
             sizes as f64 / SEEDS as f64,
+            region_sizes as f64 / SEEDS as f64,
             SEEDS as u32 - random_caught
         );
         assert_eq!(covering_caught, SEEDS);
@@ -79,4 +89,17 @@ fn covering_sets_catch_every_planted_fault() {
             "t={t}: random samples caught every fault"
         );
     }
+}
+
+/// On the grouped 64-keyword shader (per four keywords: one with code of its own, two that
+/// change code only together, one dead) the region-aware pairwise set covers 32 two-valued
+/// regions: CAN(2, 32, 2) = 8 variants, against 10 for the 64 sets.
+#[test]
+fn region_aware_is_smaller_on_grouped_keywords() {
+    let lib = Library::from_sources(test_support::shaders::keyword_shader(64, true)).unwrap();
+    let space = Space::full(lib.pass("synth", "P").unwrap());
+    assert_eq!(space.covering(2).unwrap().len(), 10);
+    let regional = region_aware(&lib, &space, 2).unwrap();
+    assert_eq!(regional.len(), 8);
+    assert!(regional.iter().all(|c| space.contains(c)));
 }

@@ -25,6 +25,7 @@
 //! ```
 
 pub mod array;
+pub mod regions;
 
 use crate::shader::Pass;
 use crate::variants::{Choice, Factor, Space};

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use wgsl_variants::cache::ValidCache;
+use wgsl_variants::covering::regions::region_aware;
 use wgsl_variants::covering::{first_covered, shrink, tuple_label};
 use wgsl_variants::plan::{Plan, PlanOptions};
 use wgsl_variants::validate::ValidateReport;
@@ -104,8 +105,14 @@ fn cover_report(
         } else {
             ctx.lib.build_set(pass, options.materials.as_deref())?
         };
+        // The region-aware size for comparison (dead sets fixed, coupled sets as one factor of
+        // their distinct code); a pass with fewer sets than t is built whole either way.
+        let regional = match region_aware(&ctx.lib, &space, t) {
+            Ok(r) => r.len().to_string(),
+            Err(_) => choices.len().to_string(),
+        };
         println!(
-            "{}/{}: covering t={t}: {} variants cover every {t}-way combination of keyword options of a {}-variant space",
+            "{}/{}: covering t={t}: {} variants cover every {t}-way combination of keyword options of a {}-variant space (region-aware: {regional})",
             pass.shader,
             pass.name,
             choices.len(),

@@ -39,7 +39,7 @@ fn validate_cover_2_of_64_keywords() {
     );
     assert!(
         stdout.contains(
-            "synth/P: covering t=2: 10 variants cover every 2-way combination of keyword options of a 18446744073709551616-variant space"
+            "synth/P: covering t=2: 10 variants cover every 2-way combination of keyword options of a 18446744073709551616-variant space (region-aware: 8)"
         ),
         "{stdout}"
     );
