@@ -252,20 +252,8 @@ impl Search {
                 pattern |= (row[c] as usize) << j;
             }
             f(self, (rank << t) | pattern);
-            // Next width-subset of 0..universe.
-            let mut j = width;
-            loop {
-                if j == 0 {
-                    return;
-                }
-                j -= 1;
-                if sub[j] < universe - (width - j) {
-                    sub[j] += 1;
-                    for l in j + 1..width {
-                        sub[l] = sub[l - 1] + 1;
-                    }
-                    break;
-                }
+            if !next_combination(&mut sub[..width], universe) {
+                return;
             }
         }
     }
@@ -411,34 +399,36 @@ fn kleitman_spencer(k: usize) -> Vec<Vec<u16>> {
     let weight = n.div_ceil(2);
     let mut rows = vec![vec![0u16; k]; n];
     // Column j is the j-th weight-subset of rows 1..n in lexicographic order.
-    let mut subset: Vec<usize> = (1..=weight).collect();
+    let mut subset: Vec<usize> = (0..weight).collect();
     let mut columns = Vec::with_capacity(k);
     for _ in 0..k {
         columns.push(subset.clone());
-        next_subset(&mut subset, n - 1);
+        next_combination(&mut subset, n - 1);
     }
     for (col, members) in columns.iter().enumerate() {
         for &r in members {
-            rows[r][col] = 1;
+            rows[r + 1][col] = 1;
         }
     }
     rows
 }
 
-/// Advances a sorted subset of 1..=n to the next one in lexicographic order.
-fn next_subset(subset: &mut [usize], n: usize) {
-    let w = subset.len();
-    let mut i = w;
-    while i > 0 {
-        i -= 1;
-        if subset[i] < n - (w - 1 - i) {
-            subset[i] += 1;
-            for j in i + 1..w {
-                subset[j] = subset[j - 1] + 1;
+/// Advances `sub`, a sorted subset of `0..n`, to the next one in lexicographic order;
+/// `false` after the last.
+pub(crate) fn next_combination(sub: &mut [usize], n: usize) -> bool {
+    let w = sub.len();
+    let mut j = w;
+    while j > 0 {
+        j -= 1;
+        if sub[j] < n - (w - j) {
+            sub[j] += 1;
+            for l in j + 1..w {
+                sub[l] = sub[l - 1] + 1;
             }
-            return;
+            return true;
         }
     }
+    false
 }
 
 /// Roux's doubling for binary strength 3: with A a CA(3, m) and B a CA(2, m), the rows
@@ -509,21 +499,7 @@ impl Combos {
             offsets.push(total);
             radix.push(r);
             total += place;
-            // Next (width)-subset of 0..i.
-            let mut j = width;
-            let mut advanced = false;
-            while j > 0 {
-                j -= 1;
-                if subset[j] < i - (width - j) {
-                    subset[j] += 1;
-                    for l in j + 1..width {
-                        subset[l] = subset[l - 1] + 1;
-                    }
-                    advanced = true;
-                    break;
-                }
-            }
-            if !advanced {
+            if !next_combination(&mut subset, i) {
                 break;
             }
         }
@@ -682,20 +658,7 @@ pub(crate) fn covers(rows: &[Vec<u16>], levels: &[usize], t: usize) -> bool {
         if seen.len() < need {
             return false;
         }
-        let mut j = t;
-        let mut advanced = false;
-        while j > 0 {
-            j -= 1;
-            if subset[j] < k - (t - j) {
-                subset[j] += 1;
-                for l in j + 1..t {
-                    subset[l] = subset[l - 1] + 1;
-                }
-                advanced = true;
-                break;
-            }
-        }
-        if !advanced {
+        if !next_combination(&mut subset, k) {
             return true;
         }
     }

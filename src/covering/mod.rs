@@ -199,20 +199,8 @@ pub fn first_covered(variants: &[Choice], index: usize, t: usize) -> Vec<Tuple> 
         if !seen_before {
             out.push(subset.iter().map(|&s| (s, target.0[s])).collect());
         }
-        // Next t-subset of 0..k.
-        let mut j = t;
-        loop {
-            if j == 0 {
-                return out;
-            }
-            j -= 1;
-            if subset[j] < k - (t - j) {
-                subset[j] += 1;
-                for l in j + 1..t {
-                    subset[l] = subset[l - 1] + 1;
-                }
-                break;
-            }
+        if !array::next_combination(&mut subset, k) {
+            return out;
         }
     }
 }

@@ -22,19 +22,8 @@ fn covers_space(all: &[Choice], cover: &[Choice], t: usize) -> bool {
         if !want.is_subset(&got) {
             return false;
         }
-        let mut j = t;
-        loop {
-            if j == 0 {
-                return true;
-            }
-            j -= 1;
-            if subset[j] < k - (t - j) {
-                subset[j] += 1;
-                for l in j + 1..t {
-                    subset[l] = subset[l - 1] + 1;
-                }
-                break;
-            }
+        if !array::next_combination(&mut subset, k) {
+            return true;
         }
     }
 }
