@@ -141,6 +141,23 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
                 Ok(v) => Err(format!("built {} variants", v.len())),
             }
         }
+        "cover" => {
+            let pass = lib.passes().next().ok_or("no pass")?;
+            let mut options = PlanOptions::default();
+            options.cover = e.cover;
+            match variants_to_build(&lib, pass, &options) {
+                Err(PlanError::Cover(error)) if error.to_string().contains(&e.message) => {
+                    let location = lib.files().location(pass.span).to_string();
+                    if location == e.location {
+                        Ok(())
+                    } else {
+                        Err(format!("pass located at {location}"))
+                    }
+                }
+                Err(other) => Err(format!("got {other}")),
+                Ok(v) => Err(format!("built {} variants", v.len())),
+            }
+        }
         other => Err(format!("unknown stage {other}")),
     }
 }

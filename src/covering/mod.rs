@@ -99,6 +99,19 @@ pub enum CoverError {
     },
 }
 
+impl CoverError {
+    /// The shader and pass the error is about.
+    pub fn pass(&self) -> (&str, &str) {
+        match self {
+            CoverError::ZeroStrength { shader, pass }
+            | CoverError::Unsupported { shader, pass, .. }
+            | CoverError::TooStrong { shader, pass, .. }
+            | CoverError::Empty { shader, pass, .. }
+            | CoverError::TooLarge { shader, pass, .. } => (shader, pass),
+        }
+    }
+}
+
 fn empty_cause(constraints: &[String]) -> String {
     if constraints.is_empty() {
         String::new()

@@ -235,6 +235,13 @@ impl Context {
                     Err(_) => Failed::from(e),
                 }
             }
+            wgsl_variants::plan::PlanError::Cover(cover) => {
+                let (shader, pass) = cover.pass();
+                match self.lib.pass(shader, pass) {
+                    Ok(p) => self.pass_failure(p, e.to_string()),
+                    Err(_) => Failed::from(e),
+                }
+            }
             _ => Failed::from(e),
         })
     }
