@@ -55,6 +55,48 @@ pub enum KeywordError {
         /// The first declaration.
         first: Span,
     },
+    /// `#pragma require` or `#pragma exclude` names a keyword no set of the pass declares.
+    #[error("`{constraint}` names `{keyword}`, which no keyword set of pass `{pass}` declares")]
+    UnknownConstraintKeyword {
+        /// The constraint as written, e.g. `require A B`.
+        constraint: String,
+        /// The keyword.
+        keyword: String,
+        /// The pass.
+        pass: String,
+        /// Where the keyword is written.
+        span: Span,
+    },
+    /// The constraints of a pass leave a keyword they name never on (e.g. `require A B`
+    /// with `exclude A B`, or `require A B` with A and B in one set).
+    #[error(
+        "contradictory constraints in pass `{pass}`: with `{constraint}`, keyword `{keyword}` is on in no variant"
+    )]
+    Contradictory {
+        /// The first constraint that names the keyword.
+        constraint: String,
+        /// The keyword that can never be on.
+        keyword: String,
+        /// The pass.
+        pass: String,
+        /// Where the constraint is written.
+        span: Span,
+    },
+    /// Constraints chain so many keyword sets together that their combinations are too many
+    /// to list.
+    #[error(
+        "the constraints of pass `{pass}` couple keyword sets with {combinations} combinations (at most {limit}); split them"
+    )]
+    TooCoupled {
+        /// The pass.
+        pass: String,
+        /// Product of the sizes of the coupled sets.
+        combinations: u128,
+        /// The limit.
+        limit: u128,
+        /// Where one of the constraints is written.
+        span: Span,
+    },
     /// `#pragma skip_variants` names a keyword no set of the pass declares.
     #[error("`skip_variants` names `{keyword}`, which no keyword set of pass `{pass}` declares")]
     UnknownSkip {
@@ -73,9 +115,14 @@ impl KeywordError {
         match self {
             KeywordError::DuplicateInSet { span, .. }
             | KeywordError::TwoPlaceholders { span, .. }
-            | KeywordError::UnknownSkip { span, .. } => {
+            | KeywordError::UnknownSkip { span, .. }
+            | KeywordError::UnknownConstraintKeyword { span, .. }
+            | KeywordError::TooCoupled { span, .. } => {
                 Diagnostic::new(self.to_string()).at(*span, "here")
             }
+            KeywordError::Contradictory { span, .. } => Diagnostic::new(self.to_string())
+                .at(*span, "this constraint")
+                .note("a keyword that is never on builds nothing: drop it or the constraint"),
             KeywordError::InTwoSets { span, first, .. } => Diagnostic::new(self.to_string())
                 .at(*span, "declared again here")
                 .also(*first, "first declared here")
@@ -83,6 +130,132 @@ impl KeywordError {
                     "a keyword belongs to one set: exactly one option of a set is on in a variant",
                 ),
         }
+    }
+}
+
+/// The two kinds of keyword constraint a pass may declare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConstraintKind {
+    /// `#pragma require A B`: a variant with A on has B on.
+    Require,
+    /// `#pragma exclude A B`: no variant has both A and B on.
+    Exclude,
+}
+
+/// One keyword constraint between two keywords of a pass, as declared by
+/// `#pragma require A B C` (A requires B, and A requires C) or `#pragma exclude A B C` (no two
+/// of A, B, C together). Unity users write these rules as stripping code; here the full
+/// space, the build set, the covering set and the audit all honour them.
+///
+/// ```
+/// use wgsl_variants::{Library, Space};
+/// let lib = Library::from_sources([(
+///     "s.wgsl",
+///     "#shader s\n#pass P\n#pragma shader_feature _NORMAL_MAP\n\
+///      #pragma shader_feature _DETAIL_NORMAL_MAP\n\
+///      #pragma require _DETAIL_NORMAL_MAP _NORMAL_MAP\n#endpass",
+/// )])
+/// .unwrap();
+/// let pass = lib.pass("s", "P").unwrap();
+/// assert_eq!(pass.constraints[0].to_string(), "require _DETAIL_NORMAL_MAP _NORMAL_MAP");
+/// // Of the four variants, detail without the normal map is gone.
+/// assert_eq!(Space::full(pass).count(), 3u32.into());
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Constraint {
+    /// `require` or `exclude`.
+    pub kind: ConstraintKind,
+    /// The two keywords: for `require`, the first needs the second.
+    pub keywords: [String; 2],
+    /// The pragma's location.
+    #[serde(skip)]
+    pub span: Span,
+    /// (set, option) of each keyword.
+    #[serde(skip)]
+    pub(crate) at: [(usize, usize); 2],
+}
+
+impl Constraint {
+    /// The keyword sets the constraint involves (one or two).
+    pub fn sets(&self) -> [usize; 2] {
+        [self.at[0].0, self.at[1].0]
+    }
+
+    /// Whether a variant (one option per set of the pass) satisfies the constraint.
+    pub fn holds(&self, options: &[u16]) -> bool {
+        let on = |(set, option): (usize, usize)| options[set] as usize == option;
+        match self.kind {
+            ConstraintKind::Require => !on(self.at[0]) || on(self.at[1]),
+            ConstraintKind::Exclude => !(on(self.at[0]) && on(self.at[1])),
+        }
+    }
+}
+
+impl fmt::Display for Constraint {
+    /// As written in a pragma, e.g. `require _DETAIL_NORMAL_MAP _NORMAL_MAP`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kind = match self.kind {
+            ConstraintKind::Require => "require",
+            ConstraintKind::Exclude => "exclude",
+        };
+        write!(f, "{kind} {} {}", self.keywords[0], self.keywords[1])
+    }
+}
+
+/// A `require`/`exclude` pragma as parsed: its kind, names and span.
+pub(crate) type ConstraintDecl = (ConstraintKind, Vec<(Box<str>, Span)>, Span);
+
+/// Resolves constraint pragmas against a pass's keywords (`index`: keyword → (set, option)):
+/// `require A B C` is A→B and A→C; `exclude A B C` is every pair of A, B, C.
+pub(crate) fn resolve_constraints(
+    pass: &str,
+    decls: &[ConstraintDecl],
+    index: &std::collections::HashMap<String, (usize, usize)>,
+) -> Result<Vec<Constraint>, Vec<KeywordError>> {
+    let mut errors = Vec::new();
+    let mut out = Vec::new();
+    for (kind, names, span) in decls {
+        let written = format!(
+            "{} {}",
+            match kind {
+                ConstraintKind::Require => "require",
+                ConstraintKind::Exclude => "exclude",
+            },
+            names.iter().map(|n| &*n.0).collect::<Vec<_>>().join(" ")
+        );
+        let mut at = Vec::new();
+        for (name, name_span) in names {
+            match index.get(&**name) {
+                Some(&place) => at.push((name.to_string(), place)),
+                None => errors.push(KeywordError::UnknownConstraintKeyword {
+                    constraint: written.clone(),
+                    keyword: name.to_string(),
+                    pass: pass.to_string(),
+                    span: *name_span,
+                }),
+            }
+        }
+        if at.len() != names.len() {
+            continue;
+        }
+        let pairs: Vec<(usize, usize)> = match kind {
+            ConstraintKind::Require => (1..at.len()).map(|j| (0, j)).collect(),
+            ConstraintKind::Exclude => (0..at.len())
+                .flat_map(|i| (i + 1..at.len()).map(move |j| (i, j)))
+                .collect(),
+        };
+        out.extend(pairs.into_iter().map(|(i, j)| Constraint {
+            kind: *kind,
+            keywords: [at[i].0.clone(), at[j].0.clone()],
+            span: *span,
+            at: [at[i].1, at[j].1],
+        }));
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
     }
 }
 

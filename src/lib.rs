@@ -44,6 +44,7 @@
 pub mod audit;
 pub mod bake;
 pub mod cache;
+pub mod covering;
 pub mod data_file;
 pub mod diagnostic;
 pub mod emit;

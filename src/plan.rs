@@ -16,6 +16,7 @@
 //! assert_eq!(planned[0].1.len(), 3072);
 //! ```
 
+use crate::covering::CoverError;
 use crate::library::Library;
 use crate::lookup::LookupError;
 use crate::materials::{Material, MaterialsError};
@@ -38,6 +39,10 @@ pub struct PlanOptions {
     pub pass: Option<String>,
     /// Only this shard of the whole (every N-th variant, numbered across the selected passes).
     pub shard: Option<Shard>,
+    /// Build a t-wise covering set of each pass's space instead of all of it
+    /// ([`Space::covering`]; a pass with fewer than t keyword sets is built whole); the
+    /// budget then applies to the covering set.
+    pub cover: Option<usize>,
 }
 
 impl Default for PlanOptions {
@@ -49,6 +54,7 @@ impl Default for PlanOptions {
             shader: None,
             pass: None,
             shard: None,
+            cover: None,
         }
     }
 }
@@ -82,6 +88,9 @@ pub enum PlanError {
         /// The budget error.
         error: BudgetError,
     },
+    /// A covering set could not be made.
+    #[error(transparent)]
+    Cover(#[from] CoverError),
     /// The materials do not fit the library.
     #[error(transparent)]
     Materials(#[from] MaterialsError),
@@ -120,7 +129,8 @@ pub fn select_passes<'l>(
     Ok(passes)
 }
 
-/// The variants to build for one pass under `options` (the shard aside), in enumeration order.
+/// The variants to build for one pass under `options` (the shard aside), in enumeration order
+/// (with `cover`, in the covering set's order).
 pub fn variants_to_build(
     lib: &Library,
     pass: &Pass,
@@ -131,6 +141,22 @@ pub fn variants_to_build(
     } else {
         lib.build_set(pass, options.materials.as_deref())?
     };
+    // A pass with fewer keyword sets than t is its own covering set: it is built whole
+    // (`Space::covering` refuses it, as it refuses t = 0 everywhere).
+    if let Some(t) = options.cover.filter(|&t| t == 0 || t <= pass.sets.len()) {
+        let cover = space.covering(t)?;
+        if cover.len() as u64 > options.budget {
+            return Err(PlanError::Budget {
+                shader: pass.shader.clone(),
+                pass: pass.name.clone(),
+                error: BudgetError {
+                    count: cover.len().into(),
+                    budget: options.budget,
+                },
+            });
+        }
+        return Ok(cover);
+    }
     space
         .enumerate(options.budget)
         .map_err(|error| PlanError::Budget {

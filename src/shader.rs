@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use num_bigint::BigUint;
 
 use crate::diagnostic::{FileId, Span};
-use crate::keywords::{KeywordError, KeywordSet};
+use crate::keywords::{Constraint, KeywordError, KeywordSet};
 use crate::lookup::LookupError;
 use crate::preprocess::tree::{Node, PassDecl, Pragma, SetKind};
 use crate::variants::Choice;
@@ -87,6 +87,9 @@ pub struct Pass {
     pub skip_variants: Vec<String>,
     /// `#pragma exclude_renderers` names, kept as metadata.
     pub exclude_renderers: Vec<String>,
+    /// `#pragma require` / `#pragma exclude` constraints, one per pair of keywords, in order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constraints: Vec<Constraint>,
     /// Where the pass is declared.
     #[serde(skip)]
     pub span: Span,
@@ -113,6 +116,7 @@ impl Pass {
         let mut first_span: HashMap<String, Span> = HashMap::new();
         let mut skip = Vec::new();
         let mut exclude = Vec::new();
+        let mut constraint_decls = Vec::new();
         for pragma in &decl.pragmas {
             match pragma {
                 Pragma::Keywords {
@@ -147,8 +151,17 @@ impl Pass {
                 Pragma::ExcludeRenderers(names) => {
                     exclude.extend(names.iter().map(|n| n.to_string()))
                 }
+                Pragma::Constraint { kind, names, span } => {
+                    constraint_decls.push((*kind, names.clone(), *span))
+                }
             }
         }
+        let constraints =
+            crate::keywords::resolve_constraints(&decl.name, &constraint_decls, &index)
+                .unwrap_or_else(|mut e| {
+                    errors.append(&mut e);
+                    Vec::new()
+                });
         for (name, span) in &skip {
             if !index.contains_key(&**name) {
                 errors.push(KeywordError::UnknownSkip {
@@ -161,7 +174,7 @@ impl Pass {
         if !errors.is_empty() {
             return Err(errors);
         }
-        Ok(Pass {
+        let pass = Pass {
             shader: shader.to_string(),
             name: decl.name,
             tags: decl.tags,
@@ -172,7 +185,10 @@ impl Pass {
             body: decl.body,
             module,
             index,
-        })
+            constraints,
+        };
+        crate::variants::check_constraints(&pass).map_err(|e| vec![e])?;
+        Ok(pass)
     }
 
     /// The variant with exactly these keywords on, in the full space.

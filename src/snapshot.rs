@@ -53,7 +53,9 @@ pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, Va
 
 /// A small covering set of a pass's variants, named: `all-off` (each set at its "none"
 /// option, or its first), each keyword alone (named by the keyword), and `all-on` (each set at
-/// its last option). Duplicates are removed; order is stable.
+/// its last option). Duplicates are removed; order is stable. Under `#pragma require` a
+/// keyword comes with the keywords it requires; a variant that still breaks a constraint is
+/// left out. For t-wise coverage see [`Space::covering`].
 pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
     let base: Vec<u16> = pass
         .sets
@@ -79,9 +81,31 @@ pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
         "all-on".to_string(),
         Choice(pass.sets.iter().map(|s| s.len() as u16 - 1).collect()),
     ));
+    let full = Space::full(pass);
+    for (_, choice) in out.iter_mut() {
+        require(pass, choice);
+    }
     let mut seen = std::collections::HashSet::new();
-    out.retain(|(_, c)| seen.insert(c.clone()));
+    out.retain(|(_, c)| full.contains(c) && seen.insert(c.clone()));
     out
+}
+
+/// Turns on what the keywords that are on require (transitively, bounded by the number of
+/// constraints).
+fn require(pass: &Pass, choice: &mut Choice) {
+    for _ in 0..pass.constraints.len() {
+        let mut changed = false;
+        for c in &pass.constraints {
+            if c.kind == crate::keywords::ConstraintKind::Require && !c.holds(&choice.0) {
+                let (set, option) = c.at[1];
+                choice.0[set] = option as u16;
+                changed = true;
+            }
+        }
+        if !changed {
+            return;
+        }
+    }
 }
 
 /// Canonical WGSL of the covering set of every pass, named `shader.pass.which`.
@@ -267,4 +291,33 @@ macro_rules! assert_variant_snapshots {
             $crate::snapshot::manifest_summary(lib, 1_000_000).unwrap_or_else(|e| panic!("{e}"));
         ::insta::assert_snapshot!("manifest", manifest);
     }};
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A keyword alone comes with what it requires; the all-on variant, which breaks an
+    /// exclusion, is left out.
+    #[test]
+    fn covering_set_honours_constraints() {
+        let lib = Library::from_sources([(
+            "s.wgsl",
+            "#shader s\n#pass P\n#pragma shader_feature _ N\n#pragma shader_feature _ D\n\
+             #pragma multi_compile _ X\n#pragma require D N\n#pragma exclude X N\n#endpass",
+        )])
+        .unwrap();
+        let pass = lib.pass("s", "P").unwrap();
+        let names: Vec<(String, Vec<&str>)> = covering_set(pass)
+            .into_iter()
+            .map(|(n, c)| (n, c.keywords(pass)))
+            .collect();
+        let expected: Vec<(String, Vec<&str>)> = vec![
+            ("all-off".into(), vec![]),
+            ("N".into(), vec!["N"]),
+            ("D".into(), vec!["N", "D"]),
+            ("X".into(), vec!["X"]),
+        ];
+        assert_eq!(names, expected);
+    }
 }

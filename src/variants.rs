@@ -11,6 +11,7 @@ use std::collections::{BTreeSet, HashMap};
 use num_bigint::BigUint;
 use num_traits::{One, ToPrimitive};
 
+use crate::keywords::{Constraint, KeywordError};
 use crate::shader::Pass;
 
 /// One option index per keyword set of a pass, in set order: a variant's keyword set.
@@ -195,11 +196,19 @@ impl<'p> Space<'p> {
                 tuples: combos.iter().cloned().collect(),
             });
         }
-        factors
+        constrain(factors, &self.pass.constraints, self.allowed.len())
     }
 
-    /// Exact number of variants, without enumerating.
+    /// Exact number of variants, without enumerating (constraints honoured: the sets they
+    /// couple are counted together, the rest multiply).
     pub fn count(&self) -> BigUint {
+        if !self.pass.constraints.is_empty() {
+            return self
+                .factors()
+                .iter()
+                .map(|f| BigUint::from(f.len()))
+                .fold(BigUint::one(), |acc, n| acc * n);
+        }
         match &self.features {
             None => self
                 .allowed
@@ -228,6 +237,9 @@ impl<'p> Space<'p> {
         {
             return false;
         }
+        if !self.pass.constraints.iter().all(|c| c.holds(&choice.0)) {
+            return false;
+        }
         match &self.features {
             None => true,
             Some(combos) => {
@@ -239,6 +251,30 @@ impl<'p> Space<'p> {
                 combos.contains(&key)
             }
         }
+    }
+
+    /// A deterministic t-wise covering set of this space (t from 1 to 4): every variant is in
+    /// the space, and every combination of options of every t keyword sets that occurs in
+    /// the space occurs in one of them. Sets coupled by materials or constraints are covered
+    /// as one factor (every allowed combination of them appears). See [`crate::covering`].
+    ///
+    /// ```
+    /// use wgsl_variants::{Library, Space};
+    /// let lib = Library::from_sources([(
+    ///     "s.wgsl",
+    ///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#pragma multi_compile _ B\n\
+    ///      #pragma multi_compile _ C\n#pragma multi_compile _ D\n#endpass",
+    /// )])
+    /// .unwrap();
+    /// let pass = lib.pass("s", "P").unwrap();
+    /// let space = Space::full(pass);
+    /// let cover = space.covering(2).unwrap();
+    /// assert_eq!(cover.len(), 5); // of 16: every pair of A..D, each way, in 5 variants
+    /// assert!(cover.iter().all(|c| space.contains(c)));
+    /// assert!(space.covering(0).is_err() && space.covering(5).is_err());
+    /// ```
+    pub fn covering(&self, t: usize) -> Result<Vec<Choice>, crate::covering::CoverError> {
+        crate::covering::cover(self, t)
     }
 
     /// Every variant, in [`Space::iter`] order, if there are at most `budget`.
@@ -272,6 +308,7 @@ impl<'p> Space<'p> {
         };
         let empty = self.allowed.iter().any(Vec::is_empty) || combos.is_empty();
         SpaceIter {
+            constraints: &self.pass.constraints,
             allowed: &self.allowed,
             digits: vec![0; free.len()],
             free,
@@ -342,9 +379,169 @@ impl Factor {
     }
 }
 
+/// Most combinations of the keyword sets that constraints couple together (they are listed).
+pub const MAX_COUPLED: u128 = 1 << 16;
+
+/// Checks a pass's constraints against its full space: the sets they couple have at most
+/// [`MAX_COUPLED`] combinations, and every keyword a constraint names is on in some variant.
+pub(crate) fn check_constraints(pass: &Pass) -> Result<(), KeywordError> {
+    if pass.constraints.is_empty() {
+        return Ok(());
+    }
+    let full = Space::full(pass);
+    let mut component = (0..pass.sets.len()).collect::<Vec<usize>>();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for c in &pass.constraints {
+        let [a, b] = c.sets();
+        let (ra, rb) = (root(&mut component, a), root(&mut component, b));
+        component[ra.max(rb)] = ra.min(rb);
+    }
+    let mut product = vec![1u128; pass.sets.len()];
+    for set in 0..pass.sets.len() {
+        let r = root(&mut component, set);
+        product[r] = product[r].saturating_mul(pass.sets[set].len() as u128);
+    }
+    for c in &pass.constraints {
+        let r = root(&mut component, c.sets()[0]);
+        if product[r] > MAX_COUPLED {
+            return Err(KeywordError::TooCoupled {
+                pass: pass.name.clone(),
+                combinations: product[r],
+                limit: MAX_COUPLED,
+                span: c.span,
+            });
+        }
+    }
+    let factors = full.factors();
+    for c in &pass.constraints {
+        for (keyword, &(set, option)) in c.keywords.iter().zip(&c.at) {
+            let possible = factors.iter().any(|f| match f {
+                Factor::Set { set: s, options } => *s != set || options.contains(&(option as u16)),
+                Factor::Joint { sets, tuples } => match sets.iter().position(|&s| s == set) {
+                    None => false,
+                    Some(k) => tuples.iter().any(|t| t[k] as usize == option),
+                },
+            } && f.sets().contains(&set));
+            if !possible {
+                // Name the first constraint that mentions the keyword.
+                let first = pass
+                    .constraints
+                    .iter()
+                    .find(|d| d.keywords.contains(keyword))
+                    .unwrap_or(c);
+                return Err(KeywordError::Contradictory {
+                    constraint: first.to_string(),
+                    keyword: keyword.clone(),
+                    pass: pass.name.clone(),
+                    span: first.span,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Merges the factors that constraints couple into joint factors of the combinations that
+/// satisfy them (`sets` is the number of sets of the pass). Factors no constraint touches are
+/// kept as they are; a merged factor takes the place of its first member.
+pub(crate) fn constrain(
+    factors: Vec<Factor>,
+    constraints: &[Constraint],
+    sets: usize,
+) -> Vec<Factor> {
+    if constraints.is_empty() {
+        return factors;
+    }
+    let mut owner = vec![usize::MAX; sets];
+    for (i, f) in factors.iter().enumerate() {
+        for s in f.sets() {
+            owner[s] = i;
+        }
+    }
+    // Union-find over factors.
+    let mut parent: Vec<usize> = (0..factors.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut touched = vec![false; factors.len()];
+    for c in constraints {
+        let [a, b] = c.sets().map(|s| owner[s]);
+        touched[a] = true;
+        touched[b] = true;
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        parent[ra.max(rb)] = ra.min(rb);
+    }
+    let mut out = Vec::with_capacity(factors.len());
+    for i in 0..factors.len() {
+        if !touched[i] {
+            out.push(factors[i].clone());
+            continue;
+        }
+        if root(&mut parent, i) != i {
+            continue;
+        }
+        let members: Vec<usize> = (0..factors.len())
+            .filter(|&j| touched[j] && root(&mut parent, j) == i)
+            .collect();
+        let mut joint_sets: Vec<usize> = members.iter().flat_map(|&j| factors[j].sets()).collect();
+        joint_sets.sort_unstable();
+        let local: Vec<&Constraint> = constraints
+            .iter()
+            .filter(|c| members.contains(&owner[c.sets()[0]]))
+            .collect();
+        let mut scratch = vec![0u16; sets];
+        let mut digits = vec![0usize; members.len()];
+        let mut tuples = Vec::new();
+        let empty = members.iter().any(|&j| factors[j].len() == 0);
+        if !empty {
+            loop {
+                for (&j, &d) in members.iter().zip(&digits) {
+                    factors[j].apply(d, &mut scratch);
+                }
+                if local.iter().all(|c| c.holds(&scratch)) {
+                    tuples.push(joint_sets.iter().map(|&s| scratch[s]).collect::<Vec<u16>>());
+                }
+                // Odometer over the members' choices, last fastest.
+                let mut m = members.len();
+                loop {
+                    if m == 0 {
+                        break;
+                    }
+                    m -= 1;
+                    digits[m] += 1;
+                    if digits[m] < factors[members[m]].len() {
+                        break;
+                    }
+                    digits[m] = 0;
+                }
+                if digits.iter().all(|&d| d == 0) {
+                    break;
+                }
+            }
+        }
+        tuples.sort();
+        out.push(Factor::Joint {
+            sets: joint_sets,
+            tuples,
+        });
+    }
+    out
+}
+
 /// Iterator over a [`Space`]; see [`Space::iter`].
 #[derive(Clone, Debug)]
 pub struct SpaceIter<'s> {
+    constraints: &'s [Constraint],
     allowed: &'s [Vec<u16>],
     free: Vec<usize>,
     fixed: Vec<usize>,
@@ -358,6 +555,18 @@ impl Iterator for SpaceIter<'_> {
     type Item = Choice;
 
     fn next(&mut self) -> Option<Choice> {
+        // Variants that break a constraint are passed over.
+        loop {
+            let choice = self.next_unconstrained()?;
+            if self.constraints.iter().all(|c| c.holds(&choice.0)) {
+                return Some(choice);
+            }
+        }
+    }
+}
+
+impl SpaceIter<'_> {
+    fn next_unconstrained(&mut self) -> Option<Choice> {
         if self.done {
             return None;
         }

@@ -712,3 +712,42 @@ fn an_oversized_group_is_enumerated_or_reported_as_a_bound() {
     assert!(c.distinct.exact && c.distinct.method == Method::Components);
     assert_eq!(c.together.len(), 0, "each keyword alone turns the code on");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Constraints: the audit's counts honour `#pragma require` / `#pragma exclude`.
+#[test]
+fn constraints_are_honoured_and_reported() {
+    let lib = Library::from_sources([
+        (
+            "s.wgsl",
+            "#shader s\n#pass P\n#pragma shader_feature _ _NORMAL_MAP\n\
+             #pragma shader_feature _ _DETAIL_NORMAL_MAP\n#pragma multi_compile _ FOG_A FOG_B\n\
+             #pragma multi_compile _ SHADOWS\n#pragma require _DETAIL_NORMAL_MAP _NORMAL_MAP\n\
+             #pragma exclude FOG_B SHADOWS\n#import lib\n#endpass\n",
+        ),
+        (
+            "lib.wgsl",
+            "#if defined(_NORMAL_MAP)\nfn n() {}\n#endif\n#if defined(_DETAIL_NORMAL_MAP)\nfn d() {}\n#endif\n\
+             #if defined(FOG_A)\nfn a() {}\n#endif\n#if defined(FOG_B)\nfn b() {}\n#endif\n\
+             #if defined(SHADOWS)\nfn s() {}\n#endif\n",
+        ),
+    ])
+    .unwrap();
+    let pass = lib.pass("s", "P").unwrap();
+    let a = audit_of(&lib, "s", "P", &AuditOptions::default());
+    // 2·2·3·2 = 24 without constraints; 3 normal-map combinations × 5 fog/shadow ones.
+    assert_eq!(a.full_space, big(15));
+    assert_eq!(a.build_set, big(15));
+    assert_eq!(
+        a.distinct.count,
+        big(enumerated_distinct(&lib, pass, &Space::full(pass)) as u64)
+    );
+    assert_eq!(a.distinct.count, big(15));
+    assert_eq!(
+        a.constraints,
+        [
+            "require _DETAIL_NORMAL_MAP _NORMAL_MAP",
+            "exclude FOG_B SHADOWS"
+        ]
+    );
+}

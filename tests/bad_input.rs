@@ -46,6 +46,9 @@ fn kind(problem: &LoadProblem) -> &'static str {
             KeywordError::TwoPlaceholders { .. } => "keyword::two_placeholders",
             KeywordError::InTwoSets { .. } => "keyword::in_two_sets",
             KeywordError::UnknownSkip { .. } => "keyword::unknown_skip",
+            KeywordError::UnknownConstraintKeyword { .. } => "keyword::unknown_constraint_keyword",
+            KeywordError::Contradictory { .. } => "keyword::contradictory",
+            KeywordError::TooCoupled { .. } => "keyword::too_coupled",
         },
         _ => "other",
     }
@@ -133,6 +136,23 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
             match variants_to_build(&lib, pass, &PlanOptions::default()) {
                 Err(PlanError::Budget { error, .. }) if error.to_string().contains(&e.message) => {
                     Ok(())
+                }
+                Err(other) => Err(format!("got {other}")),
+                Ok(v) => Err(format!("built {} variants", v.len())),
+            }
+        }
+        "cover" => {
+            let pass = lib.passes().next().ok_or("no pass")?;
+            let mut options = PlanOptions::default();
+            options.cover = e.cover;
+            match variants_to_build(&lib, pass, &options) {
+                Err(PlanError::Cover(error)) if error.to_string().contains(&e.message) => {
+                    let location = lib.files().location(pass.span).to_string();
+                    if location == e.location {
+                        Ok(())
+                    } else {
+                        Err(format!("pass located at {location}"))
+                    }
                 }
                 Err(other) => Err(format!("got {other}")),
                 Ok(v) => Err(format!("built {} variants", v.len())),

@@ -478,3 +478,19 @@ fn bake_fails_with_rendered_diagnostics() {
         .unwrap_err();
     assert!(e.to_string().contains("nope"), "{e}");
 }
+
+/// `Bake::cover(2)` bakes each pass's pairwise covering set: 26 variants of the bundled
+/// library (10 of Deferred's 3072, 12 of ForwardBase's 1536, the small passes whole).
+#[test]
+fn bake_cover_bakes_the_covering_sets() {
+    let out = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("wgsl");
+    let baked = Bake::new(&root)
+        .cover(2)
+        .target(BakeTarget::Wgsl)
+        .write_to(out.path())
+        .unwrap();
+    assert_eq!(baked.variants, 26);
+    let code = std::fs::read_to_string(&baked.file).unwrap();
+    assert_eq!(code.matches("    Variant {\n").count(), 26);
+}

@@ -2,6 +2,7 @@
 //! same code, and keywords that change code only together with others.
 
 use crate::shader::Pass;
+use crate::variants::Factor;
 
 use super::distinct::{Analysis, Table};
 
@@ -49,6 +50,14 @@ pub(crate) fn findings(pass: &Pass, full: &Analysis) -> Vec<SetFindings> {
     }
     for c in &full.components {
         let Some(table) = &c.table else { continue };
+        // Per-set findings read the table one set per digit; a factor that constraints
+        // merge spans several sets, so its sets' findings stay unknown.
+        if c.factors
+            .iter()
+            .any(|&f| matches!(full.factors[f], Factor::Joint { .. }))
+        {
+            continue;
+        }
         for (pos, &s) in c.sets.iter().enumerate() {
             out[s] = set_findings(pass, &c.sets, table, pos);
         }

@@ -77,6 +77,52 @@ impl Default for AuditOptions {
     }
 }
 
+/// The code regions of a space, for region-aware covering: the space's factors and, per group
+/// of factors whose code depends on each other, one representative assignment (a choice per
+/// factor of the group) for each distinct output of the group, or `None` when the group was
+/// too large to enumerate. Factors in no group change no code.
+pub(crate) struct Regions {
+    /// The space's factors ([`Space::factors`](crate::variants::Space)).
+    pub factors: Vec<crate::variants::Factor>,
+    /// `(factors of the group, representatives)`.
+    pub groups: Vec<(Vec<usize>, Option<Representatives>)>,
+}
+
+/// One assignment (a choice per factor of a group) per distinct output of the group.
+pub(crate) type Representatives = Vec<Vec<usize>>;
+
+/// The regions of `space` (see [`Regions`]), from the same analysis as the audit's.
+pub(crate) fn regions(lib: &Library, space: &Space<'_>) -> Regions {
+    let graph = lib.module_graph();
+    let ids = LineIds::new(&graph);
+    let defaults = AuditOptions::default();
+    let limits = Limits {
+        component: defaults.component_limit,
+        whole: 0,
+    };
+    let analysis = distinct::analyze(&graph, &ids, space.pass(), space.clone(), limits);
+    let groups = analysis
+        .components
+        .iter()
+        .map(|c| {
+            let reps = c.table.as_ref().map(|table| {
+                let mut reps: Vec<Option<Vec<usize>>> = vec![None; table.classes as usize];
+                for (row, &class) in table.class.iter().enumerate() {
+                    if reps[class as usize].is_none() {
+                        reps[class as usize] = Some(table.digits(row));
+                    }
+                }
+                reps.into_iter().flatten().collect()
+            });
+            (c.factors.clone(), reps)
+        })
+        .collect();
+    Regions {
+        factors: analysis.factors,
+        groups,
+    }
+}
+
 /// Audits one pass.
 pub fn audit_pass(
     lib: &Library,

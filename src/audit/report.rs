@@ -144,6 +144,10 @@ pub struct PassAudit {
     pub distinct_after_filtering: Distinct,
     /// Keywords that change no generated code in any variant.
     pub dead_keywords: Vec<String>,
+    /// The pass's `require`/`exclude` constraints as written (`require A B`); every count
+    /// above honours them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constraints: Vec<String>,
     /// Keywords that change code only together with others.
     pub together: Vec<Together>,
     /// Where build-set variants share code.
@@ -333,6 +337,7 @@ pub(crate) fn assemble(
         distinct_after_filtering: stage(after),
         sets,
         dead_keywords,
+        constraints: pass.constraints.iter().map(|c| c.to_string()).collect(),
         together,
         identical_code: groups(pass, build),
         findings_exact,

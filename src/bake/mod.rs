@@ -75,6 +75,7 @@ pub struct Bake {
     targets: Vec<BakeTarget>,
     file_name: String,
     budget: u64,
+    cover: Option<usize>,
     options: Options,
 }
 
@@ -144,6 +145,7 @@ impl Bake {
             targets: Vec::new(),
             file_name: "wgsl_variants.rs".into(),
             budget: 1_000_000,
+            cover: None,
             options: Options::default(),
         }
     }
@@ -172,6 +174,16 @@ impl Bake {
     /// Most variants per pass (default 1,000,000); past it the bake fails.
     pub fn max_variants(mut self, budget: u64) -> Bake {
         self.budget = budget;
+        self
+    }
+
+    /// Bakes only a t-wise covering set of each pass (t from 1 to 4;
+    /// [`Space::covering`](crate::Space::covering)) instead of its whole build set: every
+    /// combination of options of every t keyword sets is validated and translated, in a few
+    /// variants. For test builds of huge spaces: the other variants are not in the generated
+    /// file.
+    pub fn cover(mut self, t: usize) -> Bake {
+        self.cover = Some(t);
         self
     }
 
@@ -237,6 +249,7 @@ impl Bake {
         let options = PlanOptions {
             materials,
             budget: self.budget,
+            cover: self.cover,
             ..PlanOptions::default()
         };
         let selection = plan(&lib, &options).map_err(|e| BakeError::Plan(Box::new(e)))?;

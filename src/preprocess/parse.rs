@@ -3,6 +3,7 @@
 use std::ops::Range;
 
 use crate::diagnostic::{FileId, Span};
+use crate::keywords::ConstraintKind;
 
 use super::error::ParseError;
 use super::expr::{self, Expr};
@@ -642,11 +643,32 @@ impl<'a> ModuleParser<'a> {
                 ));
                 return Ok(());
             }
+            "require" | "exclude" => {
+                if names.len() < 2 {
+                    return Err(ParseError::Malformed {
+                        directive: "pragma",
+                        message: format!(
+                            "`{kind}` needs at least two keywords, e.g. `#pragma {kind} A B`"
+                        ),
+                        span: kind_span,
+                    });
+                }
+                pass.pragmas.push(Pragma::Constraint {
+                    kind: if kind == "require" {
+                        ConstraintKind::Require
+                    } else {
+                        ConstraintKind::Exclude
+                    },
+                    names,
+                    span: whole,
+                });
+                return Ok(());
+            }
             other => {
                 return Err(ParseError::Malformed {
                     directive: "pragma",
                     message: format!(
-                        "unknown pragma `{other}`; supported: multi_compile, multi_compile_local, shader_feature, shader_feature_local, skip_variants, exclude_renderers"
+                        "unknown pragma `{other}`; supported: multi_compile, multi_compile_local, shader_feature, shader_feature_local, skip_variants, exclude_renderers, require, exclude"
                     ),
                     span: kind_span,
                 });

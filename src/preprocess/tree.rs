@@ -78,6 +78,15 @@ pub enum Pragma {
     SkipVariants(Vec<(Box<str>, Span)>),
     /// `exclude_renderers`.
     ExcludeRenderers(Vec<Box<str>>),
+    /// `require A B…` (A on needs each of B… on) or `exclude A B…` (at most one on).
+    Constraint {
+        /// `require` or `exclude`.
+        kind: crate::keywords::ConstraintKind,
+        /// The keywords, with where each is written (at least two).
+        names: Vec<(Box<str>, Span)>,
+        /// The whole directive.
+        span: Span,
+    },
 }
 
 /// A `#pass … #endpass` block.

@@ -10,7 +10,7 @@ use serde::Deserialize;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Expect {
-    /// The stage that reports it: `load`, `validate`, `budget` or `lookup`.
+    /// The stage that reports it: `load`, `validate`, `budget`, `lookup` or `cover`.
     pub stage: String,
     /// `file:line:col` of the primary label.
     pub location: String,
@@ -25,6 +25,8 @@ pub struct Expect {
     /// For `lookup`: the keywords asked for.
     #[serde(default)]
     pub keywords: Vec<String>,
+    /// For `cover`: the covering strength asked for (`validate --cover T`).
+    pub cover: Option<usize>,
 }
 
 /// One case: its folder, its name and what it must produce.

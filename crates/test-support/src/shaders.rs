@@ -25,3 +25,25 @@ pub fn keyword_shader(n: usize, grouped: bool) -> Vec<(String, String)> {
         ("lib/features.wgsl".to_string(), lib),
     ]
 }
+
+/// `n` two-way multi_compile sets K0..K{n-1}, each guarding a function of its own, and a
+/// planted interaction fault: a function with a WGSL error (an unknown identifier) that is
+/// compiled only when every `(set, on)` of `fault` holds (K{set} defined, or not).
+pub fn planted_fault_shader(n: usize, fault: &[(usize, bool)]) -> Vec<(String, String)> {
+    let mut files = keyword_shader(n, false);
+    let condition: Vec<String> = fault
+        .iter()
+        .map(|&(set, on)| {
+            if on {
+                format!("defined(K{set})")
+            } else {
+                format!("!defined(K{set})")
+            }
+        })
+        .collect();
+    files[1].1.push_str(&format!(
+        "#if {}\nfn planted() -> f32 {{ return not_declared; }}\n#endif\n",
+        condition.join(" && ")
+    ));
+    files
+}

@@ -227,6 +227,12 @@ fn pass_details(a: &PassAudit) -> String {
             g.join(" & ")
         ));
     }
+    if !a.constraints.is_empty() {
+        notes.push(format!(
+            "constraints (every count honours them): {}",
+            a.constraints.join(", ")
+        ));
+    }
     if !a.dead_keywords.is_empty() {
         notes.push(format!(
             "dead keywords (no code depends on them): {}",

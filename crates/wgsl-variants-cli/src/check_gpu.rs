@@ -32,6 +32,10 @@ pub struct CheckGpuArgs {
     /// Only shard K of N of each standard pass's variants (`K/N`), for a CI job matrix.
     #[arg(long, value_name = "K/N")]
     shard: Option<wgsl_variants::variants::Shard>,
+    /// Check a T-wise covering set (T from 1 to 4) of each standard pass instead of every
+    /// variant.
+    #[arg(long, value_name = "T")]
+    cover: Option<usize>,
 }
 
 pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
@@ -42,6 +46,7 @@ pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
     options.threads = args.workers;
     options.sample = args.sample;
     options.shard = args.shard;
+    options.cover = args.cover;
     let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {
         print_json(&report)?;

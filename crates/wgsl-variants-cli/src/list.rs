@@ -29,6 +29,9 @@ pub fn run(ctx: &Context, materials: &Option<PathBuf>) -> Result<ExitCode, Faile
             if !pass.skip_variants.is_empty() {
                 println!("    skip_variants {}", pass.skip_variants.join(" "));
             }
+            for constraint in &pass.constraints {
+                println!("    {constraint}");
+            }
             if !pass.exclude_renderers.is_empty() {
                 println!("    exclude_renderers {}", pass.exclude_renderers.join(" "));
             }

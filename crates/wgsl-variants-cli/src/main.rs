@@ -100,6 +100,10 @@ pub struct BuildArgs {
     /// Only passes with this name.
     #[arg(long, value_name = "PASS")]
     pass: Option<String>,
+    /// Build a t-wise covering set (T from 1 to 4) of each pass instead of every variant:
+    /// every combination of options of every T keyword sets, in a few variants.
+    #[arg(long, value_name = "T")]
+    cover: Option<usize>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -223,6 +227,7 @@ impl Context {
         options.shader = build.shader.clone();
         options.pass = build.pass.clone();
         options.shard = shard;
+        options.cover = build.cover;
         Ok(options)
     }
 
@@ -233,6 +238,13 @@ impl Context {
     ) -> Result<wgsl_variants::plan::Plan<'_>, Failed> {
         wgsl_variants::plan::plan(&self.lib, options).map_err(|e| match &e {
             wgsl_variants::plan::PlanError::Budget { shader, pass, .. } => {
+                match self.lib.pass(shader, pass) {
+                    Ok(p) => self.pass_failure(p, e.to_string()),
+                    Err(_) => Failed::from(e),
+                }
+            }
+            wgsl_variants::plan::PlanError::Cover(cover) => {
+                let (shader, pass) = cover.pass();
                 match self.lib.pass(shader, pass) {
                     Ok(p) => self.pass_failure(p, e.to_string()),
                     Err(_) => Failed::from(e),

@@ -3,8 +3,13 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use wgsl_variants::covering::regions::region_aware;
+use wgsl_variants::covering::{first_covered, shrink, tuple_label};
+use wgsl_variants::plan::{Plan, PlanOptions};
+use wgsl_variants::validate::ValidateReport;
 use wgsl_variants::validate::validate_plan;
 use wgsl_variants::variants::Shard;
+use wgsl_variants::{Space, Variant};
 
 use super::output::{print_json, progress};
 use super::{BuildArgs, Context, Failed};
@@ -64,6 +69,9 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
                 r.shader, r.pass, r.built, r.full_space, r.distinct, r.valid, r.invalid
             );
         }
+        if let Some(t) = options.cover {
+            cover_report(ctx, &plan, &options, &report, t)?;
+        }
         let t = &report.totals;
         println!(
             "total: {} passes, {} variants built, {} distinct, {} valid, {} invalid",
@@ -75,4 +83,82 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
     } else {
         ExitCode::from(1)
     })
+}
+
+/// With `--cover T`: per pass, the space and the covering set's size; per failure, the
+/// failing variant, the T-tuples it is the first of the covering set to contain, and the
+/// smallest keyword subset that still fails (keywords turned off one at a time).
+fn cover_report(
+    ctx: &Context,
+    plan: &Plan<'_>,
+    options: &PlanOptions,
+    report: &ValidateReport,
+    t: usize,
+) -> Result<(), Failed> {
+    for ((pass, choices), r) in plan.iter().zip(&report.passes) {
+        let space = if options.all {
+            Space::full(pass)
+        } else {
+            ctx.lib.build_set(pass, options.materials.as_deref())?
+        };
+        // The region-aware size for comparison (dead sets fixed, coupled sets as one factor of
+        // their distinct code); a pass with fewer sets than t is built whole either way.
+        let regional = match region_aware(&ctx.lib, &space, t) {
+            Ok(r) => r.len().to_string(),
+            Err(_) => choices.len().to_string(),
+        };
+        println!(
+            "{}/{}: covering t={t}: {} variants cover every {t}-way combination of keyword options of a {}-variant space (region-aware: {regional})",
+            pass.shader,
+            pass.name,
+            choices.len(),
+            space.count()
+        );
+        for f in &r.failures {
+            let Some(index) = choices
+                .iter()
+                .position(|c| f.keyword_sets.iter().any(|k| *k == c.keywords(pass)))
+            else {
+                continue;
+            };
+            let failing = &choices[index];
+            println!("  failing variant #{index}: {}", failing.label(pass));
+            let fails = |c: &wgsl_variants::Choice| {
+                ctx.lib
+                    .naga_module(&Variant {
+                        pass,
+                        choice: c.clone(),
+                    })
+                    .is_err()
+            };
+            let small = shrink(&space, failing, fails);
+            // The tuples the shrunk variant shares come first: they name the culprits.
+            let mut tuples = first_covered(choices, index, t);
+            tuples.sort_by_key(|u| {
+                let shared = u.iter().all(|&(set, o)| small.0[set] == o);
+                let on = u
+                    .iter()
+                    .filter(|&&(set, o)| pass.sets[set].options[o as usize].is_some())
+                    .count();
+                (!shared, std::cmp::Reverse(on))
+            });
+            let shown: Vec<String> = tuples
+                .iter()
+                .take(8)
+                .map(|u| tuple_label(pass, u))
+                .collect();
+            println!(
+                "    first to cover {} {t}-tuple(s): {}{}",
+                tuples.len(),
+                shown.join("; "),
+                if tuples.len() > shown.len() {
+                    "; …"
+                } else {
+                    ""
+                }
+            );
+            println!("    smallest failing keyword subset: {}", small.label(pass));
+        }
+    }
+    Ok(())
 }

@@ -21,6 +21,8 @@ fn check_cli(dir: &Path, e: &Expect) -> Result<(), String> {
             "--keywords",
             &e.keywords.join(","),
         ]);
+    } else if let Some(t) = e.cover {
+        cmd.args(["validate", "--cover", &t.to_string()]);
     } else {
         cmd.args(["validate", "--all"]);
     }

@@ -87,6 +87,9 @@ pub enum CheckError {
         /// The budget error.
         source: wgsl_variants::variants::BudgetError,
     },
+    /// A pass's covering set could not be made.
+    #[error(transparent)]
+    Cover(#[from] wgsl_variants::covering::CoverError),
     /// A keyword set the CPU reference does not know.
     #[error("{variant}: the reference does not know this keyword set: {message}")]
     UnknownToReference {

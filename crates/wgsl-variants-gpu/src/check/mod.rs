@@ -61,6 +61,9 @@ pub struct CheckOptions {
     /// Only this shard of each standard pass's variants (variant i of a pass is in shard
     /// `i % N`); with `sample`, both apply. Keyword coverage is judged on the full space only.
     pub shard: Option<wgsl_variants::variants::Shard>,
+    /// Check a t-wise covering set of each standard pass instead of its full space
+    /// ([`wgsl_variants::Space::covering`]); `sample` and `shard` then apply to it.
+    pub cover: Option<usize>,
 }
 
 /// The passes the check knows, as `(shader, pass)`.
@@ -188,6 +191,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 pass,
                 options.sample,
                 options.shard,
+                options.cover,
             )?);
         }
     }

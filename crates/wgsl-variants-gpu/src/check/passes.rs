@@ -219,18 +219,24 @@ pub fn check_standard_pass(
     pass: &Pass,
     sample: usize,
     shard: Option<wgsl_variants::variants::Shard>,
+    cover: Option<usize>,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
     let deferred = is_deferred(pass);
     let mut report = PassReport::new(&pass.shader, &pass.name);
-    let all = Space::full(pass)
-        .enumerate(MAX_VARIANTS)
-        .map_err(|source| {
-            GpuError::from(CheckError::Budget {
-                what: format!("{}/{}", pass.shader, pass.name),
-                source,
-            })
-        })?;
+    let all = match cover {
+        Some(t) => Space::full(pass)
+            .covering(t)
+            .map_err(|e| GpuError::from(CheckError::from(e)))?,
+        None => Space::full(pass)
+            .enumerate(MAX_VARIANTS)
+            .map_err(|source| {
+                GpuError::from(CheckError::Budget {
+                    what: format!("{}/{}", pass.shader, pass.name),
+                    source,
+                })
+            })?,
+    };
     let every = sample.max(1);
     let choices: Vec<Choice> = all
         .into_iter()
@@ -338,7 +344,12 @@ pub fn check_standard_pass(
     report.keywords = keyword_coverage(pass, &choices, |a, b| {
         decoded[text_of[a]] != decoded[text_of[b]]
     });
-    if every == 1 && shard.is_none() {
+    if let Some(t) = cover {
+        report.notes.push(format!(
+            "{t}-wise covering set: {} variants contain every {t}-way combination of keyword options; keyword coverage is judged on the full space only",
+            choices.len()
+        ));
+    } else if every == 1 && shard.is_none() {
         report.untested_keywords = report
             .keywords
             .iter()

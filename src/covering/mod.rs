@@ -1,0 +1,271 @@
+//! t-wise covering sets: a few variants of a huge build set that together contain, for every
+//! choice of t keyword sets, every combination of their options that occurs in the build set.
+//!
+//! Interaction bugs — code that fails only when two or three particular keywords are on
+//! together — are caught by building a covering set instead of the whole space: 64 two-way
+//! keyword sets (2^64 variants) are covered pairwise by 10 variants.
+//!
+//! The build set is a product of independent factors ([`Space`]'s keyword sets, with the sets
+//! that constraints or materials couple merged into one factor whose values are their allowed
+//! combinations). A covering array over those factors ([`mod@array`]) is a covering set of the
+//! keyword sets, and every row is a variant of the build set by construction.
+//!
+//! ```
+//! use wgsl_variants::{Library, Space};
+//!
+//! let mut shader = String::from("#shader synth\n#pass P\n");
+//! for i in 0..64 {
+//!     shader.push_str(&format!("#pragma multi_compile _ K{i}\n"));
+//! }
+//! shader.push_str("#endpass\n");
+//! let lib = Library::from_sources([("synth.wgsl", shader)]).unwrap();
+//! let pass = lib.pass("synth", "P").unwrap();
+//! let cover = Space::full(pass).covering(2).unwrap();
+//! assert_eq!(cover.len(), 10); // the optimum for 64 binary sets
+//! ```
+
+pub mod array;
+pub mod regions;
+
+use crate::shader::Pass;
+use crate::variants::{Choice, Factor, Space};
+
+/// Strongest supported strength.
+pub const MAX_T: usize = 4;
+
+/// Most values of the t largest factors together: above it the tuples to cover do not fit in
+/// memory comfortably.
+pub const MAX_TUPLES: u128 = 1 << 26;
+
+/// Why a covering set could not be made. Every variant names the pass.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CoverError {
+    /// t = 0 covers nothing.
+    #[error("{shader}/{pass}: covering strength t = 0; give t from 1 to {MAX_T}")]
+    ZeroStrength {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+    },
+    /// t is past what is supported.
+    #[error("{shader}/{pass}: covering strength t = {t} is past the supported {MAX_T}")]
+    Unsupported {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The strength asked for.
+        t: usize,
+    },
+    /// t is more than the number of keyword sets.
+    #[error(
+        "{shader}/{pass}: covering strength t = {t} is more than the pass's {sets} keyword sets"
+    )]
+    TooStrong {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The strength asked for.
+        t: usize,
+        /// Number of keyword sets of the pass.
+        sets: usize,
+    },
+    /// The build set has no variant (skip_variants, materials or constraints remove all).
+    #[error("{shader}/{pass}: the build set is empty{}", empty_cause(.constraints))]
+    Empty {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The pass's constraints as written (`require A B`), if it has any.
+        constraints: Vec<String>,
+    },
+    /// The t largest factors have too many value combinations to list.
+    #[error(
+        "{shader}/{pass}: t = {t} needs {combinations} combinations of the largest keyword sets together (at most {MAX_TUPLES})"
+    )]
+    TooLarge {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The strength asked for.
+        t: usize,
+        /// Product of the t largest factor sizes.
+        combinations: u128,
+    },
+}
+
+impl CoverError {
+    /// The shader and pass the error is about.
+    pub fn pass(&self) -> (&str, &str) {
+        match self {
+            CoverError::ZeroStrength { shader, pass }
+            | CoverError::Unsupported { shader, pass, .. }
+            | CoverError::TooStrong { shader, pass, .. }
+            | CoverError::Empty { shader, pass, .. }
+            | CoverError::TooLarge { shader, pass, .. } => (shader, pass),
+        }
+    }
+}
+
+fn empty_cause(constraints: &[String]) -> String {
+    if constraints.is_empty() {
+        String::new()
+    } else {
+        format!(" under its constraints ({})", constraints.join(", "))
+    }
+}
+
+/// The checks every covering entry point makes: t in range and the build set not empty.
+pub(crate) fn check(pass: &Pass, factors: &[Factor], t: usize) -> Result<(), CoverError> {
+    let (shader, name) = (pass.shader.clone(), pass.name.clone());
+    if t == 0 {
+        return Err(CoverError::ZeroStrength { shader, pass: name });
+    }
+    if t > MAX_T {
+        return Err(CoverError::Unsupported {
+            shader,
+            pass: name,
+            t,
+        });
+    }
+    if t > pass.sets.len() {
+        return Err(CoverError::TooStrong {
+            shader,
+            pass: name,
+            t,
+            sets: pass.sets.len(),
+        });
+    }
+    if factors.iter().any(|f| f.len() == 0) {
+        return Err(CoverError::Empty {
+            shader,
+            pass: name,
+            constraints: pass.constraints.iter().map(|c| c.to_string()).collect(),
+        });
+    }
+    let mut levels: Vec<u128> = factors.iter().map(|f| f.len() as u128).collect();
+    levels.sort_unstable_by(|a, b| b.cmp(a));
+    let combinations = levels
+        .iter()
+        .take(t)
+        .fold(1u128, |a, &l| a.saturating_mul(l));
+    if combinations > MAX_TUPLES {
+        return Err(CoverError::TooLarge {
+            shader,
+            pass: name,
+            t,
+            combinations,
+        });
+    }
+    Ok(())
+}
+
+/// A t-wise covering set of `space` (see [`Space::covering`]).
+pub(crate) fn cover(space: &Space<'_>, t: usize) -> Result<Vec<Choice>, CoverError> {
+    let factors = space.factors();
+    check(space.pass(), &factors, t)?;
+    Ok(rows_to_choices(space.pass(), &factors, t))
+}
+
+/// The covering array over `factors`, as variants, duplicates dropped (first kept).
+pub(crate) fn rows_to_choices(pass: &Pass, factors: &[Factor], t: usize) -> Vec<Choice> {
+    let levels: Vec<usize> = factors.iter().map(Factor::len).collect();
+    let rows = array::covering_array(&levels, t);
+    let mut seen = std::collections::HashSet::new();
+    rows.into_iter()
+        .map(|row| {
+            let mut options = vec![0u16; pass.sets.len()];
+            for (f, &v) in factors.iter().zip(&row) {
+                f.apply(v as usize, &mut options);
+            }
+            Choice(options.into_boxed_slice())
+        })
+        .filter(|c| seen.insert(c.clone()))
+        .collect()
+}
+
+/// A combination of options of t keyword sets: `(set, option)` pairs, sets ascending.
+pub type Tuple = Vec<(usize, u16)>;
+
+/// The t-tuples of keyword-set options that variant `index` of `variants` is the first to
+/// contain, in set order (what a failing variant of a covering set newly exercises).
+pub fn first_covered(variants: &[Choice], index: usize, t: usize) -> Vec<Tuple> {
+    let Some(target) = variants.get(index) else {
+        return Vec::new();
+    };
+    let k = target.0.len();
+    let t = t.min(k);
+    let mut out = Vec::new();
+    if t == 0 {
+        return out;
+    }
+    let mut subset: Vec<usize> = (0..t).collect();
+    loop {
+        let seen_before = variants[..index]
+            .iter()
+            .any(|v| subset.iter().all(|&s| v.0[s] == target.0[s]));
+        if !seen_before {
+            out.push(subset.iter().map(|&s| (s, target.0[s])).collect());
+        }
+        if !array::next_combination(&mut subset, k) {
+            return out;
+        }
+    }
+}
+
+/// A tuple as people read it: `K3=on, K7=off` style, each set by its chosen option
+/// (`_` for a set's "none" option, named by the set's keywords).
+pub fn tuple_label(pass: &Pass, tuple: &Tuple) -> String {
+    tuple
+        .iter()
+        .map(|&(set, o)| match &pass.sets[set].options[o as usize] {
+            Some(k) => k.clone(),
+            None => format!(
+                "!{}",
+                pass.sets[set].keywords().collect::<Vec<_>>().join("|")
+            ),
+        })
+        .collect::<Vec<_>>()
+        .join(" & ")
+}
+
+/// Shrinks a failing variant like a property-test shrinker: turns its keywords off (each set
+/// to its "none" option) one at a time, keeping each change that stays in `space` and still
+/// fails, until no single keyword can be turned off. Returns the smallest failing variant
+/// found (`fails` is called at most a few times per keyword).
+pub fn shrink(
+    space: &Space<'_>,
+    failing: &Choice,
+    mut fails: impl FnMut(&Choice) -> bool,
+) -> Choice {
+    let pass = space.pass();
+    let mut current = failing.clone();
+    loop {
+        let mut changed = false;
+        for (set, keyword_set) in pass.sets.iter().enumerate() {
+            let Some(none) = keyword_set.none_index() else {
+                continue;
+            };
+            if current.0[set] as usize == none {
+                continue;
+            }
+            let mut candidate = current.clone();
+            candidate.0[set] = none as u16;
+            if space.contains(&candidate) && fails(&candidate) {
+                current = candidate;
+                changed = true;
+            }
+        }
+        if !changed {
+            return current;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
