@@ -114,3 +114,31 @@ fn check_gpu_cover_renders_the_covering_sets() {
     );
     assert!(stdout.contains("2-wise covering set"), "{stdout}");
 }
+
+/// A sample step that shares a factor with the shard count still splits the sample evenly:
+/// `--sample 64` of ForwardBase's 1536 variants is 24, and shard 2/2 runs 12 of them (it ran
+/// none when shards were taken by the index in the space).
+#[test]
+fn check_gpu_sample_and_shard_with_a_common_factor() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["check-gpu", "--json", "--shader", "standard", "--pass"])
+        .args([
+            "ForwardBase",
+            "--sample",
+            "64",
+            "--shard",
+            "2/2",
+            "--workers",
+            "1",
+        ])
+        .env("NODEVICE_SELECT", "1")
+        .output()
+        .expect("run check-gpu");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["passes"][0]["variants_run"], 12, "{report}");
+}

@@ -237,11 +237,15 @@ pub fn check_standard_pass(
                 })
             })?,
     };
+    // Sample first, then shard the sample by its own numbering: sharding by the index in the
+    // space would leave a shard empty whenever the sample step and the shard count share a
+    // factor (`--sample 64 --shard 2/2`).
     let every = sample.max(1);
     let choices: Vec<Choice> = all
         .into_iter()
+        .step_by(every)
         .enumerate()
-        .filter(|(i, _)| i % every == 0 && shard.is_none_or(|s| s.contains(*i as u64)))
+        .filter(|(i, _)| shard.is_none_or(|s| s.contains(*i as u64)))
         .map(|(_, c)| c)
         .collect();
 
