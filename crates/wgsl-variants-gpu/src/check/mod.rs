@@ -30,9 +30,11 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod volumes;
 
 use std::time::Instant;
 
+pub use deferred::{CHAIN_INPUTS, GBufferImage, render_gbuffer};
 pub use lights::LightRig;
 use passes::Worker;
 pub use passes::standard_job;
