@@ -13,7 +13,9 @@ mod common;
 use glam::Vec3;
 use wgsl_variants::Library;
 use wgsl_variants_gpu::GpuContext;
-use wgsl_variants_gpu::check::volumes::{VolumeCase, compare_draws, render_light, volume_cases};
+use wgsl_variants_gpu::check::volumes::{
+    LightRender, VolumeCase, compare_draws, render_light, volume_cases,
+};
 use wgsl_variants_gpu::check::{CHAIN_INPUTS, GBufferImage, LightRig, TestScene, render_gbuffer};
 use wgsl_variants_gpu::light_volume::{FullScreenReason, LightDraw, LightVolume, light_draw};
 
@@ -52,7 +54,7 @@ fn setup() -> Option<Setup> {
     })
 }
 
-fn draw(s: &Setup, g: &GBufferImage, case: &VolumeCase, how: &LightDraw) -> Vec<u8> {
+fn draw(s: &Setup, g: &GBufferImage, case: &VolumeCase, how: &LightDraw) -> LightRender {
     render_light(&s.ctx, &s.lib, &s.scene, &s.rig, g, case, how)
         .unwrap_or_else(|e| panic!("{}: {e}", case.name))
 }
@@ -83,21 +85,33 @@ fn volume_and_full_screen_draws_are_bit_identical() {
                 &LightDraw::FullScreen(FullScreenReason::Directional),
             );
             let chosen = draw(&s, g, &case, &how);
-            let c = compare_draws(&g.targets[3], &full, &chosen, bpp);
+            let c = compare_draws(&g.targets[3], &full.rt3, &chosen.rt3, bpp);
             eprintln!(
-                "{} ({}): {} of {pixels} pixels lit, {} differ",
+                "{} ({}): {} of {pixels} pixels lit, {:?} stencil-marked, {} differ",
                 case.name,
                 if g.hdr { "HDR" } else { "LDR" },
                 c.lit,
+                chosen.stencil_marked,
                 c.differing.len()
             );
             assert!(c.identical(), "{} hdr={}: {:?}", case.name, g.hdr, c);
-            // Some geometry is lit and some lies outside the light's reach.
-            assert!(c.lit > 0 && c.lit < pixels, "{}: {} lit", case.name, c.lit);
+            // Some geometry lies outside the light's reach; some is lit, except by the light
+            // behind the surface (which faces away from it: n · l < 0).
+            let behind = case.name == "point behind the surface";
+            assert!(c.lit < pixels, "{}: {} lit", case.name, c.lit);
+            assert!(behind || c.lit > 0, "{}: nothing lit", case.name);
+            let marked = chosen.stencil_marked;
+            match (&how, case.name) {
+                (LightDraw::FullScreen(_), _) => assert_eq!(marked, None),
+                // The surface hides most of this volume: the pre-pass marks those pixels.
+                _ if behind => assert!(marked > Some(0), "{marked:?}"),
+                // Nothing lies in front of the others.
+                _ => assert_eq!(marked, Some(0), "{}", case.name),
+            }
         }
     }
-    // Point, point cookie and spot as volumes; the light around the camera falls back.
-    assert_eq!((volumes, fallbacks), (6, 2));
+    // Four lights as volumes; the light around the camera falls back, in LDR and HDR.
+    assert_eq!((volumes, fallbacks), (8, 2));
 }
 
 #[test]
@@ -105,7 +119,7 @@ fn a_too_small_volume_is_caught() {
     let Some(s) = setup() else {
         return;
     };
-    let case = &volume_cases(&s.rig)[0];
+    let case = &volume_cases(&s.rig)[1];
     let LightDraw::Volume(volume) = light_draw(&case.light, s.rig.view_proj).unwrap() else {
         panic!("the rig's point light is drawn as a volume");
     };
@@ -127,7 +141,7 @@ fn a_too_small_volume_is_caught() {
             &LightDraw::FullScreen(FullScreenReason::Directional),
         );
         let culled = draw(&s, g, case, &LightDraw::Volume(small.clone()));
-        let c = compare_draws(&g.targets[3], &full, &culled, bpp);
+        let c = compare_draws(&g.targets[3], &full.rt3, &culled.rt3, bpp);
         assert!(
             !c.identical(),
             "hdr={}: a half-size volume culls nothing",

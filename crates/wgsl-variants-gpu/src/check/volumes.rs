@@ -27,7 +27,8 @@ use crate::light_volume::{LightDraw, LightVolume};
 use crate::render::create_bind_groups;
 use crate::{
     BoundResource, CheckError, GpuContext, GpuError, GpuResources, Resource, VertexBuffer,
-    compile_scoped, encode_texture_readback, finish_readbacks, used_bindings, wgsl_module,
+    compile_scoped, encode_texture_readback, finish_readbacks, map_buffers, used_bindings,
+    wgsl_module,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::light::{Light, LightType};
@@ -66,11 +67,18 @@ pub struct VolumeCase {
 }
 
 /// The lights the volume test draws both ways: the rig's point light with and without its
-/// cube cookie, its spot light, and a point light whose volume contains the camera (so it
-/// falls back to the full-screen draw). Each reaches only part of the scene.
+/// cube cookie, its spot light, a point light behind the scene's surface (the surface lies in
+/// front of most of its volume, so the stencil pre-pass has pixels to mark), and a point light
+/// whose volume contains the camera (so it falls back to the full-screen draw).
 pub fn volume_cases(rig: &LightRig) -> Vec<VolumeCase> {
     let around_camera = Light::point(Vec3::new(0.5, -0.3, 3.0), 6.0, Vec3::new(0.7, 0.8, 0.9));
+    let behind = Light::point(Vec3::new(0.75, -0.5, -1.0), 1.2, Vec3::new(1.5, 1.2, 1.0));
     vec![
+        VolumeCase {
+            name: "point behind the surface",
+            light: behind,
+            light_type: LightType::Point,
+        },
         VolumeCase {
             name: "point",
             light: rig.point_light,
@@ -94,8 +102,18 @@ pub fn volume_cases(rig: &LightRig) -> Vec<VolumeCase> {
     ]
 }
 
-/// RT3 (its bytes) after drawing `case`'s light as `draw` over `gbuffer` (LDR or HDR as the
-/// G-buffer), with the rig's camera and depth buffer.
+/// What one light draw left behind.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LightRender {
+    /// RT3's bytes.
+    pub rt3: Vec<u8>,
+    /// For a volume draw, the pixels the stencil pre-pass marked (geometry in front of the
+    /// volume: the light skipped them); `None` for a full-screen draw.
+    pub stencil_marked: Option<usize>,
+}
+
+/// RT3 after drawing `case`'s light as `draw` over `gbuffer` (LDR or HDR as the G-buffer),
+/// with the rig's camera and depth buffer.
 ///
 /// # Errors
 /// [`GpuError`] from the draws; a light whose parameters are undefined is a
@@ -108,7 +126,7 @@ pub fn render_light(
     gbuffer: &GBufferImage,
     case: &VolumeCase,
     draw: &LightDraw,
-) -> Result<Vec<u8>, GpuError> {
+) -> Result<LightRender, GpuError> {
     let params = case.light.params().map_err(|e| {
         GpuError::from(CheckError::UnknownToReference {
             variant: case.name.to_owned(),
@@ -131,9 +149,13 @@ pub fn render_light(
     let rt3 = gbuffer.targets[3].clone();
     let volume = match draw {
         LightDraw::FullScreen(_) => {
-            return render_lighting(
+            let rt3 = render_lighting(
                 ctx, scene, rig, gbuffer, &label, &wgsl, &params, &camera, rt3,
-            );
+            )?;
+            return Ok(LightRender {
+                rt3,
+                stencil_marked: None,
+            });
         }
         LightDraw::Volume(volume) => volume,
     };
@@ -252,7 +274,7 @@ fn depth_stencil(
     }
 }
 
-/// The stencil pre-pass and the light over `volume`; returns RT3's bytes.
+/// The stencil pre-pass and the light over `volume`; returns RT3 and the stencil's marks.
 fn render_volume(
     ctx: &GpuContext,
     scene: &TestScene,
@@ -260,7 +282,7 @@ fn render_volume(
     stencil_wgsl: &str,
     light: LightPipelineInput<'_>,
     volume: &LightVolume,
-) -> Result<Vec<u8>, GpuError> {
+) -> Result<LightRender, GpuError> {
     let label = light.label;
     let (w, h) = (scene.width, scene.height);
     let mesh = VertexBuffer::from_f32(&[(0, 3)], &volume.positions);
@@ -371,7 +393,10 @@ fn render_volume(
             },
             size,
         );
-        let ds = texture(DEPTH_STENCIL, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let ds = texture(
+            DEPTH_STENCIL,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
         let ds_view = ds.create_view(&wgpu::TextureViewDescriptor::default());
         let rt3_view = rt3.create_view(&wgpu::TextureViewDescriptor::default());
         let vertices = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -446,13 +471,64 @@ fn render_volume(
             pass.set_vertex_buffer(0, vertices.slice(..));
             pass.draw(0..count, 0..1);
         }
+        let stencil = encode_stencil_readback(ctx, &mut encoder, &ds, label);
         let pending = encode_texture_readback(ctx, &mut encoder, &rt3, label);
         if pending.is_ok() {
             ctx.queue.submit([encoder.finish()]);
         }
-        pending
+        pending.map(|p| (p, stencil))
     })??;
-    Ok(finish_readbacks(ctx, label, vec![pending])?.remove(0))
+    let (pending, stencil) = pending;
+    let rt3 = finish_readbacks(ctx, label, vec![pending])?.remove(0);
+    let rows = map_buffers(ctx, label, &[&stencil])?.remove(0);
+    let marked = rows
+        .chunks(STENCIL_ROW as usize)
+        .take(h as usize)
+        .flat_map(|row| &row[..w as usize])
+        .filter(|&&s| s == STENCIL_MARK as u8)
+        .count();
+    Ok(LightRender {
+        rt3,
+        stencil_marked: Some(marked),
+    })
+}
+
+/// Bytes per row of the stencil readback: one byte per pixel, padded to wgpu's copy alignment
+/// (the check's targets are at most 256 pixels wide).
+const STENCIL_ROW: u32 = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+
+/// Records a copy of the stencil aspect of `ds` (at most [`STENCIL_ROW`] pixels wide) into a
+/// mappable buffer.
+fn encode_stencil_readback(
+    ctx: &GpuContext,
+    encoder: &mut wgpu::CommandEncoder,
+    ds: &wgpu::Texture,
+    label: &str,
+) -> wgpu::Buffer {
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: u64::from(STENCIL_ROW) * u64::from(ds.height()),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: ds,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::StencilOnly,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(STENCIL_ROW),
+                rows_per_image: Some(ds.height()),
+            },
+        },
+        ds.size(),
+    );
+    buffer
 }
 
 /// How a volume draw compares with the full-screen draw of the same light.
