@@ -7,7 +7,7 @@
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
-// (docs/shading.md §10.6); two vertex entry points share the one fragment stage:
+// (docs/shading.md §10, "Light volumes"); two vertex entry points share the one fragment stage:
 //   vs_main    a full-screen triangle (3 vertices, no vertex buffer): directional lights and
 //              volumes crossing the near or far plane;
 //   vs_volume  the light's volume (icosphere / pyramid), world positions at @location(0),

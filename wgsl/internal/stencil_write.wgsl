@@ -1,5 +1,6 @@
 #shader stencil_write
-// Unity's Internal-StencilWrite: the stencil pre-pass of a light volume (docs/shading.md §10.6).
+// Unity's Internal-StencilWrite: the stencil pre-pass of a light volume
+// (docs/shading.md §10, "Light volumes").
 // Depth only: the host draws the volume's front faces (Cull Back) with depth test LessEqual
 // against the scene's depth, depth writes off, no colour target, and stencil Always with
 // depth-fail Replace (reference 1): the pixels whose geometry lies in front of the volume are

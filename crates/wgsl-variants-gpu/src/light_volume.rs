@@ -1,6 +1,6 @@
-//! Light volumes (docs/shading.md §10.6): how a renderer draws one light of the deferred
-//! lighting pass — the mesh that bounds a point or spot light, and the rule that picks a volume
-//! draw with the stencil pre-pass or the full-screen triangle.
+//! Light volumes (docs/shading.md §10, "Light volumes"): how a renderer draws one light of the
+//! deferred lighting pass — the mesh that bounds a point or spot light, and the rule that picks
+//! a volume draw with the stencil pre-pass or the full-screen triangle.
 //!
 //! This is the scheme of Unity's built-in deferred path (`Internal-DeferredShading.shader`,
 //! `Internal-StencilWrite.shader`): directional lights cover the screen; a point light is drawn
@@ -103,8 +103,9 @@ pub enum LightDraw {
 ///   with its vertices on a sphere of radius `R` lies partly inside that sphere (its faces cut
 ///   the sphere), so the vertices go at `R = range · (1 + VOLUME_MARGIN) / k` where `k` is the
 ///   mesh's inradius over circumradius (the smallest distance from the centre to a face plane,
-///   ≈ 0.88 for one subdivision): every face is then at least `range · (1 + VOLUME_MARGIN)` from
-///   the light, so the mesh circumscribes the range sphere with the margin.
+///   ≈ 0.934 for one subdivision, so `R ≈ 1.124 · range`): every face is then at least
+///   `range · (1 + VOLUME_MARGIN)` from the light, so the mesh circumscribes the range sphere
+///   with the margin.
 /// - Spot: a square pyramid with its apex `range · VOLUME_MARGIN` behind the light on the axis,
 ///   side slopes `tan(angle / 2) · (1 + VOLUME_MARGIN)` and its base at `range ·
 ///   (1 + VOLUME_MARGIN)` along the axis. The light reaches only points of the cone
@@ -282,7 +283,7 @@ mod tests {
         let unit = icosphere(ICOSPHERE_SUBDIVISIONS);
         assert_eq!(unit.len(), 80 * 3);
         let k = inradius(&unit);
-        assert!((0.85..0.95).contains(&k), "inradius ratio {k}");
+        assert!((k - 0.934_172_4).abs() < 1e-5, "inradius ratio {k}");
         let centre = Vec3::new(1.0, -2.0, 3.0);
         let light = Light::point(centre, 2.5, Vec3::ONE);
         let v = light_volume(&light).unwrap().unwrap();

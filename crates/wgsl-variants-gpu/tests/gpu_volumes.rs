@@ -1,4 +1,4 @@
-//! Light volumes = full-screen (docs/shading.md §10.6): each light of
+//! Light volumes = full-screen (docs/shading.md §10, "Light volumes"): each light of
 //! `check::volumes::volume_cases` (point, point with cube cookie, spot, a point light around
 //! the camera) drawn by `deferred_shading/Lighting` over LDR and HDR G-buffers, once the way
 //! `light_volume::light_draw` says (icosphere / pyramid after the `stencil_write` pre-pass, or

@@ -1,7 +1,7 @@
-//! Light volumes on the GPU (docs/shading.md §10.6): one light of `deferred_shading/Lighting`
-//! drawn the way [`light_draw`](crate::light_volume::light_draw) says — as its volume with the
-//! stencil pre-pass of `stencil_write/StencilWrite`, or full-screen — over the G-buffer and the
-//! depth buffer of the [`LightRig`], and the comparison of the two ways.
+//! Light volumes on the GPU (docs/shading.md §10, "Light volumes"): one light of
+//! `deferred_shading/Lighting` drawn the way [`light_draw`](crate::light_volume::light_draw)
+//! says — as its volume with the stencil pre-pass of `stencil_write/StencilWrite`, or
+//! full-screen — over the G-buffer and the depth buffer of the [`LightRig`], and the comparison of the two ways.
 //!
 //! The volume draw, as in Unity's built-in deferred path, in two render passes over one
 //! `Depth24PlusStencil8` attachment:
