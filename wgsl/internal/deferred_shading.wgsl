@@ -6,8 +6,15 @@
 //            4 camera (DeferredCamera), 6-9 the light (lighting/light_bindings)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
-// RT3's alpha of 1 as it is. Depth test and stencil (light volumes) are the host's choice: the
-// result at a pixel does not depend on how the light was drawn.
+// RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
+// (docs/shading.md §10, "Light volumes"); two vertex entry points share the one fragment stage:
+//   vs_main    a full-screen triangle (3 vertices, no vertex buffer): directional lights and
+//              volumes crossing the near or far plane;
+//   vs_volume  the light's volume (icosphere / pyramid), world positions at @location(0),
+//              drawn with Cull Front, depth test GreaterEqual and stencil NotEqual 1 after
+//              internal/stencil_write marked the pixels whose geometry lies in front of it.
+// An entry point, not a keyword: the fragment code is the same, so a keyword would double the
+// variants for a pipeline setting like the blend state.
 
 #pass Lighting
 #pragma multi_compile POINT DIRECTIONAL SPOT POINT_COOKIE DIRECTIONAL_COOKIE
@@ -19,10 +26,11 @@
 #import lighting/light_bindings
 
 // inv_view_proj: clip to world (the inverse of the G-buffer pass's view_proj);
-// position.xyz: the camera's world position.
+// position.xyz: the camera's world position; view_proj: world to clip (vs_volume).
 struct DeferredCamera {
     inv_view_proj: mat4x4f,
     position: vec4f,
+    view_proj: mat4x4f,
 }
 
 @group(0) @binding(0) var rt0: texture_2d<f32>;
@@ -34,6 +42,11 @@ struct DeferredCamera {
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
     return fullscreen_position(vertex_index);
+}
+
+@vertex
+fn vs_volume(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
+    return deferred_camera.view_proj * vec4f(world_position, 1.0);
 }
 
 // The light: the Standard BRDF's direct term with diffuse = RT0.rgb, spec colour = RT1.rgb,

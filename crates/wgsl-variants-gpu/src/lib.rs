@@ -16,6 +16,8 @@
 //! - [`check`] is the GPU proof of the bundled library built on these: every variant of the
 //!   standard passes, the deferred reflection and final passes, and compute kernels, compared
 //!   with [`wgsl_variants::reference`] (the `check-gpu` and `render` commands).
+//! - [`light_volume`] gives the mesh bounding a point or spot light and the rule choosing
+//!   between a light volume with the stencil pre-pass and a full-screen draw.
 //! - Every wgpu error is captured with error scopes and returned as a [`GpuError`]; nothing
 //!   panics through wgpu's default handler, and every wait is bounded by
 //!   [`GpuContext::timeout`].
@@ -34,6 +36,7 @@ mod render;
 mod resources;
 
 pub mod check;
+pub mod light_volume;
 
 pub use bindings::{Slot, used_bindings, used_bindings_in};
 pub use compile::{compile_scoped, wgsl_module};

@@ -410,7 +410,7 @@ pub fn render_with(
 
 /// Creates one bind group per group index that has used slots, from the pipeline's
 /// automatically derived layouts.
-fn create_bind_groups(
+pub(crate) fn create_bind_groups(
     ctx: &GpuContext,
     label: &str,
     pipeline: &wgpu::RenderPipeline,

@@ -99,7 +99,7 @@ pub fn forward_vs_deferred(
         );
     let depth = vec![0.5f32; (w * h) as usize];
     let camera = LightingCamera {
-        inv_view_proj: view_proj.inverse(),
+        view_proj,
         position: scene.scene.camera_position,
         depth: &depth,
     };
@@ -111,7 +111,7 @@ pub fn forward_vs_deferred(
         &gbuffer,
         &variant.label(),
         &lib.wgsl(&variant),
-        light,
+        rig.params(light),
         &camera,
         zeros,
     )?;

@@ -63,6 +63,10 @@ pub struct LightRig {
     pub directional_cookie: LightParams,
     /// The point light (`POINT`, `POINT_COOKIE`).
     pub point: LightParams,
+    /// The point light as a renderer describes it (for its volume).
+    pub point_light: Light,
+    /// The spot light as a renderer describes it (for its volume).
+    pub spot_light: Light,
     /// The spot light (`SPOT`).
     pub spot: LightParams,
     /// The 2D cookie (`Rgba8Unorm`, alpha read).
@@ -102,6 +106,14 @@ impl LightRig {
                 .params()
                 .expect("the test lights have valid parameters")
         };
+        let point_light = Light::point(Vec3::new(0.5625, -0.5, 1.0), 2.6, Vec3::new(2.2, 1.8, 1.4));
+        let spot_light = Light::spot(
+            Vec3::new(-0.4, 0.6, 2.2),
+            Vec3::new(0.8, -1.1, -2.2),
+            70.0,
+            5.0,
+            Vec3::new(3.0, 2.5, 2.0),
+        );
         let mut rig = LightRig {
             directional: params(Light::directional(
                 Vec3::new(0.25, -0.35, -0.9),
@@ -115,18 +127,10 @@ impl LightRig {
                 },
                 color: Vec3::new(0.8, 0.85, 0.9),
             }),
-            point: params(Light::point(
-                Vec3::new(0.5625, -0.5, 1.0),
-                2.6,
-                Vec3::new(2.2, 1.8, 1.4),
-            )),
-            spot: params(Light::spot(
-                Vec3::new(-0.4, 0.6, 2.2),
-                Vec3::new(0.8, -1.1, -2.2),
-                70.0,
-                5.0,
-                Vec3::new(3.0, 2.5, 2.0),
-            )),
+            point: params(point_light),
+            spot: params(spot_light),
+            point_light,
+            spot_light,
             cookie,
             cube,
             view_proj,
@@ -219,8 +223,12 @@ impl LightRig {
 
     /// The light's bindings (group 0, 6–9 of `wgsl/lighting/light_bindings.wgsl`) for keyword `t`.
     pub fn resources(&self, t: LightType) -> Vec<BoundResource> {
-        let uniform: Vec<u8> = self
-            .params(t)
+        self.resources_for(self.params(t))
+    }
+
+    /// The bindings of any light `params` with the rig's cookies.
+    pub fn resources_for(&self, params: &LightParams) -> Vec<BoundResource> {
+        let uniform: Vec<u8> = params
             .uniform()
             .into_iter()
             .flat_map(f32::to_le_bytes)
@@ -249,15 +257,16 @@ fn lighting_keywords(names: &[&str]) -> Result<(LightType, bool), String> {
     Ok((light, kw.hdr))
 }
 
-/// What the lighting pass sees of the camera: `inv_view_proj` and position (the
-/// `DeferredCamera` uniform) and the depth buffer, one `f32` per pixel.
+/// What the lighting pass sees of the camera: `view_proj` (its inverse, for positions from
+/// depth, and itself, for light volumes) and position (the `DeferredCamera` uniform) and the
+/// depth buffer, one `f32` per pixel.
 pub(crate) struct LightingCamera<'a> {
-    pub(crate) inv_view_proj: Mat4,
+    pub(crate) view_proj: Mat4,
     pub(crate) position: Vec3,
     pub(crate) depth: &'a [f32],
 }
 
-/// Renders one `Lighting` variant (light keyword `light`) over `gbuffer`'s RT0–RT2 onto
+/// Renders one `Lighting` variant (the light `light`) over `gbuffer`'s RT0–RT2 onto
 /// `rt3` (the target's initial contents, `gbuffer`'s RT3 format), blended as the HDR mode says.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_lighting(
@@ -267,23 +276,37 @@ pub(crate) fn render_lighting(
     gbuffer: &GBufferImage,
     label: &str,
     wgsl: &str,
-    light: LightType,
+    light: &LightParams,
     camera: &LightingCamera<'_>,
     rt3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
-    let (w, h) = (scene.width, scene.height);
     let target = ColorTarget::new(gbuffer.rt3_format())
         .with_blend(rt3_blend(gbuffer.hdr))
         .with_initial(rt3);
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
-    job.width = w;
-    job.height = h;
+    job.width = scene.width;
+    job.height = scene.height;
     job.targets = vec![target];
+    job.resources = lighting_resources(scene, rig, gbuffer, light, camera);
+    Ok(render(ctx, &job)?.remove(0))
+}
+
+/// The bindings of a `Lighting` draw: RT0–RT2 of `gbuffer`, the depth as `R32Float`, the
+/// `DeferredCamera` uniform and the light's resources.
+pub(crate) fn lighting_resources(
+    scene: &TestScene,
+    rig: &LightRig,
+    gbuffer: &GBufferImage,
+    light: &LightParams,
+    camera: &LightingCamera<'_>,
+) -> Vec<BoundResource> {
+    let (w, h) = (scene.width, scene.height);
     let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
     let mut uniform = Vec::new();
-    push_mat4(&mut uniform, camera.inv_view_proj);
+    push_mat4(&mut uniform, camera.view_proj.inverse());
     push_vec4(&mut uniform, camera.position.extend(1.0));
-    job.resources = vec![
+    push_mat4(&mut uniform, camera.view_proj);
+    let mut resources = vec![
         BoundResource::new(
             0,
             0,
@@ -311,8 +334,8 @@ pub(crate) fn render_lighting(
         ),
         BoundResource::new(0, 4, Resource::Uniform(uniform)),
     ];
-    job.resources.extend(rig.resources(light));
-    Ok(render(ctx, &job)?.remove(0))
+    resources.extend(rig.resources_for(light));
+    resources
 }
 
 /// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.
@@ -330,7 +353,7 @@ fn run_lighting(
     let (w, h) = (scene.width, scene.height);
     let format = gbuffer.rt3_format();
     let camera = LightingCamera {
-        inv_view_proj: rig.view_proj.inverse(),
+        view_proj: rig.view_proj,
         position: scene.scene.camera_position,
         depth: &rig.depth,
     };
@@ -341,7 +364,7 @@ fn run_lighting(
         gbuffer,
         label,
         wgsl,
-        light,
+        rig.params(light),
         &camera,
         gbuffer.targets[3].clone(),
     )?;

@@ -17,6 +17,7 @@
 //! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
+//! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
 
@@ -30,9 +31,11 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod volumes;
 
 use std::time::Instant;
 
+pub use deferred::{CHAIN_INPUTS, GBufferImage, render_gbuffer};
 pub use lights::LightRig;
 use passes::Worker;
 pub use passes::standard_job;
