@@ -22,6 +22,7 @@
 //! | [`brdf`] | metallic workflow, ambient SH, indirect specular, direct light |
 //! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
+//! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
 //!
 //! Everything is linear colour, `f32`, one pixel at a time. Special values (NaN, ±∞, zero
 //! vectors) follow the contract where it says what happens, and otherwise are documented on
@@ -49,6 +50,7 @@ pub mod probe;
 pub mod quantize;
 pub mod surface;
 pub mod tolerance;
+pub mod urp;
 
 pub use cube::CubeFaces;
 pub use gbuffer::{DecodedSurface, GBuffer, GBufferTexel, Rt3Texel, decode_normal, encode_normal};

@@ -6,6 +6,8 @@
 //! |---|---|---|
 //! | unorm targets (8- and 10-bit, and the 2-bit alpha) | [`UNORM_LSB`] = 1 step, measured from either correct rounding | docs/shading.md §1: Vulkan may round a tie either way, and the GPU's `f32` value before quantization may differ from the CPU's by a few ULP, which can move it across a rounding boundary — by one step, never more |
 //! | `Rgba16Float` targets | [`F16_ULP`] = 1 f16 step from the round-to-nearest-even of the reference `f32` | docs/shading.md §1: the same argument; 1 f16 ULP is 2^13 f32 ULPs, far above any `f32` arithmetic difference |
+//! | `Rg11b10Ufloat` targets (URP's GBuffer3) | [`UFLOAT_ULP`] = 1 step of each channel's format (2^-6 relative on the 11-bit r, g; 2^-5 on the 10-bit b) from the round-to-nearest-even of the reference | the conversion may round toward zero and leaves ties open (Khronos Data Format Specification, unsigned 11/10-bit floats): one step either way |
+//! | `Rgba8UnormSrgb` colour channels (URP's GBuffer0) | [`UNORM_LSB`] around the exact sRGB encoding's rounding ([`srgb8_within`]) | the GPU may approximate the transfer function before rounding |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
 //!
@@ -331,12 +333,91 @@ pub fn gbuffer_light_bound(
     let stored = |x: Vec3| (x - x.clamp(Vec3::ZERO, Vec3::ONE)).abs() + Vec3::splat(delta);
     let (d_diffuse, d_spec) = (stored(diffuse), stored(spec));
     k * ((d_diffuse + d_spec * s_max + (spec + d_spec) * ds) * nl_max + lit * eps)
+/// Allowed difference, in steps of the channel's own format (units in the last place),
+/// between an `Rg11b10Ufloat` channel read back from the GPU and the reference value rounded
+/// to nearest even by [`super::urp::ufloat::UFloat::encode`]: the conversion rules let an
+/// implementation round toward zero instead and leave ties open, each at most one step away.
+/// One step is 2^-6 relative on r and g (11-bit, 6-bit mantissa) and 2^-5 on b (10-bit).
+pub const UFLOAT_ULP: u32 = 1;
+
+/// Whether the unsigned float bits `got` (an 11- or 10-bit channel of an `Rg11b10Ufloat`
+/// texel) are acceptable for the reference value `expected`: within [`UFLOAT_ULP`] steps of
+/// its correct conversion. Unsigned float bits order like their values (+∞ one step above
+/// the largest finite value); NaN only matches NaN.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::ufloat_within;
+/// use wgsl_variants::reference::urp::ufloat::UFloat;
+/// let one = UFloat::F11.encode(1.0);
+/// assert!(ufloat_within(one + 1, 1.0, UFloat::F11) && ufloat_within(one - 1, 1.0, UFloat::F11));
+/// assert!(!ufloat_within(one + 2, 1.0, UFloat::F11));
+/// assert!(ufloat_within(0, -5.0, UFloat::F10));   // negative values store 0
+/// ```
+pub fn ufloat_within(got: u16, expected: f32, format: super::urp::ufloat::UFloat) -> bool {
+    let inf = format.infinity_bits();
+    let want = format.encode(expected);
+    match (got > inf, want > inf) {
+        (true, true) => true,
+        (false, false) => got.abs_diff(want) <= UFLOAT_ULP as u16,
+        _ => false,
+    }
+}
+
+/// [`ufloat_within`] on the three channels of a packed `Rg11b10Ufloat` word.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::tolerance::rg11b10_within;
+/// use wgsl_variants::reference::urp::ufloat::pack_rg11b10;
+/// assert!(rg11b10_within(pack_rg11b10(Vec3::new(1.0, 2.0, 3.0)), Vec3::new(1.0, 2.0, 3.0)));
+/// assert!(!rg11b10_within(pack_rg11b10(Vec3::new(1.1, 2.0, 3.0)), Vec3::new(1.0, 2.0, 3.0)));
+/// ```
+pub fn rg11b10_within(word: u32, expected: Vec3) -> bool {
+    use super::urp::ufloat::{UFloat, split_rg11b10};
+    let [r, g, b] = split_rg11b10(word);
+    ufloat_within(r, expected.x, UFloat::F11)
+        && ufloat_within(g, expected.y, UFloat::F11)
+        && ufloat_within(b, expected.z, UFloat::F10)
+}
+
+/// Whether the byte `got` of an `Rgba8UnormSrgb` colour channel is acceptable for the linear
+/// reference value: within [`UNORM_LSB`] of a correct rounding of its exact sRGB encoding
+/// (GPUs may approximate the transfer function before rounding; the step absorbs it).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::srgb8_within;
+/// assert!(srgb8_within(188, 0.5) && srgb8_within(187, 0.5) && !srgb8_within(186, 0.5));
+/// ```
+pub fn srgb8_within(got: u8, expected_linear: f32) -> bool {
+    let encoded = if expected_linear.is_nan() {
+        f32::NAN
+    } else {
+        super::urp::srgb::srgb_encode(expected_linear)
+    };
+    unorm_within(u32::from(got), encoded, 8)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::reference::quantize::{f16_bits_to_f32, unorm};
+    use crate::reference::urp::ufloat::UFloat;
+
+    #[test]
+    fn ufloat_tolerance_is_one_step_of_the_channel() {
+        for f in [UFloat::F11, UFloat::F10] {
+            for h in 1..f.max_finite_bits() {
+                let x = f.decode(h);
+                assert!(ufloat_within(h, x, f) && ufloat_within(h - 1, x, f));
+                assert!(ufloat_within(h + 1, x, f), "{f:?} {h:#x}");
+                assert!(!ufloat_within(h + 2, x, f) && (h < 2 || !ufloat_within(h - 2, x, f)));
+            }
+            // NaN only matches NaN; +inf one step above the largest finite value.
+            assert!(ufloat_within(f.encode(f32::NAN), f32::NAN, f));
+            assert!(!ufloat_within(f.encode(1.0), f32::NAN, f));
+            assert!(ufloat_within(f.infinity_bits(), 1e9, f));
+        }
+    }
 
     #[test]
     fn unorm_tolerance_is_one_step_around_the_correct_roundings() {
