@@ -333,6 +333,8 @@ pub fn gbuffer_light_bound(
     let stored = |x: Vec3| (x - x.clamp(Vec3::ZERO, Vec3::ONE)).abs() + Vec3::splat(delta);
     let (d_diffuse, d_spec) = (stored(diffuse), stored(spec));
     k * ((d_diffuse + d_spec * s_max + (spec + d_spec) * ds) * nl_max + lit * eps)
+}
+
 /// Allowed difference, in steps of the channel's own format (units in the last place),
 /// between an `Rg11b10Ufloat` channel read back from the GPU and the reference value rounded
 /// to nearest even by [`super::urp::ufloat::UFloat::encode`]: the conversion rules let an
