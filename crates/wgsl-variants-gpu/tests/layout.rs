@@ -40,54 +40,85 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
                 vec![wgpu::TextureFormat::Rgba16Float]
             };
             let standard = pass.shader == "standard";
-            let (_, error) = ctx.capture(|| {
-                let layouts = create_bind_group_layouts(&ctx.device, &reflection, &label).unwrap();
-                let layout = create_pipeline_layout(&ctx.device, &layouts, &label);
-                let module = ctx
-                    .device
-                    .create_shader_module(wgpu::ShaderModuleDescriptor {
-                        label: Some(&label),
-                        source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
-                    });
-                let attributes = wgpu::vertex_attr_array![
-                    0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
-                ];
-                let buffers = [Some(wgpu::VertexBufferLayout {
-                    array_stride: 48,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attributes,
-                })];
-                let targets: Vec<Option<wgpu::ColorTargetState>> =
-                    formats.iter().map(|&f| Some(f.into())).collect();
-                ctx.device
-                    .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                        label: Some(&label),
-                        layout: Some(&layout),
-                        vertex: wgpu::VertexState {
-                            module: &module,
-                            entry_point: Some("vs_main"),
-                            compilation_options: Default::default(),
-                            buffers: if standard { &buffers } else { &[] },
-                        },
-                        fragment: Some(wgpu::FragmentState {
-                            module: &module,
-                            entry_point: Some("fs_main"),
-                            compilation_options: Default::default(),
-                            targets: &targets,
-                        }),
-                        primitive: Default::default(),
-                        depth_stencil: None,
-                        multisample: Default::default(),
-                        multiview_mask: None,
-                        cache: None,
-                    })
-            });
-            assert!(
-                error.is_none(),
-                "{label}: {}",
-                error.map(|e| e.to_string()).unwrap_or_default()
-            );
-            pipelines += 1;
+            // The light volumes' stencil pre-pass is depth-only: no fragment stage; the
+            // lighting pass has a second vertex entry point for volumes. Both read world
+            // positions at @location(0).
+            let stencil_only = pass.name == "StencilWrite";
+            let entries: &[&str] = match pass.name.as_str() {
+                "Lighting" => &["vs_main", "vs_volume"],
+                _ => &["vs_main"],
+            };
+            for &entry in entries {
+                let positions_in = stencil_only || entry == "vs_volume";
+                let (_, error) = ctx.capture(|| {
+                    let layouts =
+                        create_bind_group_layouts(&ctx.device, &reflection, &label).unwrap();
+                    let layout = create_pipeline_layout(&ctx.device, &layouts, &label);
+                    let module = ctx
+                        .device
+                        .create_shader_module(wgpu::ShaderModuleDescriptor {
+                            label: Some(&label),
+                            source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
+                        });
+                    let attributes = wgpu::vertex_attr_array![
+                        0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
+                    ];
+                    let position = wgpu::vertex_attr_array![0 => Float32x3];
+                    let mesh = [Some(wgpu::VertexBufferLayout {
+                        array_stride: 48,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &attributes,
+                    })];
+                    let volume = [Some(wgpu::VertexBufferLayout {
+                        array_stride: 12,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &position,
+                    })];
+                    let buffers: &[Option<wgpu::VertexBufferLayout>] = if standard {
+                        &mesh
+                    } else if positions_in {
+                        &volume
+                    } else {
+                        &[]
+                    };
+                    let targets: Vec<Option<wgpu::ColorTargetState>> =
+                        formats.iter().map(|&f| Some(f.into())).collect();
+                    ctx.device
+                        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                            label: Some(&label),
+                            layout: Some(&layout),
+                            vertex: wgpu::VertexState {
+                                module: &module,
+                                entry_point: Some(entry),
+                                compilation_options: Default::default(),
+                                buffers,
+                            },
+                            fragment: (!stencil_only).then(|| wgpu::FragmentState {
+                                module: &module,
+                                entry_point: Some("fs_main"),
+                                compilation_options: Default::default(),
+                                targets: &targets,
+                            }),
+                            primitive: Default::default(),
+                            depth_stencil: stencil_only.then(|| wgpu::DepthStencilState {
+                                format: wgpu::TextureFormat::Depth24PlusStencil8,
+                                depth_write_enabled: Some(false),
+                                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                                stencil: Default::default(),
+                                bias: Default::default(),
+                            }),
+                            multisample: Default::default(),
+                            multiview_mask: None,
+                            cache: None,
+                        })
+                });
+                assert!(
+                    error.is_none(),
+                    "{label} ({entry}): {}",
+                    error.map(|e| e.to_string()).unwrap_or_default()
+                );
+                pipelines += 1;
+            }
         }
     }
     println!("wgpu accepted {pipelines} pipelines with layouts from reflection");
