@@ -334,7 +334,7 @@ impl Search {
     }
 }
 
-/// The smallest of the seeded greedy runs (the first on ties).
+/// The smallest result of the greedy runs, each with its own seed (the first on ties).
 fn best_greedy(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
     // Parameters with more values first: IPOG starts from their full product.
     let mut order: Vec<usize> = (0..levels.len()).collect();
