@@ -203,24 +203,30 @@ pub struct LightParams {
     pub world_to_light: Mat4,
 }
 
-fn finite(what: &'static str, v: Vec3) -> Result<Vec3, LightError> {
-    if v.is_finite() {
+/// Scalars and vectors of a light's parameters, checked by one [`finite`].
+trait Finite: Copy + std::fmt::Display {
+    fn all_finite(self) -> bool;
+}
+
+impl Finite for f32 {
+    fn all_finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl Finite for Vec3 {
+    fn all_finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+fn finite<T: Finite>(what: &'static str, v: T) -> Result<T, LightError> {
+    if v.all_finite() {
         Ok(v)
     } else {
         Err(LightError::NonFinite {
             what,
             value: format!("{v}"),
-        })
-    }
-}
-
-fn finite1(what: &'static str, x: f32) -> Result<f32, LightError> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(LightError::NonFinite {
-            what,
-            value: format!("{x}"),
         })
     }
 }
@@ -231,7 +237,7 @@ fn unit(what: &'static str, v: Vec3) -> Result<Vec3, LightError> {
 }
 
 fn inv_range_sq(range: f32) -> Result<f32, LightError> {
-    let range = finite1("range", range)?;
+    let range = finite("range", range)?;
     let sq = range * range;
     if range > 0.0 && sq.is_normal() && (1.0 / sq).is_normal() {
         Ok(1.0 / sq)
@@ -363,7 +369,7 @@ impl Light {
                 cookie_origin,
             } => {
                 let forward = unit("direction", direction)?;
-                let size = finite1("cookie size", cookie_size)?;
+                let size = finite("cookie size", cookie_size)?;
                 if size <= 0.0 || !(1.0 / size).is_finite() {
                     return Err(LightError::CookieSize { size });
                 }
@@ -404,7 +410,7 @@ impl Light {
             } => {
                 let position = finite("position", position)?;
                 let forward = unit("direction", direction)?;
-                let angle = finite1("spot angle", angle_degrees)?;
+                let angle = finite("spot angle", angle_degrees)?;
                 if !(angle > 0.0 && angle < 180.0) {
                     return Err(LightError::SpotAngle {
                         angle_degrees: angle,
