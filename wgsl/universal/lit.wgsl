@@ -1,0 +1,26 @@
+#shader universal_lit
+// Unity URP's Lit shader, deferred path: the UniversalGBuffer pass (docs/urp.md). Material
+// keywords are shader_feature_local as in URP's Lit.shader; the pipeline keywords that change
+// what the G-buffer pass writes are multi_compile. 2^10 · 2^6 = 65536 variants.
+
+#pass UniversalGBuffer
+#tag LightMode UniversalGBuffer
+#tag UniversalMaterialType Lit
+#pragma shader_feature_local _NORMALMAP
+#pragma shader_feature_local _ALPHATEST_ON
+#pragma shader_feature_local _EMISSION
+#pragma shader_feature_local _METALLICSPECGLOSSMAP
+#pragma shader_feature_local _SPECULAR_SETUP
+#pragma shader_feature_local _OCCLUSIONMAP
+#pragma shader_feature_local _SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A
+#pragma shader_feature_local _RECEIVE_SHADOWS_OFF
+#pragma shader_feature_local _SPECULARHIGHLIGHTS_OFF
+#pragma shader_feature_local _ENVIRONMENTREFLECTIONS_OFF
+#pragma multi_compile _ _GBUFFER_NORMALS_OCT
+#pragma multi_compile _ _RENDER_PASS_ENABLED
+#pragma multi_compile _ _WRITE_RENDERING_LAYERS
+#pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
+#pragma multi_compile _ SHADOWS_SHADOWMASK
+#pragma multi_compile _ LIGHTMAP_ON
+#import universal/lit_gbuffer_pass
+#endpass
