@@ -57,6 +57,12 @@ impl std::fmt::Debug for GpuContext {
 }
 
 impl GpuContext {
+    /// Optional features requested when the adapter has them: URP's G-buffer renders into
+    /// `Rg11b10Ufloat` (`RG11B10UFLOAT_RENDERABLE`) and, without accurate normals,
+    /// `Rgba8Snorm` (renderable only as an adapter-specific format feature).
+    pub const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::RG11B10UFLOAT_RENDERABLE
+        .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+
     /// Creates a headless context.
     ///
     /// Backends come from `WGPU_BACKEND` (see [`wgpu::Backends::from_env`]); without it the
@@ -66,8 +72,9 @@ impl GpuContext {
     /// lavapipe. With `adapter_filter`, the first adapter whose name contains the filter
     /// (case-insensitively) is used; without it, the first enumerated adapter.
     ///
-    /// The device gets no optional features and the WebGPU default limits, lowered to what the
-    /// adapter supports. An uncaptured-error handler and a device-lost callback are installed
+    /// The device gets the WebGPU default limits, lowered to what the adapter supports (except
+    /// colour-attachment bytes per sample: the adapter's own, for URP's G-buffer), and
+    /// only the optional features of [`GpuContext::OPTIONAL_FEATURES`] the adapter has. An uncaptured-error handler and a device-lost callback are installed
     /// that record instead of panicking; see [`GpuContext::take_error`].
     pub fn new(adapter_filter: Option<&str>) -> Result<Self, GpuError> {
         let needle = adapter_filter.map(str::to_lowercase);
@@ -101,10 +108,16 @@ impl GpuContext {
         })?;
         let info = adapter.get_info();
 
-        let limits = wgpu::Limits::default().or_worse_values_from(&adapter.limits());
+        let mut limits = wgpu::Limits::default().or_worse_values_from(&adapter.limits());
+        // URP's G-buffer with its optional targets needs up to 48 bytes per sample (WebGPU's
+        // default is 32, which the four base targets already fill): take what the adapter has.
+        limits.max_color_attachment_bytes_per_sample = adapter
+            .limits()
+            .max_color_attachment_bytes_per_sample
+            .max(limits.max_color_attachment_bytes_per_sample);
         let device_desc = wgpu::DeviceDescriptor {
             label: Some("wgsl-variants harness device"),
-            required_features: wgpu::Features::empty(),
+            required_features: adapter.features() & Self::OPTIONAL_FEATURES,
             required_limits: limits,
             ..Default::default()
         };

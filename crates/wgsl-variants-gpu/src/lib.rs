@@ -34,6 +34,7 @@ mod layout;
 mod readback;
 mod render;
 mod resources;
+mod urp;
 
 pub mod check;
 pub mod light_volume;
@@ -53,3 +54,4 @@ pub use readback::{
 };
 pub use render::{ColorTarget, RenderJob, VertexBuffer, render, render_with};
 pub use resources::{BoundResource, GpuResources, Resource};
+pub use urp::urp_gbuffer_formats;

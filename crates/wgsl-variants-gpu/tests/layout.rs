@@ -5,7 +5,9 @@ mod common;
 use common::gpu::{adapter_filter, or_skip};
 use wgsl_variants::snapshot::covering_set;
 use wgsl_variants::{Library, Variant};
-use wgsl_variants_gpu::{GpuContext, create_bind_group_layouts, create_pipeline_layout};
+use wgsl_variants_gpu::{
+    GpuContext, create_bind_group_layouts, create_pipeline_layout, urp_gbuffer_formats,
+};
 
 /// wgpu checks a pipeline against an explicit layout: every binding the shader uses must
 /// be in it with a compatible type and visibility. Layouts built from the reflection pass
@@ -25,7 +27,11 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
             let wgsl = lib.wgsl(&v);
             let deferred = pass.name == "Deferred";
             let hdr = v.keywords().contains(&"UNITY_HDR_ON");
-            let formats: Vec<wgpu::TextureFormat> = if deferred {
+            let urp = pass.name == "UniversalGBuffer";
+            let lightmap = v.keywords().contains(&"LIGHTMAP_ON");
+            let formats: Vec<wgpu::TextureFormat> = if urp {
+                urp_gbuffer_formats(&v.keywords())
+            } else if deferred {
                 vec![
                     wgpu::TextureFormat::Rgba8Unorm,
                     wgpu::TextureFormat::Rgba8Unorm,
@@ -39,7 +45,7 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
             } else {
                 vec![wgpu::TextureFormat::Rgba16Float]
             };
-            let standard = pass.shader == "standard";
+            let has_mesh = pass.shader == "standard" || urp;
             // The light volumes' stencil pre-pass is depth-only: no fragment stage; the
             // lighting pass has a second vertex entry point for volumes. Both read world
             // positions at @location(0).
@@ -60,21 +66,23 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
                             label: Some(&label),
                             source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
                         });
+                    // URP's lightmapped variants read a second UV set (location 4).
                     let attributes = wgpu::vertex_attr_array![
-                        0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
+                        0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2, 4 => Float32x2
                     ];
+                    let used = if lightmap { 5 } else { 4 };
                     let position = wgpu::vertex_attr_array![0 => Float32x3];
                     let mesh = [Some(wgpu::VertexBufferLayout {
-                        array_stride: 48,
+                        array_stride: if lightmap { 56 } else { 48 },
                         step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &attributes,
+                        attributes: &attributes[..used],
                     })];
                     let volume = [Some(wgpu::VertexBufferLayout {
                         array_stride: 12,
                         step_mode: wgpu::VertexStepMode::Vertex,
                         attributes: &position,
                     })];
-                    let buffers: &[Option<wgpu::VertexBufferLayout>] = if standard {
+                    let buffers: &[Option<wgpu::VertexBufferLayout>] = if has_mesh {
                         &mesh
                     } else if positions_in {
                         &volume
