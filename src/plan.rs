@@ -43,6 +43,10 @@ pub struct PlanOptions {
     /// ([`Space::covering`]; a pass with fewer than t keyword sets is built whole); the
     /// budget then applies to the covering set.
     pub cover: Option<usize>,
+    /// With `cover`, only passes whose space holds more than this many variants are covered;
+    /// the others are built whole. This is how the tests and CI treat a library with a few huge
+    /// passes: every variant of the small passes, a t-wise covering set of the huge ones.
+    pub cover_above: Option<u64>,
 }
 
 impl Default for PlanOptions {
@@ -55,6 +59,7 @@ impl Default for PlanOptions {
             pass: None,
             shard: None,
             cover: None,
+            cover_above: None,
         }
     }
 }
@@ -143,7 +148,13 @@ pub fn variants_to_build(
     };
     // A pass with fewer keyword sets than t is its own covering set: it is built whole
     // (`Space::covering` refuses it, as it refuses t = 0 everywhere).
-    if let Some(t) = options.cover.filter(|&t| t == 0 || t <= pass.sets.len()) {
+    let small = options
+        .cover_above
+        .is_some_and(|limit| space.count() <= limit.into());
+    if let Some(t) = options
+        .cover
+        .filter(|&t| !small && (t == 0 || t <= pass.sets.len()))
+    {
         let cover = space.covering(t)?;
         if cover.len() as u64 > options.budget {
             return Err(PlanError::Budget {

@@ -76,6 +76,7 @@ pub struct Bake {
     file_name: String,
     budget: u64,
     cover: Option<usize>,
+    cover_above: Option<u64>,
     options: Options,
 }
 
@@ -146,6 +147,7 @@ impl Bake {
             file_name: "wgsl_variants.rs".into(),
             budget: 1_000_000,
             cover: None,
+            cover_above: None,
             options: Options::default(),
         }
     }
@@ -184,6 +186,18 @@ impl Bake {
     /// file.
     pub fn cover(mut self, t: usize) -> Bake {
         self.cover = Some(t);
+        self
+    }
+
+    /// With [`cover`](Bake::cover): covers only passes whose build set holds more than `n`
+    /// variants and bakes the others whole.
+    ///
+    /// ```
+    /// let bake = wgsl_variants::bake::Bake::new("wgsl").cover(2).cover_above(4096);
+    /// # let _ = bake;
+    /// ```
+    pub fn cover_above(mut self, n: u64) -> Bake {
+        self.cover_above = Some(n);
         self
     }
 
@@ -250,6 +264,7 @@ impl Bake {
             materials,
             budget: self.budget,
             cover: self.cover,
+            cover_above: self.cover_above,
             ..PlanOptions::default()
         };
         let selection = plan(&lib, &options).map_err(|e| BakeError::Plan(Box::new(e)))?;

@@ -3,6 +3,7 @@
 #![allow(dead_code)] // each bench uses a subset
 
 pub mod bad;
+pub mod selection;
 pub mod shaders;
 pub mod timing;
 pub mod workload;

@@ -104,6 +104,10 @@ pub struct BuildArgs {
     /// every combination of options of every T keyword sets, in a few variants.
     #[arg(long, value_name = "T")]
     cover: Option<usize>,
+    /// With --cover: cover only passes whose space holds more than N variants and build the
+    /// others whole (every variant of the small passes, a covering set of the huge ones).
+    #[arg(long, value_name = "N", requires = "cover")]
+    cover_above: Option<u64>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -228,6 +232,7 @@ impl Context {
         options.pass = build.pass.clone();
         options.shard = shard;
         options.cover = build.cover;
+        options.cover_above = build.cover_above;
         Ok(options)
     }
 

@@ -101,6 +101,18 @@ fn cover_report(
         } else {
             ctx.lib.build_set(pass, options.materials.as_deref())?
         };
+        if options
+            .cover_above
+            .is_some_and(|limit| space.count() <= limit.into())
+        {
+            println!(
+                "{}/{}: built whole: its {}-variant space is at most --cover-above",
+                pass.shader,
+                pass.name,
+                space.count()
+            );
+            continue;
+        }
         // The region-aware size for comparison (dead sets fixed, coupled sets as one factor of
         // their distinct code); a pass with fewer sets than t is built whole either way.
         let regional = match region_aware(&ctx.lib, &space, t) {

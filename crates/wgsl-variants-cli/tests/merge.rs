@@ -80,9 +80,15 @@ fn cache_info(dir: &Path) -> serde_json::Value {
     serde_json::from_slice(&ok(&["cache", "--cache", s(dir), "info", "--json"]).stdout).unwrap()
 }
 
-/// The bundled library's full space as 4 shards in 4 processes at once, sharing one cache
-/// folder: the merged `validate --json` report, emit folder and manifest are byte for byte
-/// those of one process.
+/// The tests' selection of the bundled library (`test_support::selection`: every variant of
+/// the built-in passes, a t = 3 covering set of URP's 65,536) as arguments after `--all`.
+fn selection() -> Vec<String> {
+    test_support::selection::args()
+}
+
+/// The bundled library (the tests' selection of it) as 4 shards in 4 processes at once,
+/// sharing one cache folder: the merged `validate --json` report, emit folder and manifest are
+/// byte for byte those of one process.
 #[test]
 fn four_shard_processes_merge_to_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
@@ -90,11 +96,19 @@ fn four_shard_processes_merge_to_the_single_run() {
     let cache = t.join("cache");
     let targets = ["--target", "wgsl", "--target", "spirv"];
 
-    let whole = ok(&["validate", "--all", "--json", "--no-cache"]).stdout;
+    let sel = selection();
+    let sel: Vec<&str> = sel.iter().map(String::as_str).collect();
+    let whole = ok(&[
+        ["validate", "--all", "--json", "--no-cache"].as_slice(),
+        &sel,
+    ]
+    .concat())
+    .stdout;
     let (built, distinct) = counts(&whole);
     let whole_dir = t.join("whole");
     let mut emit: Vec<&str> = vec!["emit", "--all", "--out", s(&whole_dir)];
     emit.extend(targets);
+    emit.extend(&sel);
     ok(&emit);
 
     let shard_args = |k: usize| -> (Vec<String>, Vec<String>) {
@@ -111,8 +125,9 @@ fn four_shard_processes_merge_to_the_single_run() {
         let out = t.join(format!("emit-{k}"));
         let mut emit = vec!["emit", "--all", "--shard", &shard, "--out", s(&out)];
         emit.extend(targets);
+        emit.extend(&sel);
         (
-            validate.iter().map(|a| a.to_string()).collect(),
+            validate.iter().chain(&sel).map(|a| a.to_string()).collect(),
             emit.iter().map(|a| a.to_string()).collect(),
         )
     };
@@ -171,7 +186,12 @@ fn four_shard_processes_merge_to_the_single_run() {
         (info["entries"].as_u64(), info["corrupt"].as_u64()),
         (Some(distinct), Some(0))
     );
-    let cached = ok(&["validate", "--all", "--json", "--cache", s(&cache)]).stdout;
+    let cached = ok(&[
+        ["validate", "--all", "--json", "--cache", s(&cache)].as_slice(),
+        &sel,
+    ]
+    .concat())
+    .stdout;
     assert_eq!(cached, whole);
 }
 
@@ -181,7 +201,16 @@ fn four_shard_processes_merge_to_the_single_run() {
 fn two_processes_writing_one_cache_lose_nothing() {
     let tmp = tempfile::tempdir().unwrap();
     let cache = tmp.path().join("cache");
-    let (_, distinct) = counts(&ok(&["validate", "--all", "--json", "--no-cache"]).stdout);
+    let sel = selection();
+    let sel: Vec<&str> = sel.iter().map(String::as_str).collect();
+    let (_, distinct) = counts(
+        &ok(&[
+            ["validate", "--all", "--json", "--no-cache"].as_slice(),
+            &sel,
+        ]
+        .concat())
+        .stdout,
+    );
     for round in 0..3 {
         let children: Vec<Child> = (1..=2)
             .map(|k| {
@@ -195,6 +224,7 @@ fn two_processes_writing_one_cache_lose_nothing() {
                     s(&cache),
                 ]
                 .iter()
+                .chain(&sel)
                 .map(|a| a.to_string())
                 .collect();
                 spawn(&args, &tmp.path().join(format!("out-{round}-{k}.json")))

@@ -1,0 +1,43 @@
+//! Which variants the whole-library tests build.
+//!
+//! Checks that cost a fraction of a millisecond per variant (validation, the canonical-WGSL
+//! manifest, reflection) run over the full space of every bundled pass. Checks that cost
+//! milliseconds per variant (every naga back end with `spirv-val`, shard merges of emit
+//! folders, GPU rendering) run over this selection instead: every variant of a pass whose
+//! space holds at most [`FULL_UP_TO`] variants, and a t = [`COVER_T`] covering set of a larger
+//! one (URP's `UniversalGBuffer`, 65,536 variants). The full-space form of each such test is an
+//! `#[ignore]`d test of its own, run by `cargo test --release -- --ignored` (the README gives
+//! the command and its time).
+
+use wgsl_variants::Library;
+use wgsl_variants::plan::{Plan, PlanOptions, plan};
+
+/// Passes with at most this many variants are built whole.
+pub const FULL_UP_TO: u64 = 8192;
+
+/// The covering strength used for larger passes.
+pub const COVER_T: usize = 3;
+
+/// [`PlanOptions`] of the selection over the full space of every pass.
+pub fn options() -> PlanOptions {
+    let mut options = PlanOptions::default();
+    options.all = true;
+    options.cover = Some(COVER_T);
+    options.cover_above = Some(FULL_UP_TO);
+    options
+}
+
+/// The selection's plan for `lib`.
+pub fn plan_of(lib: &Library) -> Plan<'_> {
+    plan(lib, &options()).expect("the bundled library plans")
+}
+
+/// The command-line arguments of the selection (after `--all`).
+pub fn args() -> Vec<String> {
+    vec![
+        "--cover".into(),
+        COVER_T.to_string(),
+        "--cover-above".into(),
+        FULL_UP_TO.to_string(),
+    ]
+}
