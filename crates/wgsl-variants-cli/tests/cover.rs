@@ -91,3 +91,65 @@ fn bad_strength_is_an_error_naming_the_pass() {
     let out = run(dir.path(), &["validate", "--cover", "5"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("past the supported 4"));
 }
+
+/// CI's `validate --cover 2` of URP's `UniversalGBuffer` (16 keyword sets, 65,536 variants),
+/// and `--cover-above`: the built-in passes whole, only the huge pass covered.
+#[test]
+fn validate_cover_2_of_the_urp_pass_and_cover_above() {
+    let bundled = |args: &[&str]| -> String {
+        let out = Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args(["--color", "never"])
+            .args(args)
+            .output()
+            .expect("run wgsl-variants");
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(
+            out.status.success(),
+            "{args:?}: {stdout}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        stdout
+    };
+    let urp = bundled(&[
+        "validate",
+        "--cover",
+        "2",
+        "--shader",
+        "universal_lit",
+        "--no-cache",
+    ]);
+    assert!(
+        urp.contains("universal_lit/UniversalGBuffer: covering t=2: 8 variants cover every 2-way combination of keyword options of a 65536-variant space"),
+        "{urp}"
+    );
+    assert!(urp.contains("8 valid, 0 invalid"), "{urp}");
+
+    let mixed = bundled(&[
+        "validate",
+        "--cover",
+        "2",
+        "--cover-above",
+        "8192",
+        "--no-cache",
+    ]);
+    assert!(
+        mixed.contains(
+            "standard/Deferred: built whole: its 3072-variant space is at most --cover-above"
+        ),
+        "{mixed}"
+    );
+    assert!(
+        mixed.contains("standard/Deferred: 3072 built (3072 full space)"),
+        "{mixed}"
+    );
+    assert!(
+        mixed.contains("universal_lit/UniversalGBuffer: 8 built (65536 full space)"),
+        "{mixed}"
+    );
+    // --cover-above means nothing without --cover.
+    let out = Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["validate", "--cover-above", "10"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
