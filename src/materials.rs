@@ -94,6 +94,21 @@ pub enum MaterialsError {
         /// Second keyword.
         second: String,
     },
+    /// The material's keywords break a `require`/`exclude` constraint of a pass between two
+    /// `shader_feature` sets: no variant of that pass could be built for it.
+    #[error(
+        "material `{material}` breaks `#pragma {constraint}` of `{shader}/{pass}`: no variant of the pass has its keywords"
+    )]
+    Constraint {
+        /// The material.
+        material: String,
+        /// The shader.
+        shader: String,
+        /// The pass.
+        pass: String,
+        /// The constraint as written, e.g. `exclude _A _B`.
+        constraint: String,
+    },
 }
 
 fn hint(s: &Option<String>) -> String {
@@ -175,13 +190,24 @@ pub fn feature_combinations(
             }
             options[set] = Some(option as u16);
         }
-        combos.insert(
-            sf.iter()
-                .map(|&s| {
-                    options[s].unwrap_or_else(|| pass.sets[s].none_index().unwrap_or(0) as u16)
-                })
-                .collect(),
-        );
+        let chosen: Vec<u16> = (0..pass.sets.len())
+            .map(|s| options[s].unwrap_or_else(|| pass.sets[s].none_index().unwrap_or(0) as u16))
+            .collect();
+        // Only constraints between shader_feature sets are the material's to break; the others
+        // also depend on what the pipeline sets.
+        let broken = pass
+            .constraints
+            .iter()
+            .find(|c| c.sets().iter().all(|&s| sf.contains(&s)) && !c.holds(&chosen));
+        if let Some(c) = broken {
+            return Err(MaterialsError::Constraint {
+                material: m.name.clone(),
+                shader: pass.shader.clone(),
+                pass: pass.name.clone(),
+                constraint: c.to_string(),
+            });
+        }
+        combos.insert(sf.iter().map(|&s| chosen[s]).collect());
     }
     Ok(combos)
 }

@@ -53,9 +53,9 @@ pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, Va
 
 /// A small covering set of a pass's variants, named: `all-off` (each set at its "none"
 /// option, or its first), each keyword alone (named by the keyword), and `all-on` (each set at
-/// its last option). Duplicates are removed; order is stable. Under `#pragma require` a
-/// keyword comes with the keywords it requires; a variant that still breaks a constraint is
-/// left out. For t-wise coverage see [`Space::covering`].
+/// its last option; under `#pragma exclude A B`, `B` is left off). Duplicates are removed;
+/// order is stable. Under `#pragma require` a keyword comes with the keywords it requires; a
+/// variant that still breaks a constraint is left out. For t-wise coverage see [`Space::covering`].
 pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
     let base: Vec<u16> = pass
         .sets
@@ -77,10 +77,14 @@ pub fn covering_set(pass: &Pass) -> Vec<(String, Choice)> {
             }
         }
     }
-    out.push((
-        "all-on".to_string(),
-        Choice(pass.sets.iter().map(|s| s.len() as u16 - 1).collect()),
-    ));
+    let mut all_on: Vec<u16> = pass.sets.iter().map(|s| s.len() as u16 - 1).collect();
+    for c in &pass.constraints {
+        if c.kind == crate::keywords::ConstraintKind::Exclude && !c.holds(&all_on) {
+            let set = c.at[1].0;
+            all_on[set] = base[set];
+        }
+    }
+    out.push(("all-on".to_string(), Choice(all_on.into_boxed_slice())));
     let full = Space::full(pass);
     for (_, choice) in out.iter_mut() {
         require(pass, choice);

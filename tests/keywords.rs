@@ -262,3 +262,26 @@ fn materials_files_parse_and_are_checked() {
             .contains("enables both `A` and `B`")
     );
 }
+
+/// A material whose keywords break a constraint between shader_feature sets is an error naming
+/// the material, the pass and the constraint — never silently dropped from the build set. A
+/// constraint that also involves a multi_compile set only removes the variants that break it.
+#[test]
+fn a_material_breaking_a_constraint_is_an_error() {
+    let lib = library(
+        "#pragma shader_feature _ DETAIL\n#pragma shader_feature _ NORMALS\n\
+         #pragma multi_compile _ LOW HIGH\n#pragma require DETAIL NORMALS\n#pragma exclude NORMALS LOW",
+    );
+    let pass = lib.pass("s", "P").unwrap();
+    let detail_only = vec![material("Moss", &["DETAIL"])];
+    assert_eq!(
+        lib.build_set(pass, Some(&detail_only))
+            .unwrap_err()
+            .to_string(),
+        "material `Moss` breaks `#pragma require DETAIL NORMALS` of `s/P`: no variant of the pass has its keywords"
+    );
+    let fine = vec![material("Rock", &["DETAIL", "NORMALS"])];
+    let space = lib.build_set(pass, Some(&fine)).unwrap();
+    // Rock's one feature combination times the multi_compile options NORMALS allows (_, HIGH).
+    assert_eq!(space.count(), BigUint::from(2u8));
+}

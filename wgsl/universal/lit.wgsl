@@ -1,7 +1,9 @@
 #shader universal_lit
 // Unity URP's Lit shader, deferred path: the UniversalGBuffer pass (docs/urp.md). Material
 // keywords are shader_feature_local as in URP's Lit.shader; the pipeline keywords that change
-// what the G-buffer pass writes are multi_compile. 2^10 · 2^6 = 65536 variants.
+// what the G-buffer pass writes are multi_compile. 2^10 · 2^6 = 65536 combinations, of which
+// 49152 are variants: URP's mixed-lighting setup is one of None, ShadowMask and Subtractive
+// (its `MixedLightingSetup` enum), so the pipeline never sets both keywords of the exclusion.
 
 #pass UniversalGBuffer
 #tag LightMode UniversalGBuffer
@@ -22,5 +24,6 @@
 #pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
 #pragma multi_compile _ SHADOWS_SHADOWMASK
 #pragma multi_compile _ LIGHTMAP_ON
+#pragma exclude _MIXED_LIGHTING_SUBTRACTIVE SHADOWS_SHADOWMASK
 #import universal/lit_gbuffer_pass
 #endpass

@@ -5,7 +5,7 @@
 //! milliseconds per variant (every naga back end with `spirv-val`, shard merges of emit
 //! folders, GPU rendering) run over this selection instead: every variant of a pass whose
 //! space holds at most [`FULL_UP_TO`] variants, and a t = [`COVER_T`] covering set of a larger
-//! one (URP's `UniversalGBuffer`, 65,536 variants). The full-space form of each such test is an
+//! one (URP's `UniversalGBuffer`, 49,152 variants). The full-space form of each such test is an
 //! `#[ignore]`d test of its own, run by `cargo test --release -- --ignored` (the README gives
 //! the command and its time).
 

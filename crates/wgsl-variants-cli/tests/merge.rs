@@ -81,7 +81,7 @@ fn cache_info(dir: &Path) -> serde_json::Value {
 }
 
 /// The tests' selection of the bundled library (`test_support::selection`: every variant of
-/// the built-in passes, a t = 3 covering set of URP's 65,536) as arguments after `--all`.
+/// the built-in passes, a t = 3 covering set of URP's 49,152) as arguments after `--all`.
 fn selection() -> Vec<String> {
     test_support::selection::args()
 }
