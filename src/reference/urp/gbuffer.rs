@@ -375,13 +375,13 @@ pub fn urp_brdf(k: &UrpKeywords, s: &UrpSurface) -> UrpBrdf {
         )
     };
     let perceptual_roughness = 1.0 - s.smoothness;
-    let roughness = (perceptual_roughness * perceptual_roughness).max(0.007_812_5);
+    let roughness = (perceptual_roughness * perceptual_roughness).max(2f32.powi(-7));
     UrpBrdf {
         diffuse,
         specular,
         reflectivity,
         perceptual_roughness,
-        roughness2: (roughness * roughness).max(6.103_515_625e-5),
+        roughness2: (roughness * roughness).max(2f32.powi(-14)),
         grazing: (s.smoothness + reflectivity).clamp(0.0, 1.0),
     }
 }
