@@ -179,7 +179,10 @@ fn fs() -> @location(0) vec4<f32> {
     job.targets = vec![
         ColorTarget::new(TargetFormat::Rgba32Float).with_blend(wgpu::BlendState::ALPHA_BLENDING),
     ];
-    let blendable = ctx.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE)
+    let blendable = ctx
+        .device
+        .features()
+        .contains(wgpu::Features::FLOAT32_BLENDABLE)
         || (ctx
             .device
             .features()

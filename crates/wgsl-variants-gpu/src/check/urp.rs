@@ -436,14 +436,16 @@ pub(crate) fn check_universal_gbuffer(
             })
         })
     };
-    let mut references = Vec::with_capacity(choices.len());
-    for choice in &choices {
-        references.push(reference_image(urp, &keywords_of(choice)?));
-    }
+    // Validate every keyword set up front; references are computed per variant when compared
+    // (the full space's would not fit in memory at once).
+    let keywords = choices
+        .iter()
+        .map(&keywords_of)
+        .collect::<Result<Vec<_>, _>>()?;
     let covering = selection.cover.is_some();
     let sampled = selection.sample > 1 || selection.shard.is_some();
     let partners = if covering && !sampled {
-        add_partners(pass, urp, &mut choices, &mut references, &keywords_of)?
+        add_partners(pass, urp, &mut choices, &keywords, &keywords_of)?
     } else {
         0
     };
@@ -480,7 +482,7 @@ pub(crate) fn check_universal_gbuffer(
             pass,
             &choice.label(pass),
             &targets,
-            &references[v],
+            &reference_image(urp, &keywords_of(choice)?),
             &outputs[text_of[v]],
         );
         report.variants_run += 1;
@@ -527,7 +529,7 @@ fn add_partners(
     pass: &Pass,
     urp: &UrpScene,
     choices: &mut Vec<Choice>,
-    references: &mut Vec<Vec<Option<Vec<UrpTexel>>>>,
+    keywords: &[UrpKeywords],
     keywords_of: &impl Fn(&Choice) -> Result<UrpKeywords, GpuError>,
 ) -> Result<usize, GpuError> {
     let mut present: HashSet<Choice> = choices.iter().cloned().collect();
@@ -544,13 +546,13 @@ fn add_partners(
                 let mut partner = choices[v].0.clone();
                 partner[s] = 0;
                 let partner = Choice(partner);
-                let reference = reference_image(urp, &keywords_of(&partner)?);
-                if reference == references[v] {
+                if reference_image(urp, &keywords_of(&partner)?)
+                    == reference_image(urp, &keywords[v])
+                {
                     continue;
                 }
                 if present.insert(partner.clone()) {
                     choices.push(partner);
-                    references.push(reference);
                 }
                 break;
             }
