@@ -188,10 +188,19 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             lib,
             "check-gpu",
             &format!(
-                "{:?} {:?} {}",
+                "{:?} {:?} {}{}",
                 options.shader,
                 options.pass,
-                options.sample.max(1)
+                options.sample.max(1),
+                // Only when set, so the fingerprints of runs without them stay as they were.
+                if options.cover.is_some() || options.cover_above.is_some() || options.full {
+                    format!(
+                        " cover {:?} above {:?} full {}",
+                        options.cover, options.cover_above, options.full
+                    )
+                } else {
+                    String::new()
+                }
             ),
         ),
         shard: options.shard,
