@@ -59,23 +59,38 @@ pub const URP_KEYWORD_NAMES: [&str; 16] = [
 pub struct UrpKeywords(pub [bool; 16]);
 
 /// Indices into [`UrpKeywords`].
-#[allow(missing_docs)]
 pub mod kw {
+    /// `_NORMALMAP`.
     pub const NORMALMAP: usize = 0;
+    /// `_ALPHATEST_ON`.
     pub const ALPHATEST_ON: usize = 1;
+    /// `_EMISSION`.
     pub const EMISSION: usize = 2;
+    /// `_METALLICSPECGLOSSMAP`.
     pub const METALLICSPECGLOSSMAP: usize = 3;
+    /// `_SPECULAR_SETUP`.
     pub const SPECULAR_SETUP: usize = 4;
+    /// `_OCCLUSIONMAP`.
     pub const OCCLUSIONMAP: usize = 5;
+    /// `_SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A`.
     pub const SMOOTHNESS_ALBEDO_A: usize = 6;
+    /// `_RECEIVE_SHADOWS_OFF`.
     pub const RECEIVE_SHADOWS_OFF: usize = 7;
+    /// `_SPECULARHIGHLIGHTS_OFF`.
     pub const SPECULARHIGHLIGHTS_OFF: usize = 8;
+    /// `_ENVIRONMENTREFLECTIONS_OFF`.
     pub const ENVIRONMENTREFLECTIONS_OFF: usize = 9;
+    /// `_GBUFFER_NORMALS_OCT`.
     pub const GBUFFER_NORMALS_OCT: usize = 10;
+    /// `_RENDER_PASS_ENABLED`.
     pub const RENDER_PASS_ENABLED: usize = 11;
+    /// `_WRITE_RENDERING_LAYERS`.
     pub const WRITE_RENDERING_LAYERS: usize = 12;
+    /// `_MIXED_LIGHTING_SUBTRACTIVE`.
     pub const MIXED_LIGHTING_SUBTRACTIVE: usize = 13;
+    /// `SHADOWS_SHADOWMASK`.
     pub const SHADOWS_SHADOWMASK: usize = 14;
+    /// `LIGHTMAP_ON`.
     pub const LIGHTMAP_ON: usize = 15;
 }
 
