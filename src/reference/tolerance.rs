@@ -8,6 +8,10 @@
 //! | `Rgba16Float` targets | [`F16_ULP`] = 1 f16 step from the round-to-nearest-even of the reference `f32` | docs/shading.md §1: the same argument; 1 f16 ULP is 2^13 f32 ULPs, far above any `f32` arithmetic difference |
 //! | `Rg11b10Ufloat` targets (URP's GBuffer3) | [`UFLOAT_ULP`] = 1 step of each channel's format (2^-6 relative on the 11-bit r, g; 2^-5 on the 10-bit b) from the round-to-nearest-even of the reference | the conversion may round toward zero and leaves ties open (Khronos Data Format Specification, unsigned 11/10-bit floats): one step either way |
 //! | `Rgba8UnormSrgb` colour channels (URP's GBuffer0) | [`UNORM_LSB`] around the exact sRGB encoding's rounding ([`srgb8_within`]) | the GPU may approximate the transfer function before rounding |
+//! | `Rgba8Snorm` channels (URP's GBuffer2 without `_GBUFFER_NORMALS_OCT`) | [`UNORM_LSB`] step from either correct rounding ([`snorm8_within`]) | the unorm argument, on `clamp(x, −1, 1) · 127` |
+//! | octahedral normals (URP's GBuffer2 with `_GBUFFER_NORMALS_OCT`) | [`OCT_CODE_STEP`] = 1 on each of the two 12-bit codes ([`oct888_within`]) | the codes are truncated (`trunc(f · 4095.5)`), so a few `f32` ULPs in the normal move a code by one; comparing bytes would turn that into 255 steps of the low byte |
+//! | `R32Float` (depth as colour) | [`F32_ULP`] / [`F32_ABS`] ([`f32_within`]) | as the kernels |
+//! | `R32Uint` (rendering layers) | exact | an integer copied from a uniform |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
 //!
@@ -397,6 +401,87 @@ pub fn srgb8_within(got: u8, expected_linear: f32) -> bool {
         super::urp::srgb::srgb_encode(expected_linear)
     };
     unorm_within(u32::from(got), encoded, 8)
+}
+
+/// Whether the `Rgba8Snorm` channel `got` is acceptable for the reference value `expected`:
+/// within [`UNORM_LSB`] of either correct rounding of `clamp(expected, −1, 1) · 127` (NaN: 0).
+/// −128 reads as −1, like −127, and is accepted where −127 is.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::snorm8_within;
+/// assert!(snorm8_within(64, 0.5) && snorm8_within(63, 0.5) && snorm8_within(65, 0.5));
+/// assert!(!snorm8_within(66, 0.5) && !snorm8_within(61, 0.5));
+/// assert!(snorm8_within(-128, -1.0) && snorm8_within(-127, -7.0));
+/// ```
+pub fn snorm8_within(got: i8, expected: f32) -> bool {
+    let x = if expected.is_nan() {
+        0.0
+    } else {
+        f64::from(expected.clamp(-1.0, 1.0)) * 127.0
+    };
+    let lowest = (x - 0.5).ceil() as i64;
+    let highest = (x + 0.5).floor() as i64;
+    let got = i64::from(got.max(-127));
+    let lsb = i64::from(UNORM_LSB);
+    got >= lowest - lsb && got <= highest + lsb
+}
+
+/// Allowed difference, in 12-bit codes, between each of the two codes of an octahedral normal
+/// read back from the GPU and the reference's (URP truncates `f · 4095.5`, so a normal a few
+/// `f32` ULPs away may land on the neighbouring code).
+pub const OCT_CODE_STEP: u32 = 1;
+
+/// Whether the three octahedral bytes `got` hold codes within [`OCT_CODE_STEP`] of those of
+/// `expected` ([`super::urp::normal::unpack_888_to_float2`]'s layout: byte 0 and the low
+/// nibble of byte 2 are x, byte 1 and the high nibble y).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::oct888_within;
+/// // x code 0x0FF against 0x100: one code apart although every byte differs.
+/// assert!(oct888_within([0xFF, 0x10, 0x00], [0x00, 0x10, 0x01]));
+/// assert!(!oct888_within([0xFE, 0x10, 0x00], [0x00, 0x10, 0x01]));
+/// ```
+pub fn oct888_within(got: [u8; 3], expected: [u8; 3]) -> bool {
+    let codes = |b: [u8; 3]| {
+        (
+            u32::from(b[0]) | (u32::from(b[2] & 15) << 8),
+            u32::from(b[1]) | (u32::from(b[2] >> 4) << 8),
+        )
+    };
+    let (gx, gy) = codes(got);
+    let (ex, ey) = codes(expected);
+    gx.abs_diff(ex) <= OCT_CODE_STEP && gy.abs_diff(ey) <= OCT_CODE_STEP
+}
+
+/// Whether the four bytes of a URP target's texel, as read back, are acceptable for the
+/// reference texel `expected` (which also says how the target stores it).
+///
+/// ```
+/// use glam::{Vec3, Vec4};
+/// use wgsl_variants::reference::tolerance::urp_texel_within;
+/// use wgsl_variants::reference::urp::gbuffer::UrpTexel;
+/// use wgsl_variants::reference::urp::ufloat::pack_rg11b10;
+/// assert!(urp_texel_within([188, 0, 255, 8], &UrpTexel::Srgb8(Vec4::new(0.5, 0.0, 1.0, 8.0 / 255.0))));
+/// let word = pack_rg11b10(Vec3::new(0.25, 1.5, 3.0)).to_le_bytes();
+/// assert!(urp_texel_within(word, &UrpTexel::Ufloat(Vec3::new(0.25, 1.5, 3.0))));
+/// assert!(urp_texel_within(7u32.to_le_bytes(), &UrpTexel::U32(7)));
+/// assert!(!urp_texel_within(6u32.to_le_bytes(), &UrpTexel::U32(7)));
+/// ```
+pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) -> bool {
+    use super::urp::gbuffer::UrpTexel;
+    let word = u32::from_le_bytes(got);
+    let unorm8 = |i: usize, x: f32| unorm_within(u32::from(got[i]), x, 8);
+    match *expected {
+        UrpTexel::Srgb8(v) => (0..3).all(|i| srgb8_within(got[i], v[i])) && unorm8(3, v.w),
+        UrpTexel::Unorm8(v) => (0..4).all(|i| unorm8(i, v[i])),
+        UrpTexel::OctNormal { bytes, smoothness } => {
+            oct888_within([got[0], got[1], got[2]], bytes) && unorm8(3, smoothness)
+        }
+        UrpTexel::Snorm8(v) => (0..4).all(|i| snorm8_within(got[i] as i8, v[i])),
+        UrpTexel::Ufloat(v) => rg11b10_within(word, v),
+        UrpTexel::F32(x) => f32_within(f32::from_bits(word), x),
+        UrpTexel::U32(x) => word == x,
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! `wgsl-variants check-gpu`: the GPU proof of the bundled library (see
 //! [`wgsl_variants_gpu::check`]): every variant of the standard passes, the deferred
-//! reflection and final passes, and the compute kernels, compared with the CPU reference.
+//! reflection and final passes, URP's UniversalGBuffer (a covering set unless `--full`), and
+//! the compute kernels, compared with the CPU reference.
 
 use std::process::ExitCode;
 
@@ -12,8 +13,8 @@ use super::{Context, Failed};
 /// `check-gpu` arguments.
 #[derive(clap::Args, Debug)]
 pub struct CheckGpuArgs {
-    /// Only this shader (standard, deferred_shading, deferred_reflections, deferred_final; kernels for the
-    /// compute kernels).
+    /// Only this shader (standard, deferred_shading, deferred_reflections, deferred_final,
+    /// universal_lit; kernels for the compute kernels).
     #[arg(long, value_name = "SHADER")]
     shader: Option<String>,
     /// Only passes (or kernels) with this name.
@@ -32,10 +33,18 @@ pub struct CheckGpuArgs {
     /// Only shard K of N of each standard pass's variants (`K/N`), for a CI job matrix.
     #[arg(long, value_name = "K/N")]
     shard: Option<wgsl_variants::variants::Shard>,
-    /// Check a T-wise covering set (T from 1 to 4) of each standard pass instead of every
-    /// variant.
-    #[arg(long, value_name = "T")]
+    /// Check a T-wise covering set (T from 1 to 4) of each pass instead of every variant.
+    /// Without it, passes past 8192 variants (URP's UniversalGBuffer) get a 3-wise covering
+    /// set.
+    #[arg(long, value_name = "T", conflicts_with = "full")]
     cover: Option<usize>,
+    /// Cover only passes whose space holds more than N variants (with --cover, as validate's;
+    /// without it, the size past which the default 3-wise covering set applies).
+    #[arg(long, value_name = "N", conflicts_with = "full")]
+    cover_above: Option<u64>,
+    /// Check every variant of every selected pass, URP's 65,536 included (no covering set).
+    #[arg(long)]
+    full: bool,
 }
 
 pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
@@ -47,6 +56,8 @@ pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
     options.sample = args.sample;
     options.shard = args.shard;
     options.cover = args.cover;
+    options.cover_above = args.cover_above;
+    options.full = args.full;
     let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {
         print_json(&report)?;

@@ -142,3 +142,47 @@ fn check_gpu_sample_and_shard_with_a_common_factor() {
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(report["passes"][0]["variants_run"], 12, "{report}");
 }
+
+/// URP's UniversalGBuffer: by default a 3-wise covering set plus one partner per keyword
+/// (every keyword proven); `--full --sample N` walks the full space instead; `--cover` and
+/// `--full` together are refused.
+#[test]
+fn check_gpu_universal_gbuffer_default_cover_and_full() {
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args(["check-gpu", "--json", "--pass", "UniversalGBuffer"])
+            .args(extra)
+            .env("NODEVICE_SELECT", "1")
+            .output()
+            .expect("run check-gpu")
+    };
+    let out = run(&[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let pass = &report["passes"][0];
+    assert_eq!(pass["mismatches"], 0);
+    let run_count = pass["variants_run"].as_u64().unwrap();
+    assert!((19..=35).contains(&run_count), "{run_count}");
+    assert_eq!(pass["untested_keywords"].as_array().unwrap().len(), 0);
+
+    let out = run(&["--full", "--sample", "4096"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["passes"][0]["variants_run"], 16);
+
+    let out = run(&["--full", "--cover", "2"]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -17,6 +17,7 @@
 //! | [`srgb`] | the exact sRGB transfer function and an `Rgba8UnormSrgb` channel's byte |
 //! | [`ufloat`] | `Rg11b10Ufloat`: 11-/10-bit unsigned floats, packing, decoding |
 //! | [`workflow`] | metallic-workflow reflectivity (`kDielectricSpec`) and its inverse |
+//! | [`gbuffer`] | what the `UniversalGBuffer` fragment writes per texel, per target |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
 //! ```
@@ -38,6 +39,7 @@
 
 pub mod accuracy;
 pub mod flags;
+pub mod gbuffer;
 pub mod normal;
 pub mod srgb;
 pub mod ufloat;

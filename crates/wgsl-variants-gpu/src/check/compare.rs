@@ -5,11 +5,19 @@ use glam::Vec4;
 
 use crate::TargetFormat;
 use wgsl_variants::reference::gbuffer::{RGB10A2, RGBA8};
-use wgsl_variants::reference::tolerance::{f16x4_within, unorm4_within, vec4_within};
+use wgsl_variants::reference::tolerance::{
+    f16x4_within, f32_within, snorm8_within, srgb8_within, ufloat_within, unorm_within,
+    unorm4_within, vec4_within,
+};
+use wgsl_variants::reference::urp::ufloat::UFloat;
 
 /// Whether the raw texel `raw` of a `format` target is acceptable for the reference value
 /// `expected` (what the shader wrote, before the target stored it): 1 LSB on unorm channels
-/// (either correct rounding), 1 f16 ULP on `Rgba16Float`, the `f32` bound on `Rgba32Float`.
+/// (either correct rounding), 1 f16 ULP on `Rgba16Float`, the `f32` bound on `Rgba32Float`
+/// and `R32Float`; `Rgba8UnormSrgb` colour channels within 1 LSB of the exact sRGB encoding of
+/// the linear value, `Rgba8Snorm` 1 LSB, `Rg11b10Ufloat` 1 step of each channel's format, and
+/// `R32Uint` exactly (`expected.x` an integer). URP's octahedral normals are compared by their
+/// 12-bit codes instead (`urp::compare_texel`).
 pub fn texel_within(format: TargetFormat, raw: [u32; 4], expected: Vec4) -> bool {
     match format {
         TargetFormat::Rgba8Unorm => unorm4_within(raw, expected, RGBA8),
@@ -19,6 +27,18 @@ pub fn texel_within(format: TargetFormat, raw: [u32; 4], expected: Vec4) -> bool
         TargetFormat::Rgba32Float => {
             vec4_within(Vec4::from_array(raw.map(f32::from_bits)), expected)
         }
+        // Raw channels are bytes here.
+        TargetFormat::Rgba8UnormSrgb => {
+            (0..3).all(|i| srgb8_within(raw[i] as u8, expected[i]))
+                && unorm_within(raw[3], expected.w, 8)
+        }
+        TargetFormat::Rgba8Snorm => (0..4).all(|i| snorm8_within(raw[i] as u8 as i8, expected[i])),
+        TargetFormat::Rg11b10Ufloat => [UFloat::F11, UFloat::F11, UFloat::F10]
+            .into_iter()
+            .enumerate()
+            .all(|(i, f)| ufloat_within(raw[i] as u16, expected[i], f)),
+        TargetFormat::R32Float => f32_within(f32::from_bits(raw[0]), expected.x),
+        TargetFormat::R32Uint => f64::from(raw[0]) == f64::from(expected.x),
     }
 }
 
@@ -41,5 +61,10 @@ pub fn format_name(format: TargetFormat) -> &'static str {
         TargetFormat::Rgb10a2Unorm => "Rgb10a2Unorm",
         TargetFormat::Rgba16Float => "Rgba16Float",
         TargetFormat::Rgba32Float => "Rgba32Float",
+        TargetFormat::Rgba8UnormSrgb => "Rgba8UnormSrgb",
+        TargetFormat::Rgba8Snorm => "Rgba8Snorm",
+        TargetFormat::Rg11b10Ufloat => "Rg11b10Ufloat",
+        TargetFormat::R32Float => "R32Float",
+        TargetFormat::R32Uint => "R32Uint",
     }
 }

@@ -17,6 +17,7 @@
 //! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
+//! | [`urp`] | `universal_lit/UniversalGBuffer` (65,536 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
@@ -31,6 +32,7 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod urp;
 pub mod volumes;
 
 use std::time::Instant;
@@ -67,10 +69,22 @@ pub struct CheckOptions {
     /// Check a t-wise covering set of each standard pass instead of its full space
     /// ([`wgsl_variants::Space::covering`]); `sample` and `shard` then apply to it.
     pub cover: Option<usize>,
+    /// With `cover`, cover only passes whose space holds more than this many variants (as
+    /// `validate --cover-above`). Without `cover`, passes past this many variants (default
+    /// [`DEFAULT_COVER_ABOVE`]) get a [`DEFAULT_COVER_T`]-wise covering set.
+    pub cover_above: Option<u64>,
+    /// Check every variant of every selected pass, whatever its size (no covering set).
+    pub full: bool,
 }
 
+/// Passes with more variants than this are covered by default (URP's `UniversalGBuffer`).
+pub const DEFAULT_COVER_ABOVE: u64 = 8192;
+
+/// The covering strength of the default covering sets.
+pub const DEFAULT_COVER_T: usize = 3;
+
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 7] = [
+pub const PASSES: [(&str, &str); 8] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -78,6 +92,7 @@ pub const PASSES: [(&str, &str); 7] = [
     ("deferred_reflections", "Reflections"),
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
+    ("universal_lit", "UniversalGBuffer"),
 ];
 
 /// The pseudo-shader name that selects the compute kernels.
@@ -87,6 +102,32 @@ impl CheckOptions {
     fn wants(&self, shader: &str, pass: &str) -> bool {
         self.shader.as_deref().is_none_or(|s| s == shader)
             && self.pass.as_deref().is_none_or(|p| p == pass)
+    }
+
+    /// The covering strength for a pass of `count` variants, or `None` for its full space.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::check::CheckOptions;
+    /// let mut o = CheckOptions::default();
+    /// assert_eq!((o.cover_for(3072), o.cover_for(65536)), (None, Some(3)));
+    /// o.full = true;
+    /// assert_eq!(o.cover_for(65536), None);
+    /// o.full = false;
+    /// o.cover = Some(2);
+    /// assert_eq!((o.cover_for(3072), o.cover_for(65536)), (Some(2), Some(2)));
+    /// o.cover_above = Some(8192);
+    /// assert_eq!(o.cover_for(3072), None);
+    /// ```
+    pub fn cover_for(&self, count: u64) -> Option<usize> {
+        if self.full {
+            return None;
+        }
+        match self.cover {
+            Some(t) => self.cover_above.is_none_or(|n| count > n).then_some(t),
+            None => {
+                (count > self.cover_above.unwrap_or(DEFAULT_COVER_ABOVE)).then_some(DEFAULT_COVER_T)
+            }
+        }
     }
 
     fn threads(&self) -> usize {
@@ -147,10 +188,19 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             lib,
             "check-gpu",
             &format!(
-                "{:?} {:?} {}",
+                "{:?} {:?} {}{}",
                 options.shader,
                 options.pass,
-                options.sample.max(1)
+                options.sample.max(1),
+                // Only when set, so the fingerprints of runs without them stay as they were.
+                if options.cover.is_some() || options.cover_above.is_some() || options.full {
+                    format!(
+                        " cover {:?} above {:?} full {}",
+                        options.cover, options.cover_above, options.full
+                    )
+                } else {
+                    String::new()
+                }
             ),
         ),
         shard: options.shard,
@@ -167,21 +217,16 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         .filter(|(s, _)| *s == "standard")
         .map(|(_, p)| *p)
         .collect();
-    if !standard.is_empty() {
-        let mut contexts = Vec::new();
+    let urp_selected = selected.contains(&("universal_lit", "UniversalGBuffer"));
+    // One device per worker, shared by the standard and URP passes.
+    let mut contexts = Vec::new();
+    if !standard.is_empty() || urp_selected {
         for _ in 1..threads {
             contexts.push(GpuContext::new(options.adapter.as_deref())?);
         }
-        let resources = scene.standard_resources();
-        let workers = std::iter::once(&ctx)
-            .chain(&contexts)
-            .map(|c| {
-                Ok(Worker {
-                    ctx: c,
-                    resources: GpuResources::upload(c, "test scene", &resources)?,
-                })
-            })
-            .collect::<Result<Vec<_>, GpuError>>()?;
+    }
+    if !standard.is_empty() {
+        let workers = upload_workers(&ctx, &contexts, &scene.standard_resources(), "test scene")?;
         for pass in standard {
             let pass = lib
                 .pass("standard", pass)
@@ -194,9 +239,27 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 pass,
                 options.sample,
                 options.shard,
-                options.cover,
+                options.cover_for(space_size(pass)),
             )?);
         }
+    }
+    if urp_selected {
+        let pass = lib
+            .pass("universal_lit", "UniversalGBuffer")
+            .map_err(|e| CheckError::lookup(String::from("universal_lit/UniversalGBuffer"), e))?;
+        let urp_scene = urp::UrpScene::new(&scene, urp::DEFAULT_SEED);
+        let workers = upload_workers(&ctx, &contexts, &urp_scene.resources(), "URP scene")?;
+        report.passes.push(urp::check_universal_gbuffer(
+            &workers,
+            lib,
+            &urp_scene,
+            pass,
+            urp::Selection {
+                cover: options.cover_for(space_size(pass)),
+                sample: options.sample,
+                shard: options.shard,
+            },
+        )?);
     }
     if selected.contains(&("deferred_shading", "Lighting")) {
         report
@@ -206,7 +269,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     let chain: Vec<(&str, &str)> = selected
         .iter()
         .copied()
-        .filter(|(s, _)| *s != "standard" && *s != "deferred_shading")
+        .filter(|(s, _)| !matches!(*s, "standard" | "deferred_shading" | "universal_lit"))
         .collect();
     if !chain.is_empty() {
         report
@@ -218,4 +281,27 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     }
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// The number of variants in a pass's full space (saturated at `u64::MAX`).
+fn space_size(pass: &wgsl_variants::shader::Pass) -> u64 {
+    u64::try_from(wgsl_variants::Space::full(pass).count()).unwrap_or(u64::MAX)
+}
+
+/// One worker per context (`ctx` first), each with `resources` uploaded to its device.
+fn upload_workers<'c>(
+    ctx: &'c GpuContext,
+    contexts: &'c [GpuContext],
+    resources: &[crate::BoundResource],
+    label: &str,
+) -> Result<Vec<Worker<'c>>, GpuError> {
+    std::iter::once(ctx)
+        .chain(contexts)
+        .map(|c| {
+            Ok(Worker {
+                ctx: c,
+                resources: GpuResources::upload(c, label, resources)?,
+            })
+        })
+        .collect()
 }

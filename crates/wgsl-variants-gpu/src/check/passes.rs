@@ -37,7 +37,7 @@ pub const CLEAR: [[f64; 4]; 4] = [
 ];
 
 /// The most variants any check enumerates in one pass.
-const MAX_VARIANTS: u64 = 100_000;
+pub(crate) const MAX_VARIANTS: u64 = 100_000;
 
 /// The colour targets a standard pass renders into for a keyword set: RT0..RT3 for
 /// `Deferred` (RT3 `Rgba16Float` with `UNITY_HDR_ON`, else `Rgb10a2Unorm`), one

@@ -1,0 +1,562 @@
+//! `universal_lit/UniversalGBuffer` on the test scene: every selected variant rendered into
+//! the targets its keywords give ([`crate::urp_gbuffer_formats`]), read back and compared
+//! texel by texel with [`wgsl_variants::reference::urp::gbuffer`] through
+//! [`wgsl_variants::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
+//! changed a texel.
+//!
+//! The scene is [`TestScene`]'s quad, material maps, camera, ambient light, main light and
+//! first probe cube (the environment), plus what URP adds: a 16 × 16 `Rgba16Float` lightmap and
+//! an `Rgba8Unorm` shadowmask read at `uv · (½, ½) + (¼, ¼)` through a second UV set (each
+//! pixel lands ¼ texel or more from a texel edge, so nearest sampling is exact), shadow
+//! attenuation, subtractive shadow colour, glossy environment colour, probe occlusion and a
+//! rendering-layer mask with layer 31 on.
+//!
+//! Keyword coverage. Over the full space (`--full`), each keyword is judged on the variant
+//! pairs that differ only in it, as for the standard passes. Over a covering set, such pairs
+//! are rare, so the check adds them: for each keyword, the first covering variant with the
+//! keyword on whose reference changes when the keyword is turned off gets that partner
+//! rendered (and compared with its own reference, like every other variant); the keyword is
+//! proven when the two GPU renderings differ in at least one texel.
+
+use std::collections::{HashMap, HashSet};
+use std::time::Instant;
+
+use glam::{Vec3, Vec4};
+
+use super::compare::format_name;
+use super::passes::{CLEAR, Worker, keyword_coverage, render_all};
+use super::report::{Mismatch, PassReport};
+use super::scene::{MapTexture, Rng, TestScene, cube_resource, push_mat4, push_vec4};
+use crate::{
+    BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat,
+    VertexBuffer, urp_gbuffer_formats,
+};
+use wgsl_variants::reference::cube::CubeFaces;
+use wgsl_variants::reference::quantize::{f16_bits_to_f32, f32_to_f16_bits};
+use wgsl_variants::reference::tolerance::urp_texel_within;
+use wgsl_variants::reference::urp::gbuffer::{
+    UrpGBufferOutput, UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexel, UrpTexels,
+    shade_gbuffer,
+};
+use wgsl_variants::shader::Pass;
+use wgsl_variants::variants::{Choice, Shard};
+use wgsl_variants::{Library, Variant};
+
+/// The clear values of the optional targets: depth as colour, shadowmask, rendering layers
+/// (none of them a value the scene writes).
+pub const CLEAR_OPTIONAL: [[f64; 4]; 3] = [
+    [0.25, 0.0, 0.0, 0.0],
+    [0.125, 0.875, 0.5, 0.375],
+    [7.0, 0.0, 0.0, 0.0],
+];
+
+/// The seed of the URP scene's lightmap and shadowmask.
+pub const DEFAULT_SEED: u64 = 0x0052_5047_B0FF;
+
+/// The rendering-layer mask of the scene's mesh: layers 0, 2, 8 and 31 (31 needs all 32 bits).
+pub const RENDERING_LAYERS: u32 = 0x8000_0105;
+
+/// The lightmap's scale and offset (`unity_LightmapST`).
+pub const LIGHTMAP_ST: Vec4 = Vec4::new(0.5, 0.5, 0.25, 0.25);
+
+/// The URP test scene: the built-in [`TestScene`] with URP's material, lighting, lightmap and
+/// shadowmask.
+#[derive(Clone, Debug)]
+pub struct UrpScene {
+    /// The built-in scene (geometry, maps, camera, environment cube).
+    pub scene: TestScene,
+    /// URP Lit's material.
+    pub material: UrpMaterial,
+    /// The per-frame lighting.
+    pub lighting: UrpLighting,
+    /// The lightmap: `width × height` texels of four f16 bit patterns.
+    pub lightmap: Vec<[u16; 4]>,
+    /// The baked shadowmask.
+    pub shadowmask: MapTexture,
+}
+
+impl UrpScene {
+    /// URP's scene over `scene`; the lightmap and shadowmask come from `seed`.
+    pub fn new(scene: &TestScene, seed: u64) -> UrpScene {
+        let mut rng = Rng::new(seed);
+        let (w, h) = (scene.width, scene.height);
+        let m = &scene.material;
+        let material = UrpMaterial {
+            base_color: m.tint,
+            spec_color: Vec3::new(0.2, 0.35, 0.5),
+            emission_color: m.emission,
+            metallic: m.metallic,
+            smoothness: m.smoothness,
+            cutoff: m.cutoff,
+            bump_scale: m.bump_scale,
+            occlusion_strength: m.occlusion_strength,
+        };
+        let s = &scene.scene;
+        let lighting = UrpLighting {
+            camera_position: s.camera_position,
+            sh_r: s.sh_r,
+            sh_g: s.sh_g,
+            sh_b: s.sh_b,
+            main_light_dir: s.light_dir,
+            main_light_color: s.light_color,
+            shadow_attenuation: 0.35,
+            shadow_strength: 0.8,
+            subtractive_shadow_color: Vec3::new(0.1, 0.12, 0.15),
+            glossy_environment_color: Vec3::new(0.3, 0.25, 0.2),
+            probes_occlusion: Vec4::new(0.8, 0.6, 0.4, 0.2),
+        };
+        // HDR lightmap values up to 2.5: quantized to f16 once, so the reference reads what
+        // the texture holds.
+        let lightmap = (0..w * h)
+            .map(|_| {
+                let c = [0.0, 1.0, 2.0].map(|_| f32_to_f16_bits(rng.range(0.05, 2.5)));
+                [c[0], c[1], c[2], f32_to_f16_bits(1.0)]
+            })
+            .collect();
+        let shadowmask = MapTexture {
+            width: w,
+            height: h,
+            texels: (0..w * h)
+                .map(|_| [0, 1, 2, 3].map(|_| rng.byte(0.0, 1.0)))
+                .collect(),
+        };
+        UrpScene {
+            scene: scene.clone(),
+            material,
+            lighting,
+            lightmap,
+            shadowmask,
+        }
+    }
+
+    /// The lightmap texel pixel `(x, y)` reads: `uv · ½ + ¼` in texels is `x/2 + 4 + ¼` or
+    /// `+ ¾`.
+    pub fn lightmap_texel(&self, x: u32, y: u32) -> (u32, u32) {
+        let texel = |p: u32, size: u32, scale: f32, offset: f32| {
+            let u = (p as f32 + 0.5) / size as f32 * scale + offset;
+            ((u * size as f32).floor() as u32).min(size - 1)
+        };
+        let (w, h) = (self.scene.width, self.scene.height);
+        (
+            texel(x, w, LIGHTMAP_ST.x, LIGHTMAP_ST.z),
+            texel(y, h, LIGHTMAP_ST.y, LIGHTMAP_ST.w),
+        )
+    }
+
+    /// The texels pixel `(x, y)` reads.
+    pub fn texels(&self, x: u32, y: u32) -> UrpTexels {
+        let m = &self.scene.maps;
+        let (lx, ly) = self.lightmap_texel(x, y);
+        let l = self.lightmap[(ly * self.scene.width + lx) as usize];
+        UrpTexels {
+            base_map: m.main_tex.get(x, y),
+            bump_map: m.normal_map.get(x, y),
+            metallic_gloss_map: m.metallic_map.get(x, y),
+            occlusion_map: m.occlusion_map.get(x, y),
+            emission_map: m.emission_map.get(x, y),
+            lightmap: Vec3::new(
+                f16_bits_to_f32(l[0]),
+                f16_bits_to_f32(l[1]),
+                f16_bits_to_f32(l[2]),
+            ),
+            shadowmask: self.shadowmask.get(lx, ly),
+        }
+    }
+
+    /// The per-pixel inputs at `(x, y)`: the depth is the clip position's `z / w`.
+    pub fn pixel(&self, x: u32, y: u32) -> UrpPixel {
+        let geometry = self.scene.geometry(x, y);
+        let clip = self.scene.view_proj * geometry.world_position.extend(1.0);
+        UrpPixel {
+            geometry,
+            depth: clip.z / clip.w,
+            rendering_layers: RENDERING_LAYERS,
+        }
+    }
+
+    /// The environment cube (the built-in scene's first probe cube).
+    pub fn environment(&self) -> &CubeFaces {
+        &self.scene.scene.cubes[0]
+    }
+
+    /// The reference at pixel `(x, y)`; `None` where the variant discards it.
+    pub fn reference(&self, k: &UrpKeywords, x: u32, y: u32) -> Option<UrpGBufferOutput> {
+        shade_gbuffer(
+            k,
+            &self.material,
+            &self.texels(x, y),
+            &self.pixel(x, y),
+            &self.lighting,
+            self.environment(),
+        )
+    }
+
+    /// Every resource of `wgsl/universal/bindings.wgsl`; a variant binds those it uses.
+    pub fn resources(&self) -> Vec<BoundResource> {
+        let s = &self.scene;
+        let l = &self.lighting;
+        let m = &self.material;
+        let mut camera = Vec::new();
+        push_mat4(&mut camera, s.view_proj);
+        push_vec4(&mut camera, l.camera_position.extend(1.0));
+        let mut lighting = Vec::new();
+        for v in [
+            l.sh_r,
+            l.sh_g,
+            l.sh_b,
+            l.main_light_dir.extend(0.0),
+            l.main_light_color.extend(1.0),
+            Vec4::new(l.shadow_attenuation, l.shadow_strength, 0.0, 0.0),
+            l.subtractive_shadow_color.extend(0.0),
+            l.glossy_environment_color.extend(0.0),
+            l.probes_occlusion,
+        ] {
+            push_vec4(&mut lighting, v);
+        }
+        let mut material = Vec::new();
+        for v in [
+            m.base_color,
+            m.spec_color.extend(0.0),
+            m.emission_color.extend(0.0),
+            Vec4::new(m.metallic, m.smoothness, m.cutoff, m.bump_scale),
+            Vec4::new(m.occlusion_strength, 0.0, 0.0, 0.0),
+        ] {
+            push_vec4(&mut material, v);
+        }
+        let mut object = Vec::new();
+        push_mat4(&mut object, s.model);
+        push_mat4(&mut object, s.normal_matrix);
+        push_vec4(&mut object, LIGHTMAP_ST);
+        for word in [RENDERING_LAYERS, 0, 0, 0] {
+            object.extend(word.to_le_bytes());
+        }
+        let nearest_repeat = Resource::SamplerAddressed {
+            nearest: true,
+            address_mode: wgpu::AddressMode::Repeat,
+        };
+        let maps = &s.maps;
+        vec![
+            BoundResource::new(0, 0, Resource::Uniform(camera)),
+            BoundResource::new(0, 1, Resource::Uniform(lighting)),
+            BoundResource::new(0, 2, cube_resource(self.environment())),
+            BoundResource::new(0, 3, Resource::Sampler { nearest: true }),
+            BoundResource::new(1, 0, Resource::Uniform(material)),
+            BoundResource::new(1, 1, nearest_repeat.clone()),
+            BoundResource::new(1, 2, maps.main_tex.resource()),
+            BoundResource::new(1, 3, maps.normal_map.resource()),
+            BoundResource::new(1, 4, maps.metallic_map.resource()),
+            BoundResource::new(1, 5, maps.occlusion_map.resource()),
+            BoundResource::new(1, 6, maps.emission_map.resource()),
+            BoundResource::new(2, 0, Resource::Uniform(object)),
+            BoundResource::new(
+                2,
+                1,
+                Resource::Texture2d {
+                    format: wgpu::TextureFormat::Rgba16Float,
+                    width: s.width,
+                    height: s.height,
+                    data: self
+                        .lightmap
+                        .iter()
+                        .flatten()
+                        .flat_map(|h| h.to_le_bytes())
+                        .collect(),
+                },
+            ),
+            BoundResource::new(2, 2, self.shadowmask.resource()),
+            BoundResource::new(2, 3, nearest_repeat),
+        ]
+    }
+
+    /// The second UV set (`@location(4)`, slot 1): the quad's uv again (URP's uv1).
+    pub fn lightmap_uvs(&self) -> VertexBuffer {
+        // The quad's vertex order: top-left, bottom-left, top-right twice, bottom-left,
+        // bottom-right (`TestScene::quad`).
+        let (tl, tr, bl, br) = ([0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]);
+        VertexBuffer::from_f32(&[(4, 2)], &[tl, bl, tr, tr, bl, br])
+    }
+
+    /// The render job of one variant's composed text.
+    pub fn job(&self, label: &str, wgsl: &str, keywords: &[&str]) -> RenderJob {
+        let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
+        job.width = self.scene.width;
+        job.height = self.scene.height;
+        job.targets = urp_targets(keywords).into_iter().map(|(_, t)| t).collect();
+        job.vertex_buffers = vec![self.scene.quad(), self.lightmap_uvs()];
+        job.vertex_count = 6;
+        job
+    }
+}
+
+/// The colour targets of a `UniversalGBuffer` variant with these keywords, named for reports,
+/// each cleared to a value the scene never writes.
+pub fn urp_targets(keywords: &[&str]) -> Vec<(String, ColorTarget)> {
+    let names = ["GBuffer0", "GBuffer1", "GBuffer2", "GBuffer3"];
+    let optional = [
+        ("_RENDER_PASS_ENABLED", "depth"),
+        ("SHADOWS_SHADOWMASK", "shadowmask"),
+        ("_WRITE_RENDERING_LAYERS", "rendering layers"),
+    ];
+    let extra = optional
+        .iter()
+        .enumerate()
+        .filter(|(_, (k, _))| keywords.contains(k))
+        .map(|(i, (_, name))| (*name, CLEAR_OPTIONAL[i]));
+    let labels = names.iter().copied().zip(CLEAR).chain(extra);
+    urp_gbuffer_formats(keywords)
+        .into_iter()
+        .zip(labels)
+        .filter_map(|(format, (name, clear))| {
+            let format = TargetFormat::from_wgpu(format)?;
+            Some((
+                format!("{name} {}", format_name(format)),
+                ColorTarget::new(format).with_clear(clear),
+            ))
+        })
+        .collect()
+}
+
+/// The texel a cleared target holds, as the reference states it (the GPU converts the clear
+/// value as if the shader had written it).
+pub fn cleared(target: &ColorTarget) -> UrpTexel {
+    let c = Vec4::from_array(target.clear.map(|x| x as f32));
+    match target.format {
+        TargetFormat::Rgba8UnormSrgb => UrpTexel::Srgb8(c),
+        TargetFormat::Rgba8Snorm => UrpTexel::Snorm8(c),
+        TargetFormat::Rg11b10Ufloat => UrpTexel::Ufloat(c.truncate()),
+        TargetFormat::R32Float => UrpTexel::F32(c.x),
+        TargetFormat::R32Uint => UrpTexel::U32(target.clear[0] as u32),
+        _ => UrpTexel::Unorm8(c),
+    }
+}
+
+/// Which variants of the pass to check.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Selection {
+    /// A t-wise covering set (else the full space).
+    pub(crate) cover: Option<usize>,
+    /// Every n-th variant.
+    pub(crate) sample: usize,
+    /// Only this shard.
+    pub(crate) shard: Option<Shard>,
+}
+
+/// The variants of `pass` the selection keeps, numbered as the standard passes' are.
+pub(crate) fn select(pass: &Pass, selection: Selection) -> Result<Vec<Choice>, GpuError> {
+    let space = wgsl_variants::Space::full(pass);
+    let all = match selection.cover {
+        Some(t) => space
+            .covering(t)
+            .map_err(|e| GpuError::from(CheckError::from(e)))?,
+        None => space
+            .enumerate(super::passes::MAX_VARIANTS)
+            .map_err(|source| {
+                GpuError::from(CheckError::Budget {
+                    what: format!("{}/{}", pass.shader, pass.name),
+                    source,
+                })
+            })?,
+    };
+    Ok(all
+        .into_iter()
+        .step_by(selection.sample.max(1))
+        .enumerate()
+        .filter(|(i, _)| selection.shard.is_none_or(|s| s.contains(*i as u64)))
+        .map(|(_, c)| c)
+        .collect())
+}
+
+/// The reference texels of every target of a variant at every pixel (`None`: discarded).
+fn reference_image(urp: &UrpScene, k: &UrpKeywords) -> Vec<Option<Vec<UrpTexel>>> {
+    urp.scene
+        .pixels()
+        .map(|(x, y)| urp.reference(k, x, y).map(|o| o.texels(k)))
+        .collect()
+}
+
+/// Compares one variant's read-back targets with its reference image; every texel recorded
+/// in `report`.
+pub fn compare_variant(
+    report: &mut PassReport,
+    urp: &UrpScene,
+    pass: &Pass,
+    label: &str,
+    targets: &[(String, ColorTarget)],
+    expected: &[Option<Vec<UrpTexel>>],
+    bytes: &[Vec<u8>],
+) {
+    for (i, (x, y)) in urp.scene.pixels().enumerate() {
+        let want = &expected[i];
+        if want.is_none() {
+            report.discarded_compared += targets.len();
+        }
+        for (t, (name, target)) in targets.iter().enumerate() {
+            let texel = match want {
+                Some(texels) => texels[t],
+                None => cleared(target),
+            };
+            let px = &bytes[t][i * 4..i * 4 + 4];
+            let got = [px[0], px[1], px[2], px[3]];
+            let ok = urp_texel_within(got, &texel);
+            report.record(ok, || Mismatch {
+                shader: pass.shader.clone(),
+                pass: pass.name.clone(),
+                keywords: label.to_owned(),
+                target: if want.is_none() {
+                    format!("{name} (discarded: clear colour)")
+                } else {
+                    name.clone()
+                },
+                pixel: [x, y],
+                expected: texel.to_vec(),
+                got: target.format.decode_pixel_f32(px).to_vec(),
+                got_raw: target.format.decode_pixel(px).to_vec(),
+            });
+        }
+    }
+}
+
+/// Checks the selected variants of `universal_lit/UniversalGBuffer`.
+pub(crate) fn check_universal_gbuffer(
+    workers: &[Worker<'_>],
+    lib: &Library,
+    urp: &UrpScene,
+    pass: &Pass,
+    selection: Selection,
+) -> Result<PassReport, GpuError> {
+    let start = Instant::now();
+    let mut report = PassReport::new(&pass.shader, &pass.name);
+    let mut choices = select(pass, selection)?;
+    let keywords_of = |choice: &Choice| -> Result<UrpKeywords, GpuError> {
+        let names = choice.keywords(pass);
+        UrpKeywords::from_names(&names).map_err(|e| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: choice.label(pass),
+                message: e.to_string(),
+            })
+        })
+    };
+    // Validate every keyword set up front; references are computed per variant when compared
+    // (the full space's would not fit in memory at once).
+    let keywords = choices
+        .iter()
+        .map(&keywords_of)
+        .collect::<Result<Vec<_>, _>>()?;
+    let covering = selection.cover.is_some();
+    let sampled = selection.sample > 1 || selection.shard.is_some();
+    let partners = if covering && !sampled {
+        add_partners(pass, urp, &mut choices, &keywords, &keywords_of)?
+    } else {
+        0
+    };
+
+    // Compose every variant; render each distinct text once.
+    let mut distinct: HashMap<String, usize> = HashMap::new();
+    let mut jobs = Vec::new();
+    let mut text_of = Vec::with_capacity(choices.len());
+    for choice in &choices {
+        let variant = Variant {
+            pass,
+            choice: choice.clone(),
+        };
+        let text = lib.wgsl(&variant);
+        let index = match distinct.get(&text) {
+            Some(&index) => index,
+            None => {
+                jobs.push(urp.job(&variant.label(), &text, &variant.keywords()));
+                distinct.insert(text, jobs.len() - 1);
+                jobs.len() - 1
+            }
+        };
+        text_of.push(index);
+    }
+    report.distinct_shaders = jobs.len();
+    report.draws = jobs.len();
+    let outputs = render_all(workers, &jobs)?;
+
+    for (v, choice) in choices.iter().enumerate() {
+        let targets = urp_targets(&choice.keywords(pass));
+        compare_variant(
+            &mut report,
+            urp,
+            pass,
+            &choice.label(pass),
+            &targets,
+            &reference_image(urp, &keywords_of(choice)?),
+            &outputs[text_of[v]],
+        );
+        report.variants_run += 1;
+    }
+
+    report.keywords = keyword_coverage(pass, &choices, |a, b| {
+        outputs[text_of[a]] != outputs[text_of[b]]
+    });
+    if sampled {
+        report.notes.push(format!(
+            "sampled every {}th variant{}: keyword coverage is not judged",
+            selection.sample.max(1),
+            selection
+                .shard
+                .map(|s| format!(" of shard {s}"))
+                .unwrap_or_default()
+        ));
+    } else {
+        report.untested_keywords = report
+            .keywords
+            .iter()
+            .filter(|k| k.pairs_changed == 0)
+            .map(|k| k.keyword.clone())
+            .collect();
+    }
+    if let Some(t) = selection.cover {
+        report.notes.push(format!(
+            "{t}-wise covering set of {} variants, plus {partners} partners: for each keyword, the first covering variant with it on whose reference changes with it off is rendered with it off too",
+            choices.len() - partners
+        ));
+    }
+    report.notes.push(format!(
+        "{}x{} pixels, GBuffer0-3 and the optional targets of each variant; discarded pixels compared with the clear colour; octahedral normals by their 12-bit codes",
+        urp.scene.width, urp.scene.height
+    ));
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// For each keyword: the first variant with it on whose reference changes when it is turned
+/// off, and that partner added to `choices` (with its reference) unless already there.
+/// Returns how many were added.
+fn add_partners(
+    pass: &Pass,
+    urp: &UrpScene,
+    choices: &mut Vec<Choice>,
+    keywords: &[UrpKeywords],
+    keywords_of: &impl Fn(&Choice) -> Result<UrpKeywords, GpuError>,
+) -> Result<usize, GpuError> {
+    let mut present: HashSet<Choice> = choices.iter().cloned().collect();
+    let original = choices.len();
+    for (s, set) in pass.sets.iter().enumerate() {
+        for (o, name) in set.options.iter().enumerate().skip(1) {
+            if name.is_none() {
+                continue;
+            }
+            for v in 0..original {
+                if usize::from(choices[v].0[s]) != o {
+                    continue;
+                }
+                let mut partner = choices[v].0.clone();
+                partner[s] = 0;
+                let partner = Choice(partner);
+                if reference_image(urp, &keywords_of(&partner)?)
+                    == reference_image(urp, &keywords[v])
+                {
+                    continue;
+                }
+                if present.insert(partner.clone()) {
+                    choices.push(partner);
+                }
+                break;
+            }
+        }
+    }
+    Ok(choices.len() - original)
+}
