@@ -42,7 +42,7 @@ pub struct CheckGpuArgs {
     /// without it, the size past which the default 3-wise covering set applies).
     #[arg(long, value_name = "N", conflicts_with = "full")]
     cover_above: Option<u64>,
-    /// Check every variant of every selected pass, URP's 65,536 included (no covering set).
+    /// Check every variant of every selected pass, URP's 49,152 included (no covering set).
     #[arg(long)]
     full: bool,
 }

@@ -1,4 +1,4 @@
-//! What URP Lit's `UniversalGBuffer` fragment writes per texel (docs/urp.md §1–§4 and §7):
+//! What URP Lit's `UniversalGBuffer` fragment writes per texel (docs/urp.md §1–§4 and §8):
 //! the surface inputs (URP's `InitializeStandardLitSurfaceData`), the BRDF data
 //! (`InitializeBRDFData`), baked GI and the environment reflection (`GlobalIllumination`),
 //! packed by `BRDFDataToGbuffer` into GBuffer0–3 and the optional targets.

@@ -17,7 +17,7 @@
 //! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
-//! | [`urp`] | `universal_lit/UniversalGBuffer` (65,536 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
+//! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
