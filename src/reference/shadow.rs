@@ -26,7 +26,7 @@
 //! let params = ShadowParams::for_light(&spot, 0.75, 0.001).unwrap();
 //! // A map whose caster is at depth 0.5 everywhere: the floor (deeper) is in shadow.
 //! let map = ShadowMap2d::new(4, 4, vec![0.5; 16]).unwrap();
-//! let v = map.visibility(params.coords(Vec3::ZERO), false);
+//! let v = map.visibility(params.coords(Vec3::new(0.3, 0.2, 0.0)), false);
 //! assert_eq!((v.lo, v.hi), (0.0, 0.0));
 //! assert_eq!(shadow_mix(params.strength, v.lo), 0.25);
 //! // A directional light has no map of its own here (SHADOWS_SCREEN is not built).
