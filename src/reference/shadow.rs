@@ -397,11 +397,13 @@ impl ShadowMap2d {
     }
 
     /// The visibility at map coordinates `c` ([`shadow_coords`]; `c.z` already biased):
-    /// one tap under `c.xy` (hard) or the [`PCF_TENT_3X3`] footprint around it (soft).
+    /// one tap under `c.xy` (hard) or the [`PCF_TENT_3X3`] footprint around it (soft). A tap
+    /// is uncertain when moving `c.xy` by [`TEXEL_MARGIN`] texels picks a texel with the other
+    /// outcome, or its depths are within [`DEPTH_MARGIN`].
     pub fn visibility(&self, c: Vec3, soft: bool) -> Visibility {
         let (u, v) = (c.x * self.width as f32, c.y * self.height as f32);
-        let near_edge = texel_margin(u).min(texel_margin(v)) < TEXEL_MARGIN;
-        let (x, y) = (u.floor() as i64, v.floor() as i64);
+        let m = TEXEL_MARGIN;
+        let nudges = [(0.0, 0.0), (-m, 0.0), (m, 0.0), (0.0, -m), (0.0, m)];
         let mut out = Visibility { lo: 0.0, hi: 0.0 };
         let taps: &[([i32; 2], f32)] = if soft {
             &PCF_TENT_3X3
@@ -409,9 +411,15 @@ impl ShadowMap2d {
             &[([0, 0], 1.0)]
         };
         for &([dx, dy], weight) in taps {
-            let stored = self.depth(x + i64::from(dx), y + i64::from(dy));
-            let certain = !near_edge && (c.z - stored).abs() >= DEPTH_MARGIN;
-            out.add(weight, c.z <= stored, certain);
+            let outcome = |(nu, nv): (f32, f32)| {
+                let x = (u + nu).floor() as i64 + i64::from(dx);
+                let y = (v + nv).floor() as i64 + i64::from(dy);
+                let stored = self.depth(x, y);
+                (c.z <= stored, (c.z - stored).abs() >= DEPTH_MARGIN)
+            };
+            let (lit, clear) = outcome(nudges[0]);
+            let certain = clear && nudges[1..].iter().all(|&n| outcome(n) == (lit, true));
+            out.add(weight, lit, certain);
         }
         out
     }
@@ -468,14 +476,26 @@ impl ShadowCube {
     }
 
     /// The visibility of a receiver at `d = p − light` with biased distance `mydist`
-    /// ([`ShadowParams::cube_distance`]): one tap (hard) or Unity's four (soft).
+    /// ([`ShadowParams::cube_distance`]): one tap (hard) or Unity's four (soft). A tap is
+    /// uncertain when moving its direction by [`TEXEL_MARGIN`] texels along any axis (which
+    /// also crosses face edges) picks a texel with the other outcome, or its distances are
+    /// within [`DISTANCE_MARGIN`].
     pub fn visibility(&self, d: Vec3, mydist: f32, soft: bool) -> Visibility {
         let mut out = Visibility { lo: 0.0, hi: 0.0 };
         let mut tap = |dir: Vec3, weight: f32| {
-            let (texel, margin) = self.texel(dir);
-            let stored = self.value(texel);
-            let certain = margin >= TEXEL_MARGIN && (stored - mydist).abs() >= DISTANCE_MARGIN;
-            out.add(weight, stored >= mydist, certain);
+            let outcome = |dir: Vec3| {
+                let stored = self.value(self.texel(dir).0);
+                (stored >= mydist, (stored - mydist).abs() >= DISTANCE_MARGIN)
+            };
+            // One texel of a face spans 2 |major| / size in the minor axes.
+            let step = TEXEL_MARGIN * 2.0 * dir.abs().max_element() / self.size as f32;
+            let (lit, clear) = outcome(dir);
+            let certain = clear
+                && [Vec3::X, Vec3::Y, Vec3::Z]
+                    .iter()
+                    .flat_map(|&axis| [axis * step, -axis * step])
+                    .all(|n| outcome(dir + n) == (lit, true));
+            out.add(weight, lit, certain);
         };
         if soft {
             for o in CUBE_SOFT_DIAGONALS {

@@ -31,6 +31,7 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod shadows;
 pub mod volumes;
 
 use std::time::Instant;
@@ -159,7 +160,13 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         seconds: 0.0,
     };
     let scene = TestScene::default();
-    let rig = LightRig::new(&scene);
+    let mut rig = LightRig::new(&scene);
+    if selected
+        .iter()
+        .any(|&(s, p)| p == "ForwardAdd" || s == "deferred_shading")
+    {
+        rig.render_shadows(&ctx, lib)?;
+    }
     let threads = options.threads();
 
     let standard: Vec<&str> = selected
