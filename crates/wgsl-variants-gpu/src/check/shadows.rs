@@ -25,7 +25,7 @@ use wgsl_variants::reference::shadow::{
 };
 
 /// Edge length of the spot light's 2D map in texels.
-pub const MAP_SIZE: u32 = 32;
+pub const MAP_SIZE: u32 = 64;
 /// Edge length of the point light's cube faces in texels.
 pub const CUBE_SIZE: u32 = 16;
 /// The spot shadow's strength.
@@ -34,29 +34,34 @@ pub const SPOT_STRENGTH: f32 = 0.8;
 pub const POINT_STRENGTH: f32 = 0.9;
 /// The spot shadow's receiver depth bias (depth-buffer units).
 pub const SPOT_BIAS: f32 = 0.0005;
-/// The occluders' cutoff: `main_tex.a` alternates 1 and 0.2 on a 4 × 4 checker.
+/// The occluders' cutoff: `main_tex.a` alternates 1 and 0.2 on a 2 × 2 checker (4 × 4 texels).
 pub const CUTOFF: f32 = 0.5;
 
 /// The occluder quads: `(min corner, max corner)` in x and y, at height `z`.
 pub const OCCLUDERS: [(Vec2, Vec2, f32); 2] = [
     // Under the point light (0.5625, −0.5, 1).
-    (Vec2::new(0.1, -0.4), Vec2::new(0.5, 0.1), 0.55),
+    (Vec2::new(-0.1, -0.9), Vec2::new(0.9, 0.1), 0.55),
     // Half-way along the spot light's axis.
-    (Vec2::new(-0.2, -0.15), Vec2::new(0.2, 0.25), 1.1),
+    (Vec2::new(-0.4, -0.35), Vec2::new(0.4, 0.45), 1.1),
 ];
 
 /// The caster variant the rig renders with: cut-out, so holes in the occluders are holes in
 /// the shadow.
 const CASTER_KEYWORDS: [&str; 1] = ["_RENDERING_CUTOUT"];
 
-/// The occluders' `main_tex`: a 4 × 4 checker of alpha 1 and 0.2 (white).
+/// The occluders' `main_tex`: 4 × 4 texels, a 2 × 2 checker of alpha 1 and 0.2 (white), so
+/// each quad has two holes.
 fn occluder_texture() -> MapTexture {
     MapTexture {
         width: 4,
         height: 4,
         texels: (0..16)
             .map(|i| {
-                let a = if (i % 4 + i / 4) % 2 == 0 { 255 } else { 51 };
+                let a = if (i % 4 / 2 + i / 8) % 2 == 0 {
+                    255
+                } else {
+                    51
+                };
                 [255, 255, 255, a]
             })
             .collect(),
@@ -65,8 +70,8 @@ fn occluder_texture() -> MapTexture {
 
 /// Whether the occluder texture keeps the fragment at uv (the caster's `_RENDERING_CUTOUT`).
 fn occluder_kept(uv: Vec2) -> bool {
-    let x = ((uv.x * 4.0).floor() as i32).clamp(0, 3);
-    let y = ((uv.y * 4.0).floor() as i32).clamp(0, 3);
+    let x = ((uv.x * 2.0).floor() as i32).clamp(0, 1);
+    let y = ((uv.y * 2.0).floor() as i32).clamp(0, 1);
     (x + y) % 2 == 0
 }
 
