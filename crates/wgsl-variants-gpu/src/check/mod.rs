@@ -13,8 +13,9 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (1920, one light of each type from [`LightRig`]) on [`scene::TestScene`] (one render job: [`standard_job`]) |
-//! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
+//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (5376, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | [`lights`] | `deferred_shading/Lighting` (all 28 variants) over LDR and HDR G-buffers, positions from depth |
+//! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test; not part of `check-gpu`) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
