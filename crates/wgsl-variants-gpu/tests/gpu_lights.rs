@@ -124,6 +124,40 @@ fn a_wrong_falloff_fails_the_check() {
     );
 }
 
+/// The shadow check is not vacuous: a PCF tent whose centre weighs 3/16 instead of 4/16 fails
+/// it, in the soft spot variants only.
+#[test]
+fn a_wrong_pcf_weight_fails_the_check() {
+    let raw: Vec<RawFile> = bundled_files()
+        .into_iter()
+        .map(|mut f| {
+            if f.path == "lighting/light_bindings.wgsl" {
+                let text = String::from_utf8(f.bytes).unwrap();
+                let wrong = text.replace(
+                    "4.0 * textureSampleCompareLevel",
+                    "3.0 * textureSampleCompareLevel",
+                );
+                assert_ne!(text, wrong, "the mutation applies");
+                f.bytes = wrong.into_bytes();
+            }
+            f
+        })
+        .collect();
+    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0 && !report.passed());
+    assert!(
+        p.first_mismatches
+            .iter()
+            .all(|m| m.keywords.contains("SHADOWS_SOFT") && m.keywords.contains("SPOT")),
+        "{report}"
+    );
+    eprintln!("a wrong PCF weight is caught: {} mismatches", p.mismatches);
+}
+
 /// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every
 /// pixel within the bound derived from the G-buffer's quantization
 /// (`reference::tolerance::gbuffer_light_bound`), for every light type and two keyword sets.
