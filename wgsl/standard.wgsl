@@ -1,9 +1,10 @@
 #shader standard
 // Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow:
-// a forward base pass (1536 variants), a forward add pass for each extra per-pixel light (1920)
-// and a G-buffer pass for the deferred path (3072 variants). The program is
-// standard/my_lighting; the passes differ only in their keyword sets and in which of
-// FORWARD_BASE_PASS / FORWARD_ADD_PASS / DEFERRED_PASS they define.
+// a forward base pass (1536 variants), a forward add pass for each extra per-pixel light (5376),
+// a G-buffer pass for the deferred path (3072 variants) and the shadow caster (8). The program is
+// standard/my_lighting; the lit passes differ only in their keyword sets and in which of
+// FORWARD_BASE_PASS / FORWARD_ADD_PASS / DEFERRED_PASS they define. The caster is
+// standard/shadow_caster.
 
 #pass ForwardBase
 #tag LightMode ForwardBase
@@ -33,6 +34,18 @@
 #pragma shader_feature _DETAIL_ALBEDO_MAP
 #pragma shader_feature _DETAIL_NORMAL_MAP
 #pragma multi_compile DIRECTIONAL DIRECTIONAL_COOKIE POINT POINT_COOKIE SPOT
+// Unity's multi_compile_fwdadd_fullshadows: the lighting pass's shadow keywords and pairings.
+#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE
+#pragma multi_compile _ SHADOWS_SOFT
+#pragma exclude SHADOWS_DEPTH POINT
+#pragma exclude SHADOWS_DEPTH POINT_COOKIE
+#pragma exclude SHADOWS_DEPTH DIRECTIONAL
+#pragma exclude SHADOWS_DEPTH DIRECTIONAL_COOKIE
+#pragma exclude SHADOWS_CUBE SPOT
+#pragma exclude SHADOWS_CUBE DIRECTIONAL
+#pragma exclude SHADOWS_CUBE DIRECTIONAL_COOKIE
+#pragma exclude SHADOWS_SOFT DIRECTIONAL
+#pragma exclude SHADOWS_SOFT DIRECTIONAL_COOKIE
 #define FORWARD_ADD_PASS
 #import standard/my_lighting
 #endpass
@@ -53,4 +66,19 @@
 #pragma multi_compile _ UNITY_ENABLE_REFLECTION_BUFFERS
 #define DEFERRED_PASS
 #import standard/my_lighting
+#endpass
+
+// Renders the shadow maps (Unity's multi_compile_shadowcaster: SHADOWS_DEPTH SHADOWS_CUBE) with
+// the camera binding set to the light's: depth only for a spot's 2D map; for a point light's
+// cube, each face writes |p - light| / range (docs/shading.md §11). Of the material keywords
+// only those that change which fragments are discarded: _RENDERING_CUTOUT, and
+// _SMOOTHNESS_ALBEDO (main_tex.a is smoothness, not alpha). Without cutout the latter changes
+// nothing (2 duplicate variants, as Unity would build them).
+#pass ShadowCaster
+#tag LightMode ShadowCaster
+#pragma shader_feature _RENDERING_CUTOUT
+#pragma shader_feature _SMOOTHNESS_ALBEDO
+#pragma multi_compile SHADOWS_DEPTH SHADOWS_CUBE
+#define SHADOW_CASTER_PASS
+#import standard/shadow_caster
 #endpass

@@ -21,6 +21,7 @@
 //! | [`probe`] | reflection probes: box projection, mip, RGBM, blending, falloff, draw order |
 //! | [`brdf`] | metallic workflow, ambient SH, indirect specular, direct light |
 //! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
+//! | [`shadow`] | shadows: the host API with its errors, spot and cube-face matrices, depth comparison, PCF footprints and weights, strength |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
 //! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
 //!
@@ -48,6 +49,7 @@ pub mod ldr;
 pub mod light;
 pub mod probe;
 pub mod quantize;
+pub mod shadow;
 pub mod surface;
 pub mod tolerance;
 pub mod urp;

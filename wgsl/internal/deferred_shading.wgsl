@@ -3,7 +3,7 @@
 // its direct light to RT3, read from the G-buffer and the depth buffer.
 //   group 0: 0 rt0, 1 rt1, 2 rt2 (the G-buffer, read with textureLoad),
 //            3 depth (the depth buffer's depth aspect, or an R32Float copy, read with textureLoad),
-//            4 camera (DeferredCamera), 6-9 the light (lighting/light_bindings)
+//            4 camera (DeferredCamera), 6-14 the light and its shadow (lighting/light_bindings)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
@@ -18,6 +18,20 @@
 
 #pass Lighting
 #pragma multi_compile POINT DIRECTIONAL SPOT POINT_COOKIE DIRECTIONAL_COOKIE
+// Shadows as Unity pairs them with the light types (lighting/light_bindings): a 2D map for
+// spots, a cube for points, SHADOWS_SOFT for either (with no shadow keyword it changes nothing:
+// those 6 variants are duplicates, as in Unity). 28 variants, 22 distinct.
+#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE
+#pragma multi_compile _ SHADOWS_SOFT
+#pragma exclude SHADOWS_DEPTH POINT
+#pragma exclude SHADOWS_DEPTH POINT_COOKIE
+#pragma exclude SHADOWS_DEPTH DIRECTIONAL
+#pragma exclude SHADOWS_DEPTH DIRECTIONAL_COOKIE
+#pragma exclude SHADOWS_CUBE SPOT
+#pragma exclude SHADOWS_CUBE DIRECTIONAL
+#pragma exclude SHADOWS_CUBE DIRECTIONAL_COOKIE
+#pragma exclude SHADOWS_SOFT DIRECTIONAL
+#pragma exclude SHADOWS_SOFT DIRECTIONAL_COOKIE
 #pragma multi_compile _ UNITY_HDR_ON
 #import internal/fullscreen
 #import deferred/gbuffer

@@ -5,13 +5,28 @@
 //
 //   group 0: 6 light (Light), 7 light_cookie (texture_2d, DIRECTIONAL_COOKIE),
 //            8 light_cookie_cube (texture_cube, POINT_COOKIE),
-//            9 light_cookie_sampler (DIRECTIONAL_COOKIE, POINT_COOKIE; repeat addressing)
+//            9 light_cookie_sampler (DIRECTIONAL_COOKIE, POINT_COOKIE; repeat addressing),
+//            10 shadow (Shadow; SHADOWS_DEPTH, SHADOWS_CUBE),
+//            11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler (sampler_comparison,
+//               nearest, LessEqual, clamp to edge) (SHADOWS_DEPTH),
+//            13 shadow_cube (texture_cube<f32>, r = |p - light| / range) + 14 shadow_cube_sampler
+//               (nearest) (SHADOWS_CUBE)
+//
+// Shadow keywords (Unity's multi_compile_lightpass / multi_compile_fwdadd_fullshadows pairs):
+// SHADOWS_DEPTH with SPOT only (a 2D map through the light's view-projection), SHADOWS_CUBE with
+// POINT and POINT_COOKIE (a cube of distances), SHADOWS_SOFT filters either (docs/shading.md
+// §11); the passes' exclude pragmas drop every other pairing.
 //
 // Provides:
 //   fn light_at(p: vec3f) -> LightSample   the light at world position p; exactly one of
-//       DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light)
+//       DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light),
+//       times the shadow with SHADOWS_DEPTH or SHADOWS_CUBE
+//   fn light_shadow(p: vec3f) -> f32       the shadow factor in [1 - strength, 1] (1 without one)
 
 #import lighting/light
+#if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
+#import lighting/shadow
+#endif
 
 @group(0) @binding(6) var<uniform> light: Light;
 #if defined(DIRECTIONAL_COOKIE)
@@ -23,8 +38,81 @@
 #if defined(DIRECTIONAL_COOKIE) || defined(POINT_COOKIE)
 @group(0) @binding(9) var light_cookie_sampler: sampler;
 #endif
+#if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
+@group(0) @binding(10) var<uniform> shadow: Shadow;
+#endif
+#if defined(SHADOWS_DEPTH)
+@group(0) @binding(11) var shadow_map: texture_depth_2d;
+@group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
+#endif
+#if defined(SHADOWS_CUBE)
+@group(0) @binding(13) var shadow_cube: texture_cube<f32>;
+@group(0) @binding(14) var shadow_cube_sampler: sampler;
+#endif
 
+#if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
 fn light_at(p: vec3f) -> LightSample {
+    var s = light_unshadowed(p);
+    s.attenuation *= light_shadow(p);
+    return s;
+}
+#else
+fn light_at(p: vec3f) -> LightSample {
+    return light_unshadowed(p);
+}
+#endif
+
+fn light_shadow(p: vec3f) -> f32 {
+#if defined(SHADOWS_DEPTH)
+    // Lit where the receiver's depth minus the bias is <= the caster's (the sampler's LessEqual).
+    let c = shadow_coords(shadow.world_to_shadow, p);
+    let z = c.z - shadow.params.y;
+#if defined(SHADOWS_SOFT)
+    // 3 x 3 texels around the receiver's, tent weights (1 2 1) x (1 2 1) / 16.
+    var v = 0.0;
+    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, -1));
+    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, -1));
+    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, -1));
+    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, 0));
+    v += 4.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, 0));
+    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, 0));
+    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, 1));
+    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, 1));
+    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, 1));
+    let visibility = v / 16.0;
+#else
+    let visibility = textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z);
+#endif
+    return shadow_mix(shadow.params.x, visibility);
+#elif defined(SHADOWS_CUBE)
+    // Lit where the stored distance is >= the receiver's, both over the range (Unity's
+    // SampleCubeDistance(vec) < mydist ? shadowed : lit, mydist biased by params.y).
+    let d = p - light.position.xyz;
+    let mydist = length(d) * shadow.params.w * shadow.params.y;
+#if defined(SHADOWS_SOFT)
+    // Unity's four taps: d moved by 1/128 (world units) along alternating diagonals, 1/4 each.
+    let o = 1.0 / 128.0;
+    let visibility = 0.25
+        * (light_cube_lit(d + vec3f(o, o, o), mydist) + light_cube_lit(d + vec3f(-o, -o, o), mydist)
+            + light_cube_lit(d + vec3f(-o, o, -o), mydist) + light_cube_lit(d + vec3f(o, -o, -o), mydist));
+#else
+    let visibility = light_cube_lit(d, mydist);
+#endif
+    return shadow_mix(shadow.params.x, visibility);
+#else
+    return 1.0;
+#endif
+}
+
+#if defined(SHADOWS_CUBE)
+// 1 where the cube's stored distance in direction d is >= mydist, else 0.
+fn light_cube_lit(d: vec3f, mydist: f32) -> f32 {
+    let stored = textureSampleLevel(shadow_cube, shadow_cube_sampler, d, 0.0).r;
+    return select(0.0, 1.0, stored >= mydist);
+}
+#endif
+
+fn light_unshadowed(p: vec3f) -> LightSample {
 #if defined(DIRECTIONAL)
     return light_directional(light);
 #elif defined(DIRECTIONAL_COOKIE)

@@ -2,10 +2,11 @@
 // Deferred). Binding numbers are stable across variants; a keyword that is off removes its
 // texture binding entirely, the probes are bound only where the pass samples them (ForwardBase,
 // and Deferred without UNITY_ENABLE_REFLECTION_BUFFERS), the ambient + main light only where it
-// is used (not ForwardAdd), and the per-pixel light only in ForwardAdd.
+// is used (ForwardBase, Deferred), and the per-pixel light only in ForwardAdd. ShadowCaster
+// binds the camera (the light's view), the material, main_tex and the object.
 //
 //   group 0: 0 camera, 1 lighting, 2 probes, 3 probe_cube0, 4 probe_cube1, 5 probe_sampler,
-//            6-9 the per-pixel light (ForwardAdd; lighting/light_bindings)
+//            6-14 the per-pixel light and its shadow (ForwardAdd; lighting/light_bindings)
 //   group 1: 0 material, 1 material_sampler, 2 main_tex, 3 metallic_map (_METALLIC_MAP),
 //            4 normal_map (_NORMAL_MAP), 5 occlusion_map (_OCCLUSION_MAP),
 //            6 emission_map (_EMISSION_MAP), 7 detail_mask (_DETAIL_MASK),
@@ -48,7 +49,7 @@ struct Object {
 }
 
 @group(0) @binding(0) var<uniform> camera: Camera;
-#if !defined(FORWARD_ADD_PASS)
+#if defined(FORWARD_BASE_PASS) || defined(DEFERRED_PASS)
 @group(0) @binding(1) var<uniform> lighting: Lighting;
 #endif
 #if defined(FORWARD_BASE_PASS) || (defined(DEFERRED_PASS) && !UNITY_ENABLE_REFLECTION_BUFFERS)

@@ -47,10 +47,14 @@ pub enum Resource {
         /// Addressing mode for u, v and w.
         address_mode: wgpu::AddressMode,
     },
-    /// A comparison sampler (`sampler_comparison`) with linear filtering.
+    /// A comparison sampler (`sampler_comparison`), clamp-to-edge addressing: with `nearest`
+    /// each lookup compares one texel (0 or 1), otherwise the hardware filters the 2 × 2
+    /// comparisons bilinearly.
     ComparisonSampler {
         /// The comparison function.
         compare: wgpu::CompareFunction,
+        /// Nearest filtering instead of linear.
+        nearest: bool,
     },
 }
 
@@ -236,11 +240,16 @@ fn upload_one(ctx: &GpuContext, label: &str, resource: &Resource) -> Result<GpuR
             nearest,
             address_mode,
         } => GpuResource::Sampler(create_sampler(ctx, label, *nearest, *address_mode)),
-        Resource::ComparisonSampler { compare } => {
+        Resource::ComparisonSampler { compare, nearest } => {
+            let filter = if *nearest {
+                wgpu::FilterMode::Nearest
+            } else {
+                wgpu::FilterMode::Linear
+            };
             GpuResource::Sampler(device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some(label),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
+                mag_filter: filter,
+                min_filter: filter,
                 compare: Some(*compare),
                 ..Default::default()
             }))

@@ -1,5 +1,5 @@
-//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (10) and
-//! of `standard/ForwardAdd` (1920) rendered on lavapipe (or any GPU) and compared pixel by pixel
+//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (28) and
+//! of `standard/ForwardAdd` (5376), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
 //! with the CPU reference (`wgsl_variants::reference::light`), each keyword proven to change at
 //! least one pixel; and a library with a wrong falloff is caught.
 //!
@@ -43,17 +43,28 @@ fn deferred_shading_every_variant_matches_the_reference() {
     );
     assert!(p.passed(), "{report}");
     assert_eq!(p.mismatches, 0, "{report}");
-    assert_eq!(p.variants_run, 10);
+    assert_eq!(p.variants_run, 28);
     // Every variant over two G-buffers of its HDR mode, 16 × 16 pixels each.
-    assert_eq!((p.draws, p.pixels_compared), (20, 20 * 256));
-    // Five light keywords (four against POINT, the set's first) and UNITY_HDR_ON.
-    assert_eq!(p.keywords.len(), 5, "{report}");
-    assert!(
-        p.keywords
-            .iter()
-            .all(|k| k.pairs_changed == k.pairs && k.pairs > 0),
-        "{report}"
-    );
+    assert_eq!((p.draws, p.pixels_compared), (56, 56 * 256));
+    // Four light keywords against POINT (the set's first), SHADOWS_DEPTH, SHADOWS_CUBE,
+    // SHADOWS_SOFT and UNITY_HDR_ON.
+    assert_eq!(p.keywords.len(), 8, "{report}");
+    for k in &p.keywords {
+        eprintln!(
+            "  {}: {} of {} pairs changed",
+            k.keyword, k.pairs_changed, k.pairs
+        );
+        if k.keyword == "SHADOWS_SOFT" {
+            // Only with a shadow keyword: without one it changes nothing (those 6 variants are
+            // duplicates, as in Unity); with one, every pair changes.
+            assert_eq!((k.pairs, k.pairs_changed), (12, 6), "{report}");
+        } else {
+            assert!(k.pairs_changed == k.pairs && k.pairs > 0, "{report}");
+        }
+    }
+    for note in &p.notes {
+        eprintln!("  note: {note}");
+    }
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 
@@ -65,7 +76,7 @@ fn forward_add_every_variant_matches_the_reference() {
         return;
     };
     let p = &report.passes[0];
-    let variants = 1920usize.div_ceil(n);
+    let variants = 5376usize.div_ceil(n);
     eprintln!(
         "standard/ForwardAdd on {}: {} pixels over {} variants ({} discarded) in {:.1} s",
         report.adapter, p.pixels_compared, p.variants_run, p.discarded_compared, p.seconds
@@ -74,8 +85,8 @@ fn forward_add_every_variant_matches_the_reference() {
     assert_eq!(p.variants_run, variants, "{report}");
     assert_eq!(p.pixels_compared, variants * 256);
     if n == 1 {
-        // 4 light keywords (against DIRECTIONAL) + 10 material keywords.
-        assert_eq!(p.keywords.len(), 14, "{report}");
+        // 4 light keywords (against DIRECTIONAL), 3 shadow keywords, 10 material keywords.
+        assert_eq!(p.keywords.len(), 17, "{report}");
         assert!(p.untested_keywords.is_empty(), "{report}");
         assert!(p.passed(), "{report}");
     }
@@ -111,6 +122,40 @@ fn a_wrong_falloff_fails_the_check() {
         "a wrong falloff is caught: {} mismatches, e.g. {m}",
         p.mismatches
     );
+}
+
+/// The shadow check is not vacuous: a PCF tent whose centre weighs 3/16 instead of 4/16 fails
+/// it, in the soft spot variants only.
+#[test]
+fn a_wrong_pcf_weight_fails_the_check() {
+    let raw: Vec<RawFile> = bundled_files()
+        .into_iter()
+        .map(|mut f| {
+            if f.path == "lighting/light_bindings.wgsl" {
+                let text = String::from_utf8(f.bytes).unwrap();
+                let wrong = text.replace(
+                    "4.0 * textureSampleCompareLevel",
+                    "3.0 * textureSampleCompareLevel",
+                );
+                assert_ne!(text, wrong, "the mutation applies");
+                f.bytes = wrong.into_bytes();
+            }
+            f
+        })
+        .collect();
+    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0 && !report.passed());
+    assert!(
+        p.first_mismatches
+            .iter()
+            .all(|m| m.keywords.contains("SHADOWS_SOFT") && m.keywords.contains("SPOT")),
+        "{report}"
+    );
+    eprintln!("a wrong PCF weight is caught: {} mismatches", p.mismatches);
 }
 
 /// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every

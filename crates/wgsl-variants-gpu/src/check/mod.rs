@@ -13,8 +13,9 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (1920, one light of each type from [`LightRig`]) on [`scene::TestScene`] (one render job: [`standard_job`]) |
-//! | [`lights`] | `deferred_shading/Lighting` (all 10 variants) over LDR and HDR G-buffers, positions from depth |
+//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (5376, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | [`lights`] | `deferred_shading/Lighting` (all 28 variants) over LDR and HDR G-buffers, positions from depth |
+//! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test; not part of `check-gpu`) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
@@ -32,6 +33,7 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod shadows;
 pub mod urp;
 pub mod volumes;
 
@@ -209,7 +211,13 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         seconds: 0.0,
     };
     let scene = TestScene::default();
-    let rig = LightRig::new(&scene);
+    let mut rig = LightRig::new(&scene);
+    if selected
+        .iter()
+        .any(|&(s, p)| p == "ForwardAdd" || s == "deferred_shading")
+    {
+        rig.render_shadows(&ctx, lib)?;
+    }
     let threads = options.threads();
 
     let standard: Vec<&str> = selected

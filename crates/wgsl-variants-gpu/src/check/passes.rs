@@ -12,14 +12,16 @@ use std::time::Instant;
 use glam::Vec4;
 
 use super::compare::{clear_value, format_name, pixel, texel_within};
-use super::lights::LightRig;
+use super::lights::{LightRig, shadowed};
 use super::report::{KeywordCoverage, Mismatch, PassReport};
 use super::scene::TestScene;
+use super::shadows::within;
 use crate::{
     CheckError, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat,
     render_with,
 };
 use wgsl_variants::reference::light::{Cookies, LightType};
+use wgsl_variants::reference::shadow::ShadowKeywords;
 use wgsl_variants::reference::surface::{
     Keywords, shade_deferred, shade_forward, shade_forward_add,
 };
@@ -97,12 +99,15 @@ pub fn reference_outputs(
 }
 
 /// The reference output of `standard/ForwardAdd` at pixel `(x, y)` under the rig's light of
-/// type `light`; `None` where the pixel is discarded.
+/// type `light`, its colour scaled by the shadow factor `shadow` (1: unshadowed); `None` where
+/// the pixel is discarded.
+#[allow(clippy::too_many_arguments)]
 pub fn forward_add_output(
     scene: &TestScene,
     rig: &LightRig,
     kw: &Keywords,
     light: LightType,
+    shadow: f32,
     x: u32,
     y: u32,
 ) -> Option<Vec4> {
@@ -117,7 +122,7 @@ pub fn forward_add_output(
         &scene.texels(x, y),
         &scene.geometry(x, y),
         scene.scene.camera_position,
-        rig.params(light),
+        &shadowed(rig.params(light), shadow),
         light,
         Some(cookies),
     )
@@ -256,12 +261,15 @@ pub fn check_standard_pass(
     let mut keywords = Vec::with_capacity(choices.len());
     let mut lights = Vec::with_capacity(choices.len());
     let mut job_light: Vec<Option<LightType>> = Vec::new();
+    let mut shadows = Vec::with_capacity(choices.len());
     for choice in &choices {
         let variant = Variant {
             pass,
             choice: choice.clone(),
         };
         let (light, names) = LightType::split(&variant.keywords());
+        let (shadow, names) = ShadowKeywords::split(&names);
+        shadows.push(shadow);
         let kw = Keywords::from_names(&names).map_err(|e| {
             GpuError::from(CheckError::UnknownToReference {
                 variant: variant.label(),
@@ -301,7 +309,20 @@ pub fn check_standard_pass(
         let bytes = &outputs[text_of[v]];
         for (i, (x, y)) in scene.pixels().enumerate() {
             let expected = match lights[v] {
-                Some(light) => forward_add_output(scene, rig, kw, light, x, y).map(|c| vec![c]),
+                Some(light) => {
+                    // The shadow interval's two ends; the GPU value is held to the interval
+                    // (a point wherever no shadow tap is within a hair of flipping).
+                    let p = scene.world_position(x, y);
+                    let (lo, hi) = rig.shadow_factor(light, shadows[v], p);
+                    let ends = [lo, hi].map(|f| forward_add_output(scene, rig, kw, light, f, x, y));
+                    match ends {
+                        [Some(a), Some(b)] => {
+                            let (_, got) = pixel(targets[0].1.format, &bytes[0], i);
+                            Some(vec![within(got, a, b)])
+                        }
+                        _ => None,
+                    }
+                }
                 None => reference_outputs(scene, deferred, kw, x, y),
             };
             if expected.is_none() {

@@ -186,7 +186,7 @@ struct LightPipelineInput<'a> {
 /// A render pipeline over `wgsl`'s `vertex` / `fragment` entry points (no fragment stage:
 /// depth and stencil only), its bind groups from `resources`.
 #[allow(clippy::too_many_arguments)]
-fn pipeline(
+pub(crate) fn pipeline(
     ctx: &GpuContext,
     label: &str,
     wgsl: &str,
