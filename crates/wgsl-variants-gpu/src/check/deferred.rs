@@ -596,12 +596,7 @@ pub fn check_deferred_chain(
             };
             of(a) != of(b)
         });
-        add.untested_keywords = add
-            .keywords
-            .iter()
-            .filter(|k| k.pairs_changed == 0)
-            .map(|k| k.keyword.clone())
-            .collect();
+        add.judge_keywords();
         add.notes.push(String::from(
             "HDR: One/One onto the Rgba16Float RT3; LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
         ));

@@ -527,12 +527,7 @@ pub fn check_deferred_shading(
         report.distinct_shaders += 1;
     }
     report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.untested_keywords = report
-        .keywords
-        .iter()
-        .filter(|k| k.pairs_changed == 0)
-        .map(|k| k.keyword.clone())
-        .collect();
+    report.judge_keywords();
     report.notes.push(format!(
         "full-screen draws over {} G-buffers (LDR and HDR); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
         CHAIN_INPUTS.len() * 2

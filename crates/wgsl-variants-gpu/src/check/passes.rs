@@ -375,12 +375,7 @@ pub fn check_standard_pass(
             choices.len()
         ));
     } else if every == 1 && shard.is_none() {
-        report.untested_keywords = report
-            .keywords
-            .iter()
-            .filter(|k| k.pairs_changed == 0)
-            .map(|k| k.keyword.clone())
-            .collect();
+        report.judge_keywords();
     } else {
         report.notes.push(format!(
             "sampled every {every}th variant{}: keyword coverage is judged on the full space only",

@@ -113,6 +113,17 @@ impl PassReport {
         }
     }
 
+    /// Judges keyword coverage from `keywords`: every keyword no pair of checked variants showed
+    /// changing a pixel is listed in `untested_keywords` (which fails the report).
+    pub fn judge_keywords(&mut self) {
+        self.untested_keywords = self
+            .keywords
+            .iter()
+            .filter(|k| k.pairs_changed == 0)
+            .map(|k| k.keyword.clone())
+            .collect();
+    }
+
     /// Records one comparison; `mismatch` is built only when the value is not accepted.
     pub fn record(&mut self, ok: bool, mismatch: impl FnOnce() -> Mismatch) {
         self.pixels_compared += 1;

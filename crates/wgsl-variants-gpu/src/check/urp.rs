@@ -501,12 +501,7 @@ pub(crate) fn check_universal_gbuffer(
                 .unwrap_or_default()
         ));
     } else {
-        report.untested_keywords = report
-            .keywords
-            .iter()
-            .filter(|k| k.pairs_changed == 0)
-            .map(|k| k.keyword.clone())
-            .collect();
+        report.judge_keywords();
     }
     if let Some(t) = selection.cover {
         report.notes.push(format!(
