@@ -10,7 +10,6 @@
 mod common;
 
 use wgsl_variants::Library;
-use wgsl_variants::source::{RawFile, bundled_files};
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
 
 fn run(lib: &Library, shader: &str, pass: &str, sample: usize) -> Option<CheckReport> {
@@ -95,19 +94,11 @@ fn forward_add_every_variant_matches_the_reference() {
 /// The check is not vacuous: a falloff of 1/(1 + 24t) instead of 1/(1 + 25t) fails it.
 #[test]
 fn a_wrong_falloff_fails_the_check() {
-    let raw: Vec<RawFile> = bundled_files()
-        .into_iter()
-        .map(|mut f| {
-            if f.path == "lighting/light.wgsl" {
-                let text = String::from_utf8(f.bytes).unwrap();
-                let wrong = text.replace("/ (1.0 + 25.0 * t)", "/ (1.0 + 24.0 * t)");
-                assert_ne!(text, wrong, "the mutation applies");
-                f.bytes = wrong.into_bytes();
-            }
-            f
-        })
-        .collect();
-    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let lib = common::mutate::bundled_with(
+        "lighting/light.wgsl",
+        "/ (1.0 + 25.0 * t)",
+        "/ (1.0 + 24.0 * t)",
+    );
     let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
         return;
     };
@@ -128,22 +119,11 @@ fn a_wrong_falloff_fails_the_check() {
 /// it, in the soft spot variants only.
 #[test]
 fn a_wrong_pcf_weight_fails_the_check() {
-    let raw: Vec<RawFile> = bundled_files()
-        .into_iter()
-        .map(|mut f| {
-            if f.path == "lighting/light_bindings.wgsl" {
-                let text = String::from_utf8(f.bytes).unwrap();
-                let wrong = text.replace(
-                    "4.0 * textureSampleCompareLevel",
-                    "3.0 * textureSampleCompareLevel",
-                );
-                assert_ne!(text, wrong, "the mutation applies");
-                f.bytes = wrong.into_bytes();
-            }
-            f
-        })
-        .collect();
-    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let lib = common::mutate::bundled_with(
+        "lighting/light_bindings.wgsl",
+        "4.0 * textureSampleCompareLevel",
+        "3.0 * textureSampleCompareLevel",
+    );
     let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
         return;
     };

@@ -15,7 +15,6 @@
 mod common;
 
 use wgsl_variants::Library;
-use wgsl_variants::source::{RawFile, bundled_files};
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, TestScene, pictures};
 
 /// Every n-th variant of the standard passes (`WGSL_VARIANTS_GPU_SAMPLE`, default 1: all).
@@ -127,22 +126,11 @@ fn deferred_reflections_add_and_final_match_the_reference() {
 /// pixel.
 #[test]
 fn a_wrong_library_fails_the_check() {
-    let raw: Vec<RawFile> = bundled_files()
-        .into_iter()
-        .map(|mut f| {
-            if f.path == "lighting/brdf.wgsl" {
-                let text = String::from_utf8(f.bytes).unwrap();
-                let wrong = text.replace(
-                    "const BRDF_DIELECTRIC_SPEC: f32 = 0.04;",
-                    "const BRDF_DIELECTRIC_SPEC: f32 = 0.05;",
-                );
-                assert_ne!(text, wrong, "the mutation applies");
-                f.bytes = wrong.into_bytes();
-            }
-            f
-        })
-        .collect();
-    let lib = Library::from_raw(raw, &Default::default()).unwrap();
+    let lib = common::mutate::bundled_with(
+        "lighting/brdf.wgsl",
+        "const BRDF_DIELECTRIC_SPEC: f32 = 0.04;",
+        "const BRDF_DIELECTRIC_SPEC: f32 = 0.05;",
+    );
     let Some(report) = run(&lib, Some("standard"), Some("ForwardBase"), 97) else {
         return;
     };

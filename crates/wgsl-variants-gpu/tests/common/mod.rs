@@ -2,3 +2,4 @@
 #![allow(dead_code)] // each test file uses a subset
 
 pub mod gpu;
+pub mod mutate;
