@@ -5,8 +5,9 @@
 //   2 GBuffer2 Rgba8Unorm       octahedral normal 8:8:8 (_GBUFFER_NORMALS_OCT), else
 //              Rgba8Snorm       the normal as is; a = smoothness
 //   3 GBuffer3 Rg11b10Ufloat    emission + GI
-//   next: R32Float depth as colour (_RENDER_PASS_ENABLED), Rgba8Unorm shadowmask
-//         (SHADOWS_SHADOWMASK), R32Uint rendering layers (_WRITE_RENDERING_LAYERS)
+//   next: R32Float depth as colour (_RENDER_PASS_ENABLED), R32Uint rendering layers
+//         (_WRITE_RENDERING_LAYERS), Rgba8Unorm shadowmask (URP's OUTPUT_SHADOWMASK:
+//         SHADOWS_SHADOWMASK, or _MIXED_LIGHTING_SUBTRACTIVE without LIGHTMAP_ON)
 //
 // Provides (no bindings):
 //   const URP_FLAG_RECEIVE_SHADOWS_OFF / _SPECULAR_HIGHLIGHTS_OFF / _SUBTRACTIVE_MIXED_LIGHTING
@@ -31,17 +32,17 @@ struct UrpGBufferOutput {
 #if defined(_RENDER_PASS_ENABLED)
     @location(4) depth_as_color: f32,
 #endif
-#if defined(SHADOWS_SHADOWMASK) && defined(_RENDER_PASS_ENABLED)
-    @location(5) shadow_mask: vec4f,
-#elif defined(SHADOWS_SHADOWMASK)
-    @location(4) shadow_mask: vec4f,
-#endif
-#if defined(_WRITE_RENDERING_LAYERS) && defined(SHADOWS_SHADOWMASK) && defined(_RENDER_PASS_ENABLED)
-    @location(6) rendering_layers: u32,
-#elif defined(_WRITE_RENDERING_LAYERS) && (defined(SHADOWS_SHADOWMASK) || defined(_RENDER_PASS_ENABLED))
+#if defined(_WRITE_RENDERING_LAYERS) && defined(_RENDER_PASS_ENABLED)
     @location(5) rendering_layers: u32,
 #elif defined(_WRITE_RENDERING_LAYERS)
     @location(4) rendering_layers: u32,
+#endif
+#if (defined(SHADOWS_SHADOWMASK) || (defined(_MIXED_LIGHTING_SUBTRACTIVE) && !defined(LIGHTMAP_ON))) && defined(_RENDER_PASS_ENABLED) && defined(_WRITE_RENDERING_LAYERS)
+    @location(6) shadow_mask: vec4f,
+#elif (defined(SHADOWS_SHADOWMASK) || (defined(_MIXED_LIGHTING_SUBTRACTIVE) && !defined(LIGHTMAP_ON))) && (defined(_RENDER_PASS_ENABLED) || defined(_WRITE_RENDERING_LAYERS))
+    @location(5) shadow_mask: vec4f,
+#elif (defined(SHADOWS_SHADOWMASK) || (defined(_MIXED_LIGHTING_SUBTRACTIVE) && !defined(LIGHTMAP_ON)))
+    @location(4) shadow_mask: vec4f,
 #endif
 }
 

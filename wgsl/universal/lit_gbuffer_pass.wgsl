@@ -132,7 +132,9 @@ fn fs_main(in: UrpVertexOutput) -> UrpGBufferOutput {
 #endif
 #if defined(SHADOWS_SHADOWMASK) && defined(LIGHTMAP_ON)
     out.shadow_mask = textureSample(shadowmask_map, lightmap_sampler, in.lightmap_uv);
-#elif defined(SHADOWS_SHADOWMASK)
+#elif (defined(SHADOWS_SHADOWMASK) || (defined(_MIXED_LIGHTING_SUBTRACTIVE) && !defined(LIGHTMAP_ON)))
+    // URP's OUTPUT_SHADOWMASK: a dynamic object under subtractive lighting stores its
+    // probe occlusion too.
     out.shadow_mask = lighting.probes_occlusion;
 #endif
 #if defined(_WRITE_RENDERING_LAYERS)

@@ -1,9 +1,14 @@
 //! The colour targets of URP's G-buffer (docs/urp.md §1), for pipelines of the bundled
 //! `universal_lit` shader's `UniversalGBuffer` pass.
 
+use wgsl_variants::reference::urp::gbuffer::{URP_KEYWORD_NAMES, UrpKeywords};
+
 /// The colour-target formats a `UniversalGBuffer` variant with these keywords writes, in
-/// location order: GBuffer0–3, then depth as colour (`_RENDER_PASS_ENABLED`), shadowmask
-/// (`SHADOWS_SHADOWMASK`) and rendering layers (`_WRITE_RENDERING_LAYERS`).
+/// location order: GBuffer0–3, then depth as colour (`_RENDER_PASS_ENABLED`), rendering layers
+/// (`_WRITE_RENDERING_LAYERS`) and shadowmask
+/// ([`UrpKeywords::writes_shadow_mask`](wgsl_variants::reference::urp::gbuffer::UrpKeywords::writes_shadow_mask)),
+/// as URP's `UnityGBuffer.hlsl` assigns its optional slots. Names the pass does not declare
+/// are ignored.
 ///
 /// ```
 /// use wgsl_variants_gpu::urp_gbuffer_formats;
@@ -30,11 +35,21 @@ pub fn urp_gbuffer_formats(keywords: &[&str]) -> Vec<wgpu::TextureFormat> {
     if on("_RENDER_PASS_ENABLED") {
         formats.push(F::R32Float);
     }
-    if on("SHADOWS_SHADOWMASK") {
-        formats.push(F::Rgba8Unorm);
-    }
     if on("_WRITE_RENDERING_LAYERS") {
         formats.push(F::R32Uint);
     }
+    if writes_shadow_mask(keywords) {
+        formats.push(F::Rgba8Unorm);
+    }
     formats
+}
+
+/// Whether a variant with these keywords writes the shadowmask target (the reference's rule).
+pub(crate) fn writes_shadow_mask(keywords: &[&str]) -> bool {
+    let known: Vec<&str> = keywords
+        .iter()
+        .copied()
+        .filter(|k| URP_KEYWORD_NAMES.contains(k))
+        .collect();
+    UrpKeywords::from_names(&known).is_ok_and(|k| k.writes_shadow_mask())
 }

@@ -124,6 +124,22 @@ impl UrpKeywords {
         self.0[i]
     }
 
+    /// Whether the variant writes the shadowmask target (URP's `OUTPUT_SHADOWMASK`,
+    /// docs/urp.md §1): under `SHADOWS_SHADOWMASK`, and under subtractive mixed lighting
+    /// without a lightmap (a dynamic object then stores its probe occlusion).
+    ///
+    /// ```
+    /// use wgsl_variants::reference::urp::gbuffer::UrpKeywords;
+    /// let k = |n: &[&str]| UrpKeywords::from_names(n).unwrap().writes_shadow_mask();
+    /// assert!(k(&["SHADOWS_SHADOWMASK"]) && k(&["SHADOWS_SHADOWMASK", "LIGHTMAP_ON"]));
+    /// assert!(k(&["_MIXED_LIGHTING_SUBTRACTIVE"]));
+    /// assert!(!k(&["_MIXED_LIGHTING_SUBTRACTIVE", "LIGHTMAP_ON"]) && !k(&[]));
+    /// ```
+    pub fn writes_shadow_mask(&self) -> bool {
+        self.on(kw::SHADOWS_SHADOWMASK)
+            || (self.on(kw::MIXED_LIGHTING_SUBTRACTIVE) && !self.on(kw::LIGHTMAP_ON))
+    }
+
     /// The material flags the variant writes (docs/urp.md §2).
     ///
     /// ```
@@ -456,8 +472,8 @@ pub struct UrpGBufferOutput {
     pub gbuffer3: Vec3,
     /// Depth as colour (`_RENDER_PASS_ENABLED`).
     pub depth_as_color: Option<f32>,
-    /// Shadowmask (`SHADOWS_SHADOWMASK`): the baked texel with `LIGHTMAP_ON`, else
-    /// `unity_ProbesOcclusion`.
+    /// Shadowmask ([`UrpKeywords::writes_shadow_mask`]): the baked texel with `LIGHTMAP_ON`
+    /// (and `SHADOWS_SHADOWMASK`), else `unity_ProbesOcclusion`.
     pub shadow_mask: Option<Vec4>,
     /// Rendering layers (`_WRITE_RENDERING_LAYERS`).
     pub rendering_layers: Option<u32>,
@@ -502,7 +518,7 @@ pub fn shade_gbuffer(
         smoothness: s.smoothness,
         gbuffer3: s.emission + gi * s.occlusion,
         depth_as_color: k.on(kw::RENDER_PASS_ENABLED).then_some(pixel.depth),
-        shadow_mask: k.on(kw::SHADOWS_SHADOWMASK).then(|| {
+        shadow_mask: k.writes_shadow_mask().then(|| {
             if k.on(kw::LIGHTMAP_ON) {
                 tex.shadowmask
             } else {
@@ -566,7 +582,7 @@ impl UrpTexel {
 
 impl UrpGBufferOutput {
     /// The expected texel of every target the variant writes, in location order (docs/urp.md
-    /// §1): GBuffer0–3, depth as colour, shadowmask, rendering layers.
+    /// §1): GBuffer0–3, depth as colour, rendering layers, shadowmask.
     pub fn texels(&self, k: &UrpKeywords) -> Vec<UrpTexel> {
         let gbuffer2 = if k.on(kw::GBUFFER_NORMALS_OCT) {
             UrpTexel::OctNormal {
@@ -583,8 +599,8 @@ impl UrpGBufferOutput {
             UrpTexel::Ufloat(self.gbuffer3),
         ];
         out.extend(self.depth_as_color.map(UrpTexel::F32));
-        out.extend(self.shadow_mask.map(UrpTexel::Unorm8));
         out.extend(self.rendering_layers.map(UrpTexel::U32));
+        out.extend(self.shadow_mask.map(UrpTexel::Unorm8));
         out
     }
 }
@@ -713,6 +729,9 @@ mod tests {
         let texels = run(&all).unwrap().texels(&all);
         assert_eq!(texels.len(), 7);
         assert!(matches!(texels[2], UrpTexel::OctNormal { .. }));
-        assert_eq!(texels[6], UrpTexel::U32(5));
+        // Depth as colour, then rendering layers, then the shadowmask (URP's slot order).
+        assert!(matches!(texels[4], UrpTexel::F32(_)));
+        assert_eq!(texels[5], UrpTexel::U32(5));
+        assert!(matches!(texels[6], UrpTexel::Unorm8(_)));
     }
 }

@@ -27,6 +27,7 @@ use super::compare::format_name;
 use super::passes::{CLEAR, Worker, keyword_coverage, render_all};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MapTexture, Rng, TestScene, cube_resource, push_mat4, push_vec4};
+use crate::urp::writes_shadow_mask;
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat,
     VertexBuffer, urp_gbuffer_formats,
@@ -42,12 +43,12 @@ use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Shard};
 use wgsl_variants::{Library, Variant};
 
-/// The clear values of the optional targets: depth as colour, shadowmask, rendering layers
-/// (none of them a value the scene writes).
+/// The clear values of the optional targets, in location order: depth as colour, rendering
+/// layers, shadowmask (none of them a value the scene writes).
 pub const CLEAR_OPTIONAL: [[f64; 4]; 3] = [
     [0.25, 0.0, 0.0, 0.0],
-    [0.125, 0.875, 0.5, 0.375],
     [7.0, 0.0, 0.0, 0.0],
+    [0.125, 0.875, 0.5, 0.375],
 ];
 
 /// The seed of the URP scene's lightmap and shadowmask.
@@ -293,15 +294,18 @@ impl UrpScene {
 pub fn urp_targets(keywords: &[&str]) -> Vec<(String, ColorTarget)> {
     let names = ["GBuffer0", "GBuffer1", "GBuffer2", "GBuffer3"];
     let optional = [
-        ("_RENDER_PASS_ENABLED", "depth"),
-        ("SHADOWS_SHADOWMASK", "shadowmask"),
-        ("_WRITE_RENDERING_LAYERS", "rendering layers"),
+        ("depth", keywords.contains(&"_RENDER_PASS_ENABLED")),
+        (
+            "rendering layers",
+            keywords.contains(&"_WRITE_RENDERING_LAYERS"),
+        ),
+        ("shadowmask", writes_shadow_mask(keywords)),
     ];
     let extra = optional
         .iter()
-        .enumerate()
-        .filter(|(_, (k, _))| keywords.contains(k))
-        .map(|(i, (_, name))| (*name, CLEAR_OPTIONAL[i]));
+        .zip(CLEAR_OPTIONAL)
+        .filter(|((_, on), _)| *on)
+        .map(|((name, _), clear)| (*name, clear));
     let labels = names.iter().copied().zip(CLEAR).chain(extra);
     urp_gbuffer_formats(keywords)
         .into_iter()
