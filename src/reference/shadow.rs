@@ -280,6 +280,21 @@ pub fn cube_face_view_proj(position: Vec3, face: usize, range: f32) -> Mat4 {
     Mat4::from_cols(x, y, z, w).transpose()
 }
 
+/// What `standard/ShadowCaster` writes into a `SHADOWS_CUBE` face for the surface point `p`:
+/// the light-to-surface distance over the range, `|p − light| · inv_range` (Unity's
+/// `UnityEncodeCubeShadowDepth` input; no bias on the caster's side). Under `SHADOWS_DEPTH`
+/// the caster writes only the rasterizer's depth, [`shadow_coords`]`(view_proj, p).z`.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::shadow::caster_distance;
+/// // 3-4-5: |(3, 4, 0) − 0| = 5, over a range of 10.
+/// assert_eq!(caster_distance(Vec3::new(3.0, 4.0, 0.0), Vec3::ZERO, 0.1), 0.5);
+/// ```
+pub fn caster_distance(p: Vec3, light: Vec3, inv_range: f32) -> f32 {
+    (p - light).length() * inv_range
+}
+
 /// Clip → NDC → map space: `u = x/2 + ½`, `v = ½ − y/2` (rows run down), `z` the NDC depth.
 pub fn shadow_coords(world_to_shadow: Mat4, p: Vec3) -> Vec3 {
     let q = world_to_shadow * p.extend(1.0);

@@ -17,7 +17,71 @@ use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::shadows::{
     CUBE_SIZE, MAP_SIZE, ShadowRig, analytic_occlusion, render_caster,
 };
-use wgsl_variants_gpu::check::{LightRig, TestScene};
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, LightRig, TestScene};
+
+fn check_caster(lib: &Library) -> Option<CheckReport> {
+    let mut options = CheckOptions::default();
+    options.shader = Some("standard".to_owned());
+    options.pass = Some("ShadowCaster".to_owned());
+    options.adapter = common::gpu::adapter_filter();
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+/// `check-gpu`'s ShadowCaster part: all 8 variants, every texel of the spot map and of the
+/// six cube faces against the nearest kept occluder point, each keyword changing a texel.
+#[test]
+fn check_gpu_covers_every_caster_variant_per_texel() {
+    let Some(report) = check_caster(&Library::bundled().unwrap()) else {
+        return;
+    };
+    let p = &report.passes[0];
+    eprintln!("{report}");
+    assert!(report.passed(), "{report}");
+    assert_eq!(p.variants_run, 8);
+    // 4 spot maps of 64x64 and 4 x 6 cube faces of 16x16, less the edge texels.
+    let all = 4 * 64 * 64 + 4 * 6 * 16 * 16;
+    assert!(p.pixels_compared > all * 3 / 4 && p.pixels_compared < all);
+    assert!(p.discarded_compared > 0 && p.discarded_compared < p.pixels_compared);
+    assert_eq!(p.keywords.len(), 3, "{:?}", p.keywords);
+}
+
+/// The caster check is not vacuous: a cube distance 1 % long, and a cutout that never
+/// discards, are both caught (in the variants they touch only).
+#[test]
+fn a_wrong_caster_fails_the_check() {
+    let lib = common::mutate::bundled_with(
+        "standard/shadow_caster.wgsl",
+        "* camera.position.w;",
+        "* camera.position.w * 1.01;",
+    );
+    let Some(report) = check_caster(&lib) else {
+        return;
+    };
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0 && !report.passed());
+    assert!(
+        p.first_mismatches
+            .iter()
+            .all(|m| m.keywords.contains("SHADOWS_CUBE"))
+    );
+    let lib = common::mutate::bundled_with(
+        "standard/surface.wgsl",
+        "    if alpha < material.params.z {",
+        "    if alpha < -1.0 {",
+    );
+    let Some(report) = check_caster(&lib) else {
+        return;
+    };
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0);
+    assert!(
+        p.first_mismatches
+            .iter()
+            .all(|m| m.keywords.contains("_RENDERING_CUTOUT")
+                && !m.keywords.contains("_SMOOTHNESS_ALBEDO")),
+        "{report}"
+    );
+}
 
 fn context() -> Option<GpuContext> {
     common::gpu::or_skip(

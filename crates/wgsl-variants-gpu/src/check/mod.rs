@@ -15,7 +15,8 @@
 //! |---|---|
 //! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (5376, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps) on [`scene::TestScene`] (one render job: [`standard_job`]) |
 //! | [`lights`] | `deferred_shading/Lighting` (all 28 variants) over LDR and HDR G-buffers, positions from depth |
-//! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test; not part of `check-gpu`) |
+//! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
+//! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
@@ -23,6 +24,7 @@
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
 
+pub mod caster;
 pub(crate) mod compare;
 pub(crate) mod deferred;
 pub mod forward_deferred;
@@ -86,10 +88,11 @@ pub const DEFAULT_COVER_ABOVE: u64 = 8192;
 pub const DEFAULT_COVER_T: usize = 3;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 8] = [
+pub const PASSES: [(&str, &str); 9] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
+    ("standard", "ShadowCaster"),
     ("deferred_shading", "Lighting"),
     ("deferred_reflections", "Reflections"),
     ("deferred_reflections", "Add"),
@@ -222,7 +225,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
 
     let standard: Vec<&str> = selected
         .iter()
-        .filter(|(s, _)| *s == "standard")
+        .filter(|(s, p)| *s == "standard" && *p != "ShadowCaster")
         .map(|(_, p)| *p)
         .collect();
     let urp_selected = selected.contains(&("universal_lit", "UniversalGBuffer"));
@@ -267,6 +270,14 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
                 sample: options.sample,
                 shard: options.shard,
             },
+        )?);
+    }
+    if selected.contains(&("standard", "ShadowCaster")) {
+        report.passes.push(caster::check_shadow_caster(
+            &ctx,
+            lib,
+            &rig.spot_light,
+            &rig.point_light,
         )?);
     }
     if selected.contains(&("deferred_shading", "Lighting")) {

@@ -51,7 +51,7 @@ const CASTER_KEYWORDS: [&str; 1] = ["_RENDERING_CUTOUT"];
 
 /// The occluders' `main_tex`: 4 × 4 texels, a 2 × 2 checker of alpha 1 and 0.2 (white), so
 /// each quad has two holes.
-fn occluder_texture() -> MapTexture {
+pub fn occluder_texture() -> MapTexture {
     MapTexture {
         width: 4,
         height: 4,

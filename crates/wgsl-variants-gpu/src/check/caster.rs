@@ -1,0 +1,240 @@
+//! `standard/ShadowCaster`, every variant, per texel (docs/shading.md §11).
+//!
+//! Each variant renders the occluder scene of [`super::shadows`] (two cut-out quads) from the
+//! check's lights: `SHADOWS_DEPTH` into the spot light's 64 × 64 `Depth16Unorm` map,
+//! `SHADOWS_CUBE` into the point light's six 16 × 16 faces (`Rgba16Float` distance + depth).
+//! Every texel is compared with the reference: along the ray through the texel's centre, the
+//! nearest occluder point the caster keeps ([`wgsl_variants::reference::surface::surface`]'s
+//! alpha against the cutoff) gives the depth ([`shadow_coords`]`.z`, 1 LSB of 16-bit unorm)
+//! and, for a cube face, [`caster_distance`] (`F16_ULP` f16 steps); where the ray meets
+//! nothing kept, the clear values (depth 1, distance 1).
+//!
+//! A texel whose footprint straddles an occluder's edge or a hole's edge is decided by the
+//! rasterizer's coverage rules, not by the math: the reference classifies the texel's centre
+//! and four corners (which occluder is nearest and kept, if any) and skips the texel when they
+//! disagree. The report's notes count those texels.
+
+use std::time::Instant;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use super::passes::keyword_coverage;
+use super::report::{Mismatch, PassReport};
+use super::shadows::{
+    CUBE_SIZE, CUTOFF, MAP_SIZE, OCCLUDERS, POINT_STRENGTH, SPOT_BIAS, SPOT_STRENGTH,
+    occluder_texture, render_caster,
+};
+use crate::{CheckError, GpuContext, GpuError};
+use wgsl_variants::Library;
+use wgsl_variants::reference::light::Light;
+use wgsl_variants::reference::quantize::f16_bits_to_f32;
+use wgsl_variants::reference::shadow::{
+    ShadowKeywords, ShadowParams, caster_distance, cube_face_view_proj, shadow_coords,
+};
+use wgsl_variants::reference::surface::{Geometry, Keywords, Material, Texels, surface};
+use wgsl_variants::reference::tolerance::{f16_within, unorm_within};
+
+/// What one view of one variant rendered: depth codes and, for cube faces, the distances'
+/// f16 bits.
+type ViewImage = (Vec<u16>, Option<Vec<u16>>);
+
+/// One map the caster renders: its view-projection, the light and its `1 / range`, the size.
+struct View {
+    name: String,
+    view_proj: Mat4,
+    light: Vec3,
+    inv_range: f32,
+    size: u32,
+}
+
+/// Whether the caster variant `keywords` keeps the occluder fragment at `uv`: the lit passes'
+/// alpha (`tint.a · main_tex.a`, `tint.a` alone with `_SMOOTHNESS_ALBEDO`) against the cutoff
+/// under `_RENDERING_CUTOUT`.
+fn kept(kw: &Keywords, uv: Vec2) -> bool {
+    let texture = occluder_texture();
+    let texel = |c: f32, n: u32| ((c * n as f32).floor() as i64).clamp(0, i64::from(n) - 1) as u32;
+    let main_tex = texture.get(texel(uv.x, texture.width), texel(uv.y, texture.height));
+    let material = Material {
+        tint: Vec4::ONE,
+        cutoff: CUTOFF,
+        ..Material::default()
+    };
+    let texels = Texels {
+        main_tex,
+        ..Texels::default()
+    };
+    let geometry = Geometry {
+        world_position: Vec3::ZERO,
+        normal: Vec3::Z,
+        tangent: Vec4::new(1.0, 0.0, 0.0, 1.0),
+    };
+    !(kw.cutout() && surface(kw, &material, &texels, &geometry).alpha < material.cutoff)
+}
+
+/// The nearest kept occluder point along the ray through NDC `(x, y)` of `view_proj`, with
+/// the occluder's index.
+fn nearest_kept(kw: &Keywords, view_proj: Mat4, ndc: Vec2) -> Option<(usize, Vec3)> {
+    let inverse = view_proj.inverse();
+    let near = inverse.project_point3(ndc.extend(0.0));
+    let far = inverse.project_point3(ndc.extend(1.0));
+    OCCLUDERS
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &(lo, hi, z))| {
+            let t = (z - near.z) / (far.z - near.z);
+            if !(0.0..=1.0).contains(&t) {
+                return None;
+            }
+            let p = near + (far - near) * t;
+            let uv = (Vec2::new(p.x, p.y) - lo) / (hi - lo);
+            let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
+            (inside && kept(kw, uv)).then_some((i, p))
+        })
+        .min_by(|a, b| {
+            let depth = |p: Vec3| shadow_coords(view_proj, p).z;
+            depth(a.1).total_cmp(&depth(b.1))
+        })
+}
+
+/// The texel's reference: `Some(point)` or `Some(None)` for the clear value where the centre
+/// and the four corners agree on the nearest kept occluder, `None` for an edge texel.
+fn reference_texel(kw: &Keywords, view: &View, x: u32, y: u32) -> Option<Option<Vec3>> {
+    let n = view.size as f32;
+    let ndc = |fx: f32, fy: f32| Vec2::new(fx / n * 2.0 - 1.0, 1.0 - fy / n * 2.0);
+    let (fx, fy) = (x as f32, y as f32);
+    let centre = nearest_kept(kw, view.view_proj, ndc(fx + 0.5, fy + 0.5));
+    let class = centre.map(|(i, _)| i);
+    let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)];
+    corners
+        .iter()
+        .all(|&(dx, dy)| {
+            nearest_kept(kw, view.view_proj, ndc(fx + dx, fy + dy)).map(|(i, _)| i) == class
+        })
+        .then_some(centre.map(|(_, p)| p))
+}
+
+/// Checks every variant of `standard/ShadowCaster` over the occluder scene, lit by the check's
+/// spot light (`SHADOWS_DEPTH`) and point light (`SHADOWS_CUBE`, all six faces).
+///
+/// # Errors
+/// A GPU failure, a variant that does not compile, or a light the shadow API refuses.
+pub fn check_shadow_caster(
+    ctx: &GpuContext,
+    lib: &Library,
+    spot_light: &Light,
+    point_light: &Light,
+) -> Result<PassReport, GpuError> {
+    let start = Instant::now();
+    let pass = lib
+        .pass("standard", "ShadowCaster")
+        .map_err(|e| CheckError::lookup(String::from("standard/ShadowCaster"), e))?;
+    let refused = |e: wgsl_variants::reference::shadow::ShadowError| {
+        GpuError::from(CheckError::UnknownToReference {
+            variant: "standard/ShadowCaster".to_owned(),
+            message: e.to_string(),
+        })
+    };
+    let spot = ShadowParams::for_light(spot_light, SPOT_STRENGTH, SPOT_BIAS).map_err(refused)?;
+    let point = ShadowParams::for_light(point_light, POINT_STRENGTH, 0.0).map_err(refused)?;
+    let spot_view = View {
+        name: "spot map".to_owned(),
+        view_proj: spot.world_to_shadow,
+        light: spot.light_position,
+        inv_range: spot.inv_range,
+        size: MAP_SIZE,
+    };
+    let cube_views: Vec<View> = (0..6)
+        .map(|face| View {
+            name: format!("cube face {face}"),
+            view_proj: cube_face_view_proj(point.light_position, face, 1.0 / point.inv_range),
+            light: point.light_position,
+            inv_range: point.inv_range,
+            size: CUBE_SIZE,
+        })
+        .collect();
+
+    let mut report = PassReport::new("standard", "ShadowCaster");
+    let choices: Vec<_> = wgsl_variants::Space::full(pass).iter().collect();
+    let mut outputs: Vec<Vec<ViewImage>> = Vec::with_capacity(choices.len());
+    let mut edges = 0usize;
+    for choice in &choices {
+        let names = choice.keywords(pass);
+        let label = choice.label(pass);
+        let (shadow, rest) = ShadowKeywords::split(&names);
+        let kw = Keywords::from_names(&rest).map_err(|e| CheckError::UnknownToReference {
+            variant: label.clone(),
+            message: e.to_string(),
+        })?;
+        let views = if shadow.cube {
+            cube_views.iter().collect::<Vec<_>>()
+        } else {
+            vec![&spot_view]
+        };
+        let mut images = Vec::with_capacity(views.len());
+        for view in views {
+            let image = render_caster(
+                ctx,
+                lib,
+                &names,
+                view.view_proj,
+                view.light.extend(view.inv_range),
+                view.size,
+            )?;
+            report.draws += 1;
+            let distances: Option<Vec<u16>> = image.color.as_ref().map(|bytes| {
+                bytes
+                    .chunks_exact(8)
+                    .map(|t| u16::from_le_bytes([t[0], t[1]]))
+                    .collect()
+            });
+            for y in 0..view.size {
+                for x in 0..view.size {
+                    let i = (y * view.size + x) as usize;
+                    let Some(point) = reference_texel(&kw, view, x, y) else {
+                        edges += 1;
+                        continue;
+                    };
+                    let depth = point.map_or(1.0, |p| shadow_coords(view.view_proj, p).z);
+                    let distance =
+                        point.map_or(1.0, |p| caster_distance(p, view.light, view.inv_range));
+                    let got_depth = image.depth[i];
+                    let got_distance = distances.as_ref().map(|d| d[i]);
+                    let ok = unorm_within(u32::from(got_depth), depth, 16)
+                        && got_distance.is_none_or(|bits| f16_within(bits, distance));
+                    if point.is_none() {
+                        report.discarded_compared += 1;
+                    }
+                    report.record(ok, || Mismatch {
+                        shader: "standard".to_owned(),
+                        pass: "ShadowCaster".to_owned(),
+                        keywords: label.clone(),
+                        target: view.name.clone(),
+                        pixel: [x, y],
+                        expected: std::iter::once(depth)
+                            .chain(got_distance.map(|_| distance))
+                            .collect(),
+                        got: std::iter::once(f32::from(got_depth) / 65535.0)
+                            .chain(got_distance.map(f16_bits_to_f32))
+                            .collect(),
+                        got_raw: std::iter::once(u32::from(got_depth))
+                            .chain(got_distance.map(u32::from))
+                            .collect(),
+                    });
+                }
+            }
+            images.push((image.depth, distances));
+        }
+        outputs.push(images);
+        report.variants_run += 1;
+    }
+    report.distinct_shaders = report.variants_run;
+    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
+    report.judge_keywords();
+    report.notes.push(format!(
+        "SHADOWS_DEPTH: the spot's {MAP_SIZE}x{MAP_SIZE} Depth16Unorm map; SHADOWS_CUBE: the \
+         point light's six {CUBE_SIZE}x{CUBE_SIZE} faces (Rgba16Float distance and depth); \
+         {edges} texels on an occluder's or a hole's edge left to the rasterizer"
+    ));
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
