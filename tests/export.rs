@@ -404,3 +404,118 @@ fn f() -> i32 { return 4; }
             .contains("naga_oil import path")
     );
 }
+
+// ---------------------------------------------------------------- WESL
+
+/// Compiles a pass's WESL export with the `wesl` crate (modules in a `VirtualResolver`, as a
+/// WESL user embedding them would register them), the pass's `#define`s and the variant's
+/// keywords as features, every other keyword of the pass off.
+fn wesl_compile(
+    p: &wgsl_variants::emit::wesl::WeslPass,
+    pass: &wgsl_variants::Pass,
+    on: &[&str],
+) -> Result<String, String> {
+    let mut resolver = wesl::VirtualResolver::new();
+    for m in p.modules.iter().chain([&p.root]) {
+        resolver.add_module(
+            m.module_path.parse().map_err(|e| format!("{e:?}"))?,
+            std::borrow::Cow::Owned(m.source.clone()),
+        );
+    }
+    let mut compiler = wesl::Wesl::new("").set_custom_resolver(resolver);
+    for f in &p.features {
+        compiler.set_feature(f, true);
+    }
+    for k in pass.keywords() {
+        compiler.set_feature(k, on.contains(&k));
+    }
+    let root = p.root.module_path.parse().map_err(|e| format!("{e:?}"))?;
+    compiler
+        .compile(&root)
+        .map(|r| r.to_string())
+        .map_err(|e| e.to_string())
+}
+
+/// The WESL export of every bundled pass, compiled by the `wesl` crate for each variant of a
+/// 3-wise covering set of the pass (its whole space when it has at most three sets), gives a
+/// program naga validates and that shows a renderer what our text does: the same entry
+/// points, bindings (slot, kind, visibility) and fragment outputs.
+#[test]
+fn wesl_export_compiles_every_covering_variant_of_every_pass_like_ours() {
+    let lib = Library::bundled().unwrap();
+    let mut options = wgsl_variants::plan::PlanOptions::default();
+    options.all = true;
+    options.cover = Some(3);
+    let plan = wgsl_variants::plan::plan(&lib, &options).unwrap();
+    let started = Instant::now();
+    let mut compiled = 0usize;
+    let mut failures = Vec::new();
+    for (pass, choices) in &plan {
+        let exported = wgsl_variants::emit::wesl::export_pass(&lib, pass)
+            .unwrap_or_else(|e| panic!("{}/{}: {e}", pass.shader, pass.name));
+        for choice in choices {
+            let variant = Variant {
+                pass,
+                choice: choice.clone(),
+            };
+            let on = variant.keywords();
+            let result = wesl_compile(&exported, pass, &on).and_then(|text| {
+                let module = naga::front::wgsl::parse_str(&text)
+                    .map_err(|e| format!("naga parse: {}\n{text}", e.emit_to_string(&text)))?;
+                let info = wgsl_variants::validate::validator()
+                    .validate(&module)
+                    .map_err(|e| format!("invalid: {:?}", e.into_inner()))?;
+                let theirs = reflect_module(&module, &info);
+                let ours = lib.reflect(&variant).map_err(|e| e.to_string())?;
+                let outputs = |m: &naga::Module| -> Vec<usize> {
+                    m.entry_points
+                        .iter()
+                        .filter_map(|e| e.function.result.as_ref())
+                        .map(|r| match &m.types[r.ty].inner {
+                            naga::TypeInner::Struct { members, .. } => members.len(),
+                            _ => 1,
+                        })
+                        .collect()
+                };
+                let (our_module, _) = lib.naga_module(&variant).map_err(|e| e.to_string())?;
+                if theirs.entry_points != ours.entry_points
+                    || slots(&theirs.bindings) != slots(&ours.bindings)
+                    || outputs(&module) != outputs(&our_module)
+                {
+                    return Err(format!(
+                        "WESL {:?} {:?} {:?}\nours {:?} {:?} {:?}",
+                        theirs.entry_points,
+                        slots(&theirs.bindings),
+                        outputs(&module),
+                        ours.entry_points,
+                        slots(&ours.bindings),
+                        outputs(&our_module)
+                    ));
+                }
+                Ok(())
+            });
+            compiled += 1;
+            if let Err(e) = result {
+                failures.push(format!("{}: {e}", variant.label()));
+            }
+        }
+    }
+    let mut by_pass = std::collections::BTreeMap::new();
+    for f in &failures {
+        *by_pass
+            .entry(f.split(' ').next().unwrap_or(""))
+            .or_insert(0) += 1;
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {compiled} failed ({by_pass:?}); first: {}",
+        failures.len(),
+        failures[0]
+    );
+    assert!(compiled > 100, "{compiled}");
+    println!(
+        "WESL compiled and naga validated {compiled} covering variants of {} passes in {:.1?}",
+        plan.len(),
+        started.elapsed()
+    );
+}

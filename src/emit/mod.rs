@@ -6,7 +6,7 @@
 //! Reflection ([`crate::reflect`]) and `build.rs` baking ([`crate::bake`]) are stages of their
 //! own that use these back ends.
 //! - [`export`]: one module (with its imports) on its own, as self-contained WGSL under a name
-//!   prefix, or in naga_oil's dialect ([`naga_oil`]).
+//!   prefix, in naga_oil's dialect ([`naga_oil`]) or in WESL's ([`wesl`]).
 //!
 //! ```
 //! use wgsl_variants::emit::backends::{Target, translate_variant};
@@ -22,7 +22,9 @@
 pub mod backends;
 pub mod export;
 pub mod naga_oil;
+mod scan;
 pub mod set;
+pub mod wesl;
 
 use std::path::Path;
 

@@ -1,5 +1,5 @@
 //! `wgsl-variants export`: one module (with its imports) on its own, as self-contained
-//! prefixed WGSL or in naga_oil's dialect.
+//! prefixed WGSL, in naga_oil's dialect or in WESL's.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -8,6 +8,7 @@ use clap::ValueEnum;
 
 use wgsl_variants::emit::export::{ExportError, export_prefixed_module};
 use wgsl_variants::emit::naga_oil::{self, NagaOilModule};
+use wgsl_variants::emit::wesl::{self, WeslModule};
 
 use super::output::print_json;
 use super::{Context, Failed};
@@ -19,6 +20,8 @@ pub enum Dialect {
     Wgsl,
     /// naga_oil modules (`#define_import_path`, `#import`, `#ifdef`), for Bevy.
     NagaOil,
+    /// WESL modules (`import package::…`, `@if`), for WESL users (Bevy's main branch).
+    Wesl,
 }
 
 /// `export` arguments.
@@ -36,7 +39,7 @@ pub struct ExportArgs {
     /// Output dialect.
     #[arg(long, value_enum, default_value_t = Dialect::Wgsl)]
     dialect: Dialect,
-    /// naga_oil: every module of the library.
+    /// naga_oil, WESL: every module of the library (WESL: and each pass's root).
     #[arg(long)]
     all: bool,
     /// Write into DIR (naga_oil: the module and every module it imports, one file each, at
@@ -87,6 +90,72 @@ pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
                 print_json(&exported)?;
             } else {
                 print!("{}", exported.source);
+            }
+        }
+        Dialect::Wesl => {
+            if !keywords.is_empty() || args.prefix.is_some() {
+                return Err(Failed("error: WESL modules keep their conditions and live under `package::`: set keywords as WESL features when compiling, without --keywords or --prefix".into()));
+            }
+            let mut modules: Vec<WeslModule> = match (&args.module, args.all) {
+                (_, true) => wesl::export_all(&ctx.lib),
+                (Some(m), false) => wesl::export(&ctx.lib, m),
+                (None, false) => unreachable!("clap requires MODULE without --all"),
+            }
+            .map_err(|e| fail(ctx, e))?;
+            let mut roots = Vec::new();
+            if args.all {
+                // Each pass's program: its root module and the features its `#define`s set.
+                for pass in ctx.lib.passes() {
+                    let p = wesl::export_pass(&ctx.lib, pass).map_err(|e| fail(ctx, e))?;
+                    let features = if p.features.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" + {}", p.features.join(", "))
+                    };
+                    roots.push(format!(
+                        "{}/{}: compile {} with features: the variant's keywords{features}",
+                        pass.shader, pass.name, p.root.module_path,
+                    ));
+                    if !modules.iter().any(|m| m.path == p.root.path) {
+                        modules.push(p.root);
+                    }
+                }
+            }
+            if let Some(dir) = &args.out {
+                for m in &modules {
+                    write(dir, &format!("{}.wesl", m.path), &m.source)?;
+                }
+                println!(
+                    "wrote {} WESL module(s) to {}",
+                    modules.len(),
+                    dir.display()
+                );
+                for r in &roots {
+                    println!("{r}");
+                }
+            } else if ctx.json {
+                let shown: Vec<&WeslModule> = if args.all {
+                    modules.iter().collect()
+                } else {
+                    modules.last().into_iter().collect()
+                };
+                print_json(&shown)?;
+            } else if args.all {
+                for m in &modules {
+                    print!("{}", m.source);
+                }
+            } else if let Some(m) = modules.last() {
+                print!("{}", m.source);
+                if modules.len() > 1 {
+                    let deps: Vec<&str> = modules[..modules.len() - 1]
+                        .iter()
+                        .map(|m| m.path.as_str())
+                        .collect();
+                    eprintln!(
+                        "note: it imports {} (use --out DIR to write them all)",
+                        deps.join(", ")
+                    );
+                }
             }
         }
         Dialect::NagaOil => {

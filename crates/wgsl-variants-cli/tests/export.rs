@@ -1,4 +1,5 @@
-//! `wgsl-variants export`: the command line over `emit::export` and `emit::naga_oil`.
+//! `wgsl-variants export`: the command line over `emit::export`, `emit::naga_oil` and
+//! `emit::wesl`.
 
 use std::process::Command;
 
@@ -84,4 +85,59 @@ fn export_command_line() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(stderr.contains(message), "{args:?}: {stderr}");
     }
+}
+
+/// `--dialect wesl --all --out DIR`: every module as `PATH.wesl`, each pass's root (the pass
+/// body as a module when it has code of its own), and a line per pass saying what to compile.
+#[test]
+fn export_wesl_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = cli(&[
+        "export",
+        "--dialect",
+        "wesl",
+        "--all",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("standard/Deferred: compile package::standard::my_lighting with features: the variant's keywords + DEFERRED_PASS"),
+        "{stdout}"
+    );
+    assert!(stdout.contains(
+        "deferred_shading/Lighting: compile package::internal::deferred_shading::Lighting"
+    ));
+    let gbuffer = std::fs::read_to_string(dir.path().join("deferred/gbuffer.wesl")).unwrap();
+    assert!(
+        gbuffer.contains("import package::deferred::ldr::{ldr_encode};"),
+        "{gbuffer}"
+    );
+    assert!(gbuffer.contains("@if(UNITY_HDR_ON)"), "{gbuffer}");
+    let lighting =
+        std::fs::read_to_string(dir.path().join("internal/deferred_shading/Lighting.wesl"))
+            .unwrap();
+    assert!(lighting.contains("fn fs_main"), "{lighting}");
+
+    // One module on stdout; its imports are named on stderr.
+    let out = cli(&["export", "deferred/gbuffer", "--dialect", "wesl"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("@if(UNITY_HDR_ON)"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("it imports deferred/ldr"));
+
+    let out = cli(&[
+        "export",
+        "deferred/gbuffer",
+        "--dialect",
+        "wesl",
+        "--keywords",
+        "UNITY_HDR_ON",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("WESL features"));
 }
