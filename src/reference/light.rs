@@ -676,6 +676,26 @@ pub fn perspective_rh(fov_y: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
     )
 }
 
+/// A right-handed orthographic projection with wgpu's depth range [0, 1] (camera looking down
+/// −Z): `x / half_width`, `y / half_height`, depth `(−z − near) / (far − near)`, `w = 1`.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::light::orthographic_rh;
+/// let p = orthographic_rh(2.0, 1.0, 1.0, 5.0);
+/// // (2, −1, −3): the right edge, the bottom edge, half-way from near (z = −1) to far (z = −5).
+/// assert_eq!(p * Vec3::new(2.0, -1.0, -3.0).extend(1.0), glam::Vec4::new(1.0, -1.0, 0.5, 1.0));
+/// ```
+pub fn orthographic_rh(half_width: f32, half_height: f32, near: f32, far: f32) -> Mat4 {
+    let depth = 1.0 / (far - near);
+    Mat4::from_cols(
+        Vec4::new(1.0 / half_width, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, 1.0 / half_height, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, -depth, 0.0),
+        Vec4::new(0.0, 0.0, -near * depth, 1.0),
+    )
+}
+
 /// A right-handed view matrix at `eye` looking at `target` with `up` (not parallel to the
 /// view direction).
 ///

@@ -29,15 +29,18 @@
 //! let v = map.visibility(params.coords(Vec3::new(0.3, 0.2, 0.0)), false);
 //! assert_eq!((v.lo, v.hi), (0.0, 0.0));
 //! assert_eq!(shadow_mix(params.strength, v.lo), 0.25);
-//! // A directional light has no map of its own here (SHADOWS_SCREEN is not built).
+//! // A directional light's map covers a region of the scene: `for_directional`.
 //! let sun = Light::directional(Vec3::NEG_Z, Vec3::ONE);
 //! assert!(matches!(ShadowParams::for_light(&sun, 1.0, 0.0), Err(ShadowError::NoShadowMap { .. })));
+//! assert!(ShadowParams::for_directional(&sun, 1.0, 0.001, Vec3::ZERO, 2.0).is_ok());
 //! ```
 
 use glam::{Mat4, Vec3, Vec4};
 
 use super::cube::face;
-use super::light::{Light, LightError, LightShape, light_frame, look_at_rh, perspective_rh};
+use super::light::{
+    Light, LightError, LightShape, light_frame, look_at_rh, orthographic_rh, perspective_rh,
+};
 
 /// The near plane of a spot light's shadow projection, as a fraction of its range.
 pub const SPOT_SHADOW_NEAR: f32 = 0.02;
@@ -92,12 +95,29 @@ pub enum ShadowError {
     /// The light itself is invalid.
     #[error(transparent)]
     Light(#[from] LightError),
-    /// A directional light: its shadows need the screen-space mask of `SHADOWS_SCREEN`, which
-    /// this library does not build.
-    #[error("a {light} light has no shadow map here (SHADOWS_SCREEN is not built)")]
+    /// A directional light given to [`ShadowParams::for_light`]: its map covers a region of the
+    /// scene, which [`ShadowParams::for_directional`] takes.
+    #[error(
+        "a {light} light's shadow map covers a region of the scene: use ShadowParams::for_directional"
+    )]
     NoShadowMap {
         /// The light's kind.
         light: &'static str,
+    },
+    /// A point or spot light given to [`ShadowParams::for_directional`].
+    #[error(
+        "only a directional light has a SHADOWS_SCREEN shadow (point and spot lights: ShadowParams::for_light)"
+    )]
+    NotDirectional,
+    /// A directional shadow's region that is not finite or has no size.
+    #[error(
+        "the shadowed region (centre {center}, radius {radius}) must be finite with a radius > 0"
+    )]
+    Region {
+        /// Its centre.
+        center: Vec3,
+        /// Its radius.
+        radius: f32,
     },
     /// A strength outside [0, 1] (or NaN).
     #[error("shadow strength {0} must be in [0, 1]")]
@@ -199,6 +219,56 @@ impl ShadowParams {
         }
     }
 
+    /// The shadow of a directional light (`SHADOWS_SCREEN`): one cascade, a 2D map through
+    /// [`directional_shadow_view_proj`] covering the sphere (`center`, `radius`) of the scene,
+    /// compared as a spot's map is (`depth_bias` in depth-buffer units). The screen-space pass
+    /// (`internal/screen_space_shadows`) turns it into the mask the lighting pass reads.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants::reference::light::Light;
+    /// use wgsl_variants::reference::shadow::ShadowParams;
+    /// let sun = Light::directional(Vec3::NEG_Z, Vec3::ONE);
+    /// let p = ShadowParams::for_directional(&sun, 0.5, 0.001, Vec3::ZERO, 2.0).unwrap();
+    /// // The centre of the region: the middle of the map, half-way in depth.
+    /// let c = p.coords(Vec3::ZERO);
+    /// assert!((c - Vec3::new(0.5, 0.5, 0.5)).abs().max_element() < 1e-6);
+    /// ```
+    ///
+    /// # Errors
+    /// [`ShadowError`]: an invalid light or one that is not directional
+    /// ([`ShadowError::NotDirectional`]), a strength outside [0, 1], a bias outside [0, 1), a
+    /// region that is not finite or has no size.
+    pub fn for_directional(
+        light: &Light,
+        strength: f32,
+        depth_bias: f32,
+        center: Vec3,
+        radius: f32,
+    ) -> Result<ShadowParams, ShadowError> {
+        light.params()?;
+        if !(0.0..=1.0).contains(&strength) {
+            return Err(ShadowError::Strength(strength));
+        }
+        if !(depth_bias.is_finite() && (0.0..1.0).contains(&depth_bias)) {
+            return Err(ShadowError::Bias(depth_bias));
+        }
+        if !(center.is_finite() && radius.is_finite() && radius > 0.0) {
+            return Err(ShadowError::Region { center, radius });
+        }
+        let LightShape::Directional { direction, .. } = light.shape else {
+            return Err(ShadowError::NotDirectional);
+        };
+        let forward = direction.normalize();
+        Ok(ShadowParams {
+            world_to_shadow: directional_shadow_view_proj(forward, center, radius),
+            strength,
+            bias: depth_bias,
+            inv_range: 0.0,
+            light_position: center - forward * (2.0 * radius),
+        })
+    }
+
     /// The map coordinates of `p` ([`shadow_coords`] through `world_to_shadow`).
     pub fn coords(&self, p: Vec3) -> Vec3 {
         shadow_coords(self.world_to_shadow, p)
@@ -244,6 +314,29 @@ pub fn spot_shadow_view_proj(
         range * SPOT_SHADOW_NEAR,
         range,
     ) * look_at_rh(position, position + forward, up)
+}
+
+/// A directional light's shadow view-projection (one cascade): an orthographic box around the
+/// sphere (`center`, `radius`), looking along `forward` (the light's travel direction, unit
+/// length; up from [`light_frame`]) from `center − 2 · radius · forward`, width and height
+/// `2 · radius`, near plane at `radius` and far plane at `3 · radius` from the eye, so the
+/// sphere lies inside and its centre at depth ½. Depth 0..1 as wgpu's.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::shadow::{directional_shadow_view_proj, shadow_coords};
+/// let m = directional_shadow_view_proj(Vec3::NEG_Z, Vec3::ZERO, 2.0);
+/// // Looking down −Z from z = 4: z = 2 is the near plane (depth 0), z = −2 the far (depth 1);
+/// // x = 2 is the box's side, u = 1 (or 0: the light's frame picks the sides).
+/// assert!(shadow_coords(m, Vec3::new(0.0, 0.0, 2.0)).z.abs() < 1e-6);
+/// assert!((shadow_coords(m, Vec3::new(0.0, 0.0, -2.0)).z - 1.0).abs() < 1e-6);
+/// let u = shadow_coords(m, Vec3::new(2.0, 0.0, 0.0));
+/// assert!((u.x - 1.0).abs() < 1e-6 || u.x.abs() < 1e-6 || (u.y - 1.0).abs() < 1e-6 || u.y.abs() < 1e-6);
+/// ```
+pub fn directional_shadow_view_proj(forward: Vec3, center: Vec3, radius: f32) -> Mat4 {
+    let (_, up, forward) = light_frame(forward);
+    let eye = center - forward * (2.0 * radius);
+    orthographic_rh(radius, radius, radius, 3.0 * radius) * look_at_rh(eye, center, up)
 }
 
 /// The view-projection of cube face `face` (wgpu layer order +X, −X, +Y, −Y, +Z, −Z) of a
@@ -523,13 +616,17 @@ impl ShadowCube {
     }
 }
 
-/// The shadow keywords of a variant: `SHADOWS_DEPTH`, `SHADOWS_CUBE`, `SHADOWS_SOFT`.
+/// The shadow keywords of a variant: `SHADOWS_DEPTH`, `SHADOWS_CUBE`, `SHADOWS_SCREEN`,
+/// `SHADOWS_SOFT`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ShadowKeywords {
     /// `SHADOWS_DEPTH`: a 2D map (spot).
     pub depth: bool,
     /// `SHADOWS_CUBE`: a cube of distances (point).
     pub cube: bool,
+    /// `SHADOWS_SCREEN`: the screen-space mask of a directional light's map (the lighting
+    /// pass reads the mask at its pixel; `internal/screen_space_shadows` made it).
+    pub screen: bool,
     /// `SHADOWS_SOFT`: the filtered footprint.
     pub soft: bool,
 }
@@ -550,6 +647,7 @@ impl ShadowKeywords {
             match name {
                 "SHADOWS_DEPTH" => kw.depth = true,
                 "SHADOWS_CUBE" => kw.cube = true,
+                "SHADOWS_SCREEN" => kw.screen = true,
                 "SHADOWS_SOFT" => kw.soft = true,
                 _ => rest.push(name),
             }
@@ -557,9 +655,9 @@ impl ShadowKeywords {
         (kw, rest)
     }
 
-    /// Whether the variant reads a shadow map at all.
+    /// Whether the variant reads a shadow map (or the screen-space mask) at all.
     pub fn any(&self) -> bool {
-        self.depth || self.cube
+        self.depth || self.cube || self.screen
     }
 }
 

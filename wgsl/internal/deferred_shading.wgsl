@@ -3,7 +3,7 @@
 // its direct light to RT3, read from the G-buffer and the depth buffer.
 //   group 0: 0 rt0, 1 rt1, 2 rt2 (the G-buffer, read with textureLoad),
 //            3 depth (the depth buffer's depth aspect, or an R32Float copy, read with textureLoad),
-//            4 camera (DeferredCamera), 6-14 the light and its shadow (lighting/light_bindings)
+//            4 camera (DeferredCamera), 6-15 the light and its shadow (lighting/light_bindings)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
@@ -20,9 +20,13 @@
 #pragma multi_compile POINT DIRECTIONAL SPOT POINT_COOKIE DIRECTIONAL_COOKIE
 // Shadows as Unity pairs them with the light types (lighting/light_bindings): a 2D map for
 // spots, a cube for points, SHADOWS_SOFT for either (with no shadow keyword it changes nothing:
-// those 6 variants are duplicates, as in Unity). 28 variants, 22 distinct.
-#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE
+// those 6 variants are duplicates, as in Unity), the screen-space mask for directional lights
+// (SHADOWS_SCREEN; its SHADOWS_SOFT is the mask pass's). 32 variants, 26 distinct.
+#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE SHADOWS_SCREEN
 #pragma multi_compile _ SHADOWS_SOFT
+#pragma exclude SHADOWS_SCREEN POINT
+#pragma exclude SHADOWS_SCREEN POINT_COOKIE
+#pragma exclude SHADOWS_SCREEN SPOT
 #pragma exclude SHADOWS_DEPTH POINT
 #pragma exclude SHADOWS_DEPTH POINT_COOKIE
 #pragma exclude SHADOWS_DEPTH DIRECTIONAL
@@ -78,7 +82,12 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
 
     let n = gbuffer_decode_normal(gbuffer2.rgb);
     let v = brdf_view_dir(deferred_camera.position.xyz, p);
+#if defined(SHADOWS_SCREEN)
+    var s = light_at(p);
+    s.attenuation *= light_screen_shadow(pixel);
+#else
     let s = light_at(p);
+#endif
     let c = light_direct(gbuffer0.rgb, gbuffer1.rgb, gbuffer1.a, n, v, light, s);
 #if UNITY_HDR_ON
     // One / One: RT3 += c (alpha 0 leaves RT3's a = 1).

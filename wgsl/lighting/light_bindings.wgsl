@@ -10,18 +10,24 @@
 //            11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler (sampler_comparison,
 //               nearest, LessEqual, clamp to edge) (SHADOWS_DEPTH),
 //            13 shadow_cube (texture_cube<f32>, r = |p - light| / range) + 14 shadow_cube_sampler
-//               (nearest) (SHADOWS_CUBE)
+//               (nearest) (SHADOWS_CUBE),
+//            15 screen_shadow (texture_2d<f32>, the screen-space shadow mask in r, read with
+//               textureLoad at the pixel) (SHADOWS_SCREEN)
 //
 // Shadow keywords (Unity's multi_compile_lightpass / multi_compile_fwdadd_fullshadows pairs):
 // SHADOWS_DEPTH with SPOT only (a 2D map through the light's view-projection), SHADOWS_CUBE with
 // POINT and POINT_COOKIE (a cube of distances), SHADOWS_SOFT filters either (docs/shading.md
-// §11); the passes' exclude pragmas drop every other pairing.
+// §11); SHADOWS_SCREEN with DIRECTIONAL and DIRECTIONAL_COOKIE in the lighting pass (the mask
+// internal/screen_space_shadows made from the light's map, SHADOWS_SOFT applied there); the
+// passes' exclude pragmas drop every other pairing.
 //
 // Provides:
 //   fn light_at(p: vec3f) -> LightSample   the light at world position p; exactly one of
 //       DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light),
 //       times the shadow with SHADOWS_DEPTH or SHADOWS_CUBE
 //   fn light_shadow(p: vec3f) -> f32       the shadow factor in [1 - strength, 1] (1 without one)
+//   fn light_screen_shadow(pixel: vec2i) -> f32   SHADOWS_SCREEN: the mask at the pixel (the
+//       factor, strength included); the lighting pass multiplies the light's attenuation by it
 
 #import lighting/light
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
@@ -49,6 +55,14 @@
 @group(0) @binding(13) var shadow_cube: texture_cube<f32>;
 @group(0) @binding(14) var shadow_cube_sampler: sampler;
 #endif
+#if defined(SHADOWS_SCREEN)
+@group(0) @binding(15) var screen_shadow: texture_2d<f32>;
+
+// Unity's UnityDeferredComputeShadow for DIRECTIONAL / DIRECTIONAL_COOKIE: the mask's r.
+fn light_screen_shadow(pixel: vec2i) -> f32 {
+    return textureLoad(screen_shadow, pixel, 0).r;
+}
+#endif
 
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
 fn light_at(p: vec3f) -> LightSample {
@@ -67,22 +81,7 @@ fn light_shadow(p: vec3f) -> f32 {
     // Lit where the receiver's depth minus the bias is <= the caster's (the sampler's LessEqual).
     let c = shadow_coords(shadow.world_to_shadow, p);
     let z = c.z - shadow.params.y;
-#if defined(SHADOWS_SOFT)
-    // 3 x 3 texels around the receiver's, tent weights (1 2 1) x (1 2 1) / 16.
-    var v = 0.0;
-    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, -1));
-    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, -1));
-    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, -1));
-    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, 0));
-    v += 4.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, 0));
-    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, 0));
-    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(-1, 1));
-    v += 2.0 * textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(0, 1));
-    v += textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z, vec2i(1, 1));
-    let visibility = v / 16.0;
-#else
-    let visibility = textureSampleCompareLevel(shadow_map, shadow_map_sampler, c.xy, z);
-#endif
+    let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, z);
     return shadow_mix(shadow.params.x, visibility);
 #elif defined(SHADOWS_CUBE)
     // Lit where the stored distance is >= the receiver's, both over the range (Unity's

@@ -14,6 +14,11 @@
 //   struct Shadow
 //   fn shadow_mix(strength: f32, visibility: f32) -> f32
 //   fn shadow_coords(world_to_shadow: mat4x4f, p: vec3f) -> vec3f   map uv (row 0 at the top), depth
+//   fn shadow_map_visibility(map, sampler, uv: vec2f, z: f32) -> f32
+//       a 2D map's visibility at uv for receiver depth z (bias already subtracted): one
+//       LessEqual tap, or with SHADOWS_SOFT the 3 x 3 tent (1 2 1) x (1 2 1) / 16. The spot's
+//       SHADOWS_DEPTH (lighting/light_bindings) and the directional light's screen-space pass
+//       (internal/screen_space_shadows) both read their maps through it.
 
 struct Shadow {
     world_to_shadow: mat4x4f,
@@ -31,4 +36,22 @@ fn shadow_coords(world_to_shadow: mat4x4f, p: vec3f) -> vec3f {
     let q = world_to_shadow * vec4f(p, 1.0);
     let ndc = q.xyz / q.w;
     return vec3f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5, ndc.z);
+}
+
+fn shadow_map_visibility(map: texture_depth_2d, map_sampler: sampler_comparison, uv: vec2f, z: f32) -> f32 {
+#if defined(SHADOWS_SOFT)
+    var v = 0.0;
+    v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(-1, -1));
+    v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, -1));
+    v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(1, -1));
+    v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(-1, 0));
+    v += 4.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, 0));
+    v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(1, 0));
+    v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(-1, 1));
+    v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, 1));
+    v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(1, 1));
+    return v / 16.0;
+#else
+    return textureSampleCompareLevel(map, map_sampler, uv, z);
+#endif
 }

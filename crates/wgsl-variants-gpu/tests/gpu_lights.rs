@@ -42,12 +42,12 @@ fn deferred_shading_every_variant_matches_the_reference() {
     );
     assert!(p.passed(), "{report}");
     assert_eq!(p.mismatches, 0, "{report}");
-    assert_eq!(p.variants_run, 28);
+    assert_eq!(p.variants_run, 32);
     // Every variant over two G-buffers of its HDR mode, 16 × 16 pixels each.
-    assert_eq!((p.draws, p.pixels_compared), (56, 56 * 256));
+    assert_eq!((p.draws, p.pixels_compared), (64, 64 * 256));
     // Four light keywords against POINT (the set's first), SHADOWS_DEPTH, SHADOWS_CUBE,
-    // SHADOWS_SOFT and UNITY_HDR_ON.
-    assert_eq!(p.keywords.len(), 8, "{report}");
+    // SHADOWS_SCREEN, SHADOWS_SOFT and UNITY_HDR_ON.
+    assert_eq!(p.keywords.len(), 9, "{report}");
     for k in &p.keywords {
         eprintln!(
             "  {}: {} of {} pairs changed",
@@ -120,7 +120,7 @@ fn a_wrong_falloff_fails_the_check() {
 #[test]
 fn a_wrong_pcf_weight_fails_the_check() {
     let lib = common::mutate::bundled_with(
-        "lighting/light_bindings.wgsl",
+        "lighting/shadow.wgsl",
         "4.0 * textureSampleCompareLevel",
         "3.0 * textureSampleCompareLevel",
     );

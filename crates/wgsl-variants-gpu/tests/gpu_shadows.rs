@@ -19,12 +19,55 @@ use wgsl_variants_gpu::check::shadows::{
 };
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, LightRig, TestScene};
 
-fn check_caster(lib: &Library) -> Option<CheckReport> {
+fn check_pass(lib: &Library, shader: &str, pass: &str) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
-    options.shader = Some("standard".to_owned());
-    options.pass = Some("ShadowCaster".to_owned());
+    options.shader = Some(shader.to_owned());
+    options.pass = Some(pass.to_owned());
     options.adapter = common::gpu::adapter_filter();
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+fn check_caster(lib: &Library) -> Option<CheckReport> {
+    check_pass(lib, "standard", "ShadowCaster")
+}
+
+/// `SHADOWS_SCREEN`: both `screen_space_shadows/Collect` variants' masks of both directional
+/// lights match the reference over the read-back maps, with shadowed pixels and SHADOWS_SOFT
+/// changing some; and a mask that mixes with half the strength is caught.
+#[test]
+fn screen_space_shadows_match_the_reference() {
+    let Some(report) = check_pass(
+        &Library::bundled().unwrap(),
+        "screen_space_shadows",
+        "Collect",
+    ) else {
+        return;
+    };
+    eprintln!("{report}");
+    assert!(report.passed(), "{report}");
+    let p = &report.passes[0];
+    assert_eq!((p.variants_run, p.draws), (2, 4));
+    assert!(p.notes[0].contains("shadowed"), "{:?}", p.notes);
+    let shadowed: usize = p.notes[0]
+        .split(" shadowed")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap();
+    assert!(
+        shadowed > 20,
+        "the occluders shadow part of the view: {shadowed}"
+    );
+
+    let lib = common::mutate::bundled_with(
+        "internal/screen_space_shadows.wgsl",
+        "shadow_mix(shadow.params.x, visibility)",
+        "shadow_mix(shadow.params.x * 0.5, visibility)",
+    );
+    let Some(report) = check_pass(&lib, "screen_space_shadows", "Collect") else {
+        return;
+    };
+    assert!(report.passes[0].mismatches > 0 && !report.passed());
 }
 
 /// `check-gpu`'s ShadowCaster part: all 8 variants, every texel of the spot map and of the

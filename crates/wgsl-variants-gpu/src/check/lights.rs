@@ -21,6 +21,7 @@ use super::deferred::{
 use super::passes::keyword_coverage;
 use super::report::PassReport;
 use super::scene::{MapTexture, TestScene, cube_resource, push_mat4, push_vec4};
+use super::screen_shadows::ScreenShadows;
 use super::shadows::{ShadowRig, within};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
@@ -69,6 +70,10 @@ pub struct LightRig {
     pub point_light: Light,
     /// The spot light as a renderer describes it (for its volume).
     pub spot_light: Light,
+    /// The directional light as a renderer describes it (for its `SHADOWS_SCREEN` map).
+    pub directional_light: Light,
+    /// The directional light with the cookie, as a renderer describes it.
+    pub directional_cookie_light: Light,
     /// The spot light (`SPOT`).
     pub spot: LightParams,
     /// The 2D cookie (`Rgba8Unorm`, alpha read).
@@ -83,6 +88,9 @@ pub struct LightRig {
     /// ([`ShadowRig::render`]); `None` until a GPU has rendered them (then the shadowed
     /// variants have no shadow bindings).
     pub shadows: Option<ShadowRig>,
+    /// The directional lights' maps and screen-space masks (`SHADOWS_SCREEN`,
+    /// [`ScreenShadows::render`]); `None` until a GPU has rendered them.
+    pub screen_shadows: Option<ScreenShadows>,
 }
 
 impl LightRig {
@@ -120,19 +128,21 @@ impl LightRig {
             5.0,
             Vec3::new(3.0, 2.5, 2.0),
         );
+        let directional_light =
+            Light::directional(Vec3::new(0.25, -0.35, -0.9), Vec3::new(0.9, 0.8, 0.7));
+        let directional_cookie_light = Light {
+            shape: LightShape::Directional {
+                direction: Vec3::NEG_Z,
+                cookie_size: 1.0,
+                cookie_origin: Vec3::ZERO,
+            },
+            color: Vec3::new(0.8, 0.85, 0.9),
+        };
         let mut rig = LightRig {
-            directional: params(Light::directional(
-                Vec3::new(0.25, -0.35, -0.9),
-                Vec3::new(0.9, 0.8, 0.7),
-            )),
-            directional_cookie: params(Light {
-                shape: LightShape::Directional {
-                    direction: Vec3::NEG_Z,
-                    cookie_size: 1.0,
-                    cookie_origin: Vec3::ZERO,
-                },
-                color: Vec3::new(0.8, 0.85, 0.9),
-            }),
+            directional: params(directional_light),
+            directional_cookie: params(directional_cookie_light),
+            directional_light,
+            directional_cookie_light,
             point: params(point_light),
             spot: params(spot_light),
             point_light,
@@ -142,6 +152,7 @@ impl LightRig {
             view_proj,
             depth: Vec::new(),
             shadows: None,
+            screen_shadows: None,
         };
         rig.depth = scene
             .pixels()
@@ -247,6 +258,42 @@ impl LightRig {
         Ok(())
     }
 
+    /// Renders the directional lights' maps and the `screen_space_shadows/Collect` masks of
+    /// the rig's camera view (see [`ScreenShadows`]).
+    ///
+    /// # Errors
+    /// As [`ScreenShadows::render`].
+    pub fn render_screen_shadows(
+        &mut self,
+        ctx: &GpuContext,
+        lib: &Library,
+        scene: &TestScene,
+    ) -> Result<(), GpuError> {
+        self.screen_shadows = Some(ScreenShadows::render(ctx, lib, scene, self)?);
+        Ok(())
+    }
+
+    /// The reference shadow factor of the lighting pass at pixel `i` (position `p`): the
+    /// rendered mask's value with `SHADOWS_SCREEN` (exact: the mask is data here, checked on
+    /// its own by [`super::screen_shadows::check_collect`]), else [`LightRig::shadow_factor`].
+    pub fn lighting_shadow_factor(
+        &self,
+        t: LightType,
+        keywords: ShadowKeywords,
+        p: Vec3,
+        i: usize,
+    ) -> (f32, f32) {
+        if keywords.screen {
+            let f = self
+                .screen_shadows
+                .as_ref()
+                .map_or(1.0, |s| s.lighting_factor(t, i));
+            (f, f)
+        } else {
+            self.shadow_factor(t, keywords, p)
+        }
+    }
+
     /// The reference shadow factor interval at `p` for light `t` under `keywords` (`(1, 1)`
     /// without shadow keywords or maps).
     pub fn shadow_factor(&self, t: LightType, keywords: ShadowKeywords, p: Vec3) -> (f32, f32) {
@@ -284,6 +331,19 @@ impl LightRig {
             ),
         ];
         out.extend(shadows.into_iter().flatten());
+        let light_type = if *params == self.directional {
+            Some(LightType::Directional)
+        } else if *params == self.directional_cookie {
+            Some(LightType::DirectionalCookie)
+        } else {
+            None
+        };
+        if let Some(mask) = light_type
+            .zip(self.screen_shadows.as_ref())
+            .and_then(|(t, s)| s.lighting_mask(t))
+        {
+            out.push(BoundResource::new(0, 15, mask));
+        }
         out
     }
 }
@@ -433,7 +493,7 @@ fn run_lighting(
         let stored = gbuffer.texel(i);
         let rt3 = stored.rt3.to_vec4();
         let p = rig.deferred_position(scene, x, y);
-        let (lo, hi) = rig.shadow_factor(light, shadow, p);
+        let (lo, hi) = rig.lighting_shadow_factor(light, shadow, p, i);
         let [want_lo, want_hi] = [lo, hi].map(|f| {
             let c = deferred_light(
                 &stored.to_gbuffer(),

@@ -14,7 +14,8 @@
 //! | part | what runs |
 //! |---|---|
 //! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (5376, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps) on [`scene::TestScene`] (one render job: [`standard_job`]) |
-//! | [`lights`] | `deferred_shading/Lighting` (all 28 variants) over LDR and HDR G-buffers, positions from depth |
+//! | [`lights`] | `deferred_shading/Lighting` (all 32 variants) over LDR and HDR G-buffers, positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
+//! | [`screen_shadows`] | `screen_space_shadows/Collect` (both variants): the directional lights' maps (`standard/ShadowCaster`, orthographic) turned into masks of the camera view, every pixel against the reference over the read-back map |
 //! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
 //! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
@@ -35,6 +36,7 @@ pub(crate) mod passes;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod screen_shadows;
 pub mod shadows;
 pub mod urp;
 pub mod volumes;
@@ -88,12 +90,13 @@ pub const DEFAULT_COVER_ABOVE: u64 = 8192;
 pub const DEFAULT_COVER_T: usize = 3;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 9] = [
+pub const PASSES: [(&str, &str); 10] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
     ("standard", "ShadowCaster"),
     ("deferred_shading", "Lighting"),
+    ("screen_space_shadows", "Collect"),
     ("deferred_reflections", "Reflections"),
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
@@ -221,6 +224,12 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     {
         rig.render_shadows(&ctx, lib)?;
     }
+    if selected
+        .iter()
+        .any(|&(s, _)| s == "deferred_shading" || s == "screen_space_shadows")
+    {
+        rig.render_screen_shadows(&ctx, lib, &scene)?;
+    }
     let threads = options.threads();
 
     let standard: Vec<&str> = selected
@@ -280,6 +289,14 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             &rig.point_light,
         )?);
     }
+    if let (true, Some(screen)) = (
+        selected.contains(&("screen_space_shadows", "Collect")),
+        &rig.screen_shadows,
+    ) {
+        report
+            .passes
+            .push(screen_shadows::check_collect(lib, &scene, &rig, screen)?);
+    }
     if selected.contains(&("deferred_shading", "Lighting")) {
         report
             .passes
@@ -288,7 +305,12 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     let chain: Vec<(&str, &str)> = selected
         .iter()
         .copied()
-        .filter(|(s, _)| !matches!(*s, "standard" | "deferred_shading" | "universal_lit"))
+        .filter(|(s, _)| {
+            !matches!(
+                *s,
+                "standard" | "deferred_shading" | "screen_space_shadows" | "universal_lit"
+            )
+        })
         .collect();
     if !chain.is_empty() {
         report
