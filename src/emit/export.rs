@@ -107,6 +107,32 @@ pub fn is_shader_file(lib: &Library, index: usize) -> bool {
     lib.shaders().iter().any(|s| s.file == file)
 }
 
+/// Post-order over imports: `module` after every module it imports (each once), appended to
+/// `order` — the order the dialect exports write modules in, imports first.
+pub(crate) fn dependency_order(lib: &Library, module: usize, order: &mut Vec<usize>) {
+    if order.contains(&module) {
+        return;
+    }
+    // Cycles are rejected when the library loads, so this terminates.
+    for &next in &lib.module_graph().resolved[module] {
+        dependency_order(lib, next, order);
+    }
+    if !order.contains(&module) {
+        order.push(module);
+    }
+}
+
+/// Every module of the library but the shader files, each after its imports.
+pub(crate) fn library_order(lib: &Library) -> Vec<usize> {
+    let mut order = Vec::new();
+    for m in 0..lib.module_graph().modules.len() {
+        if !is_shader_file(lib, m) {
+            dependency_order(lib, m, &mut order);
+        }
+    }
+    order
+}
+
 /// A module and every module it imports, directly or not, in first-import order (the
 /// module itself first).
 pub fn import_closure(lib: &Library, module: usize) -> Vec<usize> {

@@ -46,7 +46,7 @@ use crate::library::Library;
 use crate::preprocess::expr::{BinOp, Expr};
 use crate::preprocess::tree::{Conditional, Node};
 
-use super::export::{ExportError, import_closure, is_shader_file, module_index};
+use super::export::{ExportError, dependency_order, import_closure, library_order, module_index};
 use super::scan::{Scan, scan_library};
 
 /// One module in naga_oil's dialect (serialized as `module`, `import_path` and `source`).
@@ -106,32 +106,10 @@ pub fn export(
 pub fn export_all(lib: &Library, root: Option<&str>) -> Result<Vec<NagaOilModule>, ExportError> {
     let scans = scan_library(lib);
     let renames = member_renames(lib, &scans)?;
-    let graph = lib.module_graph();
-    let mut order = Vec::new();
-    for m in 0..graph.modules.len() {
-        if !is_shader_file(lib, m) {
-            dependency_order(lib, m, &mut order);
-        }
-    }
-    order
+    library_order(lib)
         .into_iter()
         .map(|m| export_one(lib, m, root, &scans, &renames))
         .collect()
-}
-
-/// Post-order over imports: every module after the modules it imports.
-fn dependency_order(lib: &Library, module: usize, order: &mut Vec<usize>) {
-    if order.contains(&module) {
-        return;
-    }
-    let graph = lib.module_graph();
-    // Cycles are rejected when the library loads, so this terminates.
-    for &next in &graph.resolved[module] {
-        dependency_order(lib, next, order);
-    }
-    if !order.contains(&module) {
-        order.push(module);
-    }
 }
 
 /// The name naga's WGSL writer gives a struct member (its `Namer` in a struct's namespace:

@@ -89,27 +89,14 @@ impl Scanner {
         let bytes = line.as_bytes();
         let mut i = 0;
         while i < bytes.len() {
-            let c = bytes[i] as char;
-            if self.in_block_comment > 0 {
-                if line[i..].starts_with("*/") {
-                    self.in_block_comment -= 1;
-                    i += 2;
-                } else if line[i..].starts_with("/*") {
-                    self.in_block_comment += 1;
-                    i += 2;
-                } else {
-                    i += 1;
+            if let Some(skip) = comment_step(&line[i..], &mut self.in_block_comment) {
+                i += skip;
+                if line[i - skip..].starts_with("//") {
+                    return;
                 }
                 continue;
             }
-            if line[i..].starts_with("//") {
-                return;
-            }
-            if line[i..].starts_with("/*") {
-                self.in_block_comment += 1;
-                i += 2;
-                continue;
-            }
+            let c = line[i..].chars().next().unwrap_or(' ');
             if c.is_ascii_alphabetic() || c == '_' {
                 let start = i;
                 while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
@@ -152,7 +139,7 @@ impl Scanner {
                 }
                 self.prev = c;
             }
-            i += c.len_utf8().max(1);
+            i += c.len_utf8();
         }
     }
 
@@ -186,4 +173,23 @@ impl Scanner {
         }
         self.scan.used.insert(word.to_string());
     }
+}
+
+/// Inside a comment or at its start: the bytes to skip (a whole `//` comment, a `/*` or `*/`,
+/// or one character of a block comment), updating the block-comment nesting `depth`; `None`
+/// at code. Steps whole characters, so comments may hold any text.
+pub(crate) fn comment_step(rest: &str, depth: &mut u32) -> Option<usize> {
+    if rest.starts_with("/*") {
+        *depth += 1;
+        return Some(2);
+    }
+    if *depth > 0 {
+        if rest.starts_with("*/") {
+            *depth -= 1;
+            return Some(2);
+        }
+        return Some(rest.chars().next().map_or(1, char::len_utf8));
+    }
+    rest.starts_with("//")
+        .then(|| rest.find('\n').unwrap_or(rest.len()))
 }

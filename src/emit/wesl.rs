@@ -38,9 +38,9 @@ use crate::library::Library;
 use crate::preprocess::expr::{BinOp, Expr};
 use crate::preprocess::tree::Node;
 
-use super::export::{ExportError, import_closure, is_shader_file, module_index};
+use super::export::{ExportError, dependency_order, import_closure, library_order, module_index};
 use super::naga_oil::import_path;
-use super::scan::{Scan, scan_library, scan_nodes};
+use super::scan::{Scan, comment_step, scan_library, scan_nodes};
 use crate::shader::Pass;
 
 /// One module in WESL's dialect (serialized as `module`, `module_path` and `source`).
@@ -75,31 +75,10 @@ pub fn export(lib: &Library, path: &str) -> Result<Vec<WeslModule>, ExportError>
 /// Exports every module of the library (shader files excluded), each after its imports.
 pub fn export_all(lib: &Library) -> Result<Vec<WeslModule>, ExportError> {
     let scans = scan_library(lib);
-    let graph = lib.module_graph();
-    let mut order = Vec::new();
-    for m in 0..graph.modules.len() {
-        if !is_shader_file(lib, m) {
-            dependency_order(lib, m, &mut order);
-        }
-    }
-    order
+    library_order(lib)
         .into_iter()
         .map(|m| export_one(lib, m, &scans))
         .collect()
-}
-
-/// Post-order over imports: every module after the modules it imports.
-fn dependency_order(lib: &Library, module: usize, order: &mut Vec<usize>) {
-    if order.contains(&module) {
-        return;
-    }
-    // Cycles are rejected when the library loads, so this terminates.
-    for &next in &lib.module_graph().resolved[module] {
-        dependency_order(lib, next, order);
-    }
-    if !order.contains(&module) {
-        order.push(module);
-    }
 }
 
 fn export_one(lib: &Library, module: usize, scans: &[Scan]) -> Result<WeslModule, ExportError> {
@@ -470,25 +449,8 @@ impl State {
         let mut i = 0;
         while i < bytes.len() {
             let rest = &text[i..];
-            if self.comment > 0 {
-                if rest.starts_with("*/") {
-                    self.comment -= 1;
-                    i += 2;
-                } else if rest.starts_with("/*") {
-                    self.comment += 1;
-                    i += 2;
-                } else {
-                    i += 1;
-                }
-                continue;
-            }
-            if rest.starts_with("//") {
-                i += rest.find('\n').unwrap_or(rest.len());
-                continue;
-            }
-            if rest.starts_with("/*") {
-                self.comment += 1;
-                i += 2;
+            if let Some(skip) = comment_step(rest, &mut self.comment) {
+                i += skip;
                 continue;
             }
             let c = bytes[i];
@@ -500,7 +462,7 @@ impl State {
                 rest.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_'))
                     .unwrap_or(rest.len())
             } else {
-                1
+                rest.chars().next().map_or(1, char::len_utf8)
             };
             if self.after_block {
                 self.after_block = false;
@@ -837,25 +799,8 @@ fn split_body(node: &[Piece]) -> Option<(String, Vec<Piece>, String)> {
                 let mut i = 0;
                 while i < bytes.len() {
                     let rest = &t[i..];
-                    if comment > 0 {
-                        if rest.starts_with("*/") {
-                            comment -= 1;
-                            i += 2;
-                        } else if rest.starts_with("/*") {
-                            comment += 1;
-                            i += 2;
-                        } else {
-                            i += 1;
-                        }
-                        continue;
-                    }
-                    if rest.starts_with("//") {
-                        i += rest.find('\n').unwrap_or(rest.len());
-                        continue;
-                    }
-                    if rest.starts_with("/*") {
-                        comment += 1;
-                        i += 2;
+                    if let Some(skip) = comment_step(rest, &mut comment) {
+                        i += skip;
                         continue;
                     }
                     match bytes[i] {
@@ -877,7 +822,7 @@ fn split_body(node: &[Piece]) -> Option<(String, Vec<Piece>, String)> {
                         }
                         _ => {}
                     }
-                    i += 1;
+                    i += rest.chars().next().map_or(1, char::len_utf8);
                 }
                 match phase {
                     0 => header.push_str(&t[from..]),
@@ -967,6 +912,19 @@ fn fs() -> @location(0) vec2f {
             "{out}"
         );
         assert_eq!(out.matches("@if(B) let y = 1.0;").count(), 2, "{out}");
+    }
+
+    #[test]
+    fn comments_with_any_characters_are_skipped() {
+        let src = "\
+/* a block comment · with − non-ASCII { and a brace */
+#if defined(A)
+// a line comment · {
+const a: f32 = 1.0; /* trailing · */
+#endif
+";
+        let out = export_text(&[("m.wgsl", src)], "m");
+        assert!(out.contains("@if(A) const a: f32 = 1.0;"), "{out}");
     }
 
     #[test]
