@@ -21,15 +21,14 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::passes::keyword_coverage;
 use super::report::{Mismatch, PassReport};
 use super::shadows::{
-    CUBE_SIZE, CUTOFF, MAP_SIZE, OCCLUDERS, POINT_STRENGTH, SPOT_BIAS, SPOT_STRENGTH,
-    occluder_texture, render_caster,
+    CUBE_SIZE, CUTOFF, MAP_SIZE, OCCLUDERS, occluder_texture, render_caster, rig_params,
 };
 use crate::{CheckError, GpuContext, GpuError};
 use wgsl_variants::Library;
 use wgsl_variants::reference::light::Light;
 use wgsl_variants::reference::quantize::f16_bits_to_f32;
 use wgsl_variants::reference::shadow::{
-    ShadowKeywords, ShadowParams, caster_distance, cube_face_view_proj, shadow_coords,
+    ShadowKeywords, caster_distance, cube_face_view_proj, shadow_coords,
 };
 use wgsl_variants::reference::surface::{Geometry, Keywords, Material, Texels, surface};
 use wgsl_variants::reference::tolerance::{f16_within, unorm_within};
@@ -128,14 +127,7 @@ pub fn check_shadow_caster(
     let pass = lib
         .pass("standard", "ShadowCaster")
         .map_err(|e| CheckError::lookup(String::from("standard/ShadowCaster"), e))?;
-    let refused = |e: wgsl_variants::reference::shadow::ShadowError| {
-        GpuError::from(CheckError::UnknownToReference {
-            variant: "standard/ShadowCaster".to_owned(),
-            message: e.to_string(),
-        })
-    };
-    let spot = ShadowParams::for_light(spot_light, SPOT_STRENGTH, SPOT_BIAS).map_err(refused)?;
-    let point = ShadowParams::for_light(point_light, POINT_STRENGTH, 0.0).map_err(refused)?;
+    let (spot, point) = rig_params(spot_light, point_light)?;
     let spot_view = View {
         name: "spot map".to_owned(),
         view_proj: spot.world_to_shadow,

@@ -15,7 +15,7 @@ use super::lights::LightRig;
 use super::passes::keyword_coverage;
 use super::report::{Mismatch, PassReport};
 use super::scene::{TestScene, push_mat4, push_vec4};
-use super::shadows::{MAP_SIZE, SPOT_BIAS, render_caster};
+use super::shadows::{MAP_SIZE, SPOT_BIAS, refused, render_caster};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
     TargetFormat, render,
@@ -23,7 +23,7 @@ use crate::{
 use wgsl_variants::Library;
 use wgsl_variants::reference::light::LightType;
 use wgsl_variants::reference::shadow::{
-    ShadowError, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
+    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
 };
 use wgsl_variants::reference::tolerance::unorm_within;
 
@@ -61,13 +61,6 @@ pub struct ScreenShadows {
     pub height: u32,
 }
 
-fn refused(e: ShadowError) -> GpuError {
-    GpuError::from(CheckError::UnknownToReference {
-        variant: "screen_space_shadows/Collect".to_owned(),
-        message: e.to_string(),
-    })
-}
-
 impl ScreenShadows {
     /// Renders each directional light's map with the cut-out caster, then every `Collect`
     /// variant over the rig's depth buffer.
@@ -88,6 +81,7 @@ impl ScreenShadows {
             .iter()
             .map(|c| c.keywords(pass).into_iter().map(str::to_owned).collect())
             .collect();
+        let refused = refused("screen_space_shadows/Collect");
         let center = scene.centre.extend(0.5);
         let mut lights = Vec::new();
         for (light, kind) in [
@@ -101,7 +95,7 @@ impl ScreenShadows {
                 center,
                 REGION_RADIUS,
             )
-            .map_err(refused)?;
+            .map_err(&refused)?;
             let image = render_caster(
                 ctx,
                 lib,
@@ -111,7 +105,7 @@ impl ScreenShadows {
                 MAP_SIZE,
             )?;
             let map =
-                ShadowMap2d::from_depth16(MAP_SIZE, MAP_SIZE, &image.depth).map_err(refused)?;
+                ShadowMap2d::from_depth16(MAP_SIZE, MAP_SIZE, &image.depth).map_err(&refused)?;
             let mut masks = Vec::new();
             for choice in &choices {
                 let variant = wgsl_variants::Variant {

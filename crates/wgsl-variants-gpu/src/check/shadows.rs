@@ -20,8 +20,8 @@ use wgsl_variants::Library;
 use wgsl_variants::reference::light::{Light, LightType};
 use wgsl_variants::reference::quantize::f16_bits_to_f32;
 use wgsl_variants::reference::shadow::{
-    ShadowCube, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, cube_face_view_proj,
-    shadow_factor,
+    ShadowCube, ShadowError, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams,
+    cube_face_view_proj, shadow_factor,
 };
 
 /// Edge length of the spot light's 2D map in texels.
@@ -273,6 +273,29 @@ fn red_f16(bytes: &[u8]) -> Vec<f32> {
         .collect()
 }
 
+/// What the reference refusing a shadow means to the check: an error naming `variant`.
+pub(crate) fn refused(variant: &str) -> impl Fn(ShadowError) -> GpuError + '_ {
+    move |e| {
+        GpuError::from(CheckError::UnknownToReference {
+            variant: variant.to_owned(),
+            message: e.to_string(),
+        })
+    }
+}
+
+/// The shadows of the check's spot light ([`SPOT_STRENGTH`], [`SPOT_BIAS`]) and point light
+/// ([`POINT_STRENGTH`]), as the maps are rendered with.
+pub(crate) fn rig_params(
+    spot_light: &Light,
+    point_light: &Light,
+) -> Result<(ShadowParams, ShadowParams), GpuError> {
+    let refused = refused("standard/ShadowCaster");
+    Ok((
+        ShadowParams::for_light(spot_light, SPOT_STRENGTH, SPOT_BIAS).map_err(&refused)?,
+        ShadowParams::for_light(point_light, POINT_STRENGTH, 0.0).map_err(&refused)?,
+    ))
+}
+
 /// The shadow maps of the check's spot and point lights, as rendered by the GPU and read back.
 #[derive(Clone, Debug)]
 pub struct ShadowRig {
@@ -301,15 +324,8 @@ impl ShadowRig {
         spot_light: &Light,
         point_light: &Light,
     ) -> Result<ShadowRig, GpuError> {
-        let refused = |e: wgsl_variants::reference::shadow::ShadowError| {
-            GpuError::from(CheckError::UnknownToReference {
-                variant: "standard/ShadowCaster".to_owned(),
-                message: e.to_string(),
-            })
-        };
-        let spot =
-            ShadowParams::for_light(spot_light, SPOT_STRENGTH, SPOT_BIAS).map_err(refused)?;
-        let point = ShadowParams::for_light(point_light, POINT_STRENGTH, 0.0).map_err(refused)?;
+        let refused = refused("standard/ShadowCaster");
+        let (spot, point) = rig_params(spot_light, point_light)?;
         let mut kw: Vec<&str> = CASTER_KEYWORDS.to_vec();
         kw.push("SHADOWS_DEPTH");
         let image = render_caster(
@@ -320,7 +336,7 @@ impl ShadowRig {
             spot.light_position.extend(spot.inv_range),
             MAP_SIZE,
         )?;
-        let map = ShadowMap2d::from_depth16(MAP_SIZE, MAP_SIZE, &image.depth).map_err(refused)?;
+        let map = ShadowMap2d::from_depth16(MAP_SIZE, MAP_SIZE, &image.depth).map_err(&refused)?;
         kw.pop();
         kw.push("SHADOWS_CUBE");
         let range = 1.0 / point.inv_range;
@@ -337,7 +353,7 @@ impl ShadowRig {
             *bytes = image.color.unwrap_or_default();
         }
         let cube = ShadowCube::new(CUBE_SIZE, faces.iter().flat_map(|f| red_f16(f)).collect())
-            .map_err(refused)?;
+            .map_err(&refused)?;
         Ok(ShadowRig {
             spot,
             point,
