@@ -94,6 +94,21 @@ pub enum MaterialsError {
         /// Second keyword.
         second: String,
     },
+    /// A keyword that `#pragma skip_variants` removes from the pass: no variant of the pass has
+    /// it on, so the material could never be drawn with it.
+    #[error(
+        "material `{material}` enables `{keyword}`, which `#pragma skip_variants` removes from `{shader}/{pass}`: no variant of the pass has it"
+    )]
+    Skipped {
+        /// The material.
+        material: String,
+        /// The shader.
+        shader: String,
+        /// The pass.
+        pass: String,
+        /// The keyword.
+        keyword: String,
+    },
     /// The material's keywords break a `require`/`exclude` constraint of a pass between two
     /// `shader_feature` sets: no variant of that pass could be built for it.
     #[error(
@@ -175,6 +190,17 @@ pub fn feature_combinations(
             let Some((set, option)) = pass.keyword(k) else {
                 continue;
             };
+            // Unity lets a material enable any keyword of its shader (a global one too: on
+            // when enabled globally or on the material), but one that skip_variants strips
+            // from this pass leaves the material with no variant here.
+            if pass.skip_variants.contains(k) {
+                return Err(MaterialsError::Skipped {
+                    material: m.name.clone(),
+                    shader: pass.shader.clone(),
+                    pass: pass.name.clone(),
+                    keyword: k.clone(),
+                });
+            }
             if let Some(prev) = options[set]
                 && prev as usize != option
             {

@@ -381,7 +381,8 @@ fn random_materials(rng: &mut Rng, keywords: &[String], pass: &Pass) -> Vec<Mate
     (0..rng.below(4))
         .map(|i| {
             let mut on: Vec<String> = Vec::new();
-            for k in keywords {
+            // A keyword skip_variants strips is refused in a material (materials::Skipped).
+            for k in keywords.iter().filter(|k| !pass.skip_variants.contains(k)) {
                 let (set, _) = pass.keyword(k).unwrap();
                 if rng.chance(40) && !on.iter().any(|o| pass.keyword(o).unwrap().0 == set) {
                     on.push(k.clone());

@@ -285,3 +285,33 @@ fn a_material_breaking_a_constraint_is_an_error() {
     // Rock's one feature combination times the multi_compile options NORMALS allows (_, HIGH).
     assert_eq!(space.count(), BigUint::from(2u8));
 }
+
+#[test]
+fn materials_that_no_variant_can_draw_are_refused_naming_material_and_pass() {
+    let lib = library(
+        "#pragma multi_compile _ FOG\n#pragma shader_feature _ A B\n#pragma shader_feature C\n#pragma skip_variants C",
+    );
+    let pass = lib.pass("s", "P").unwrap();
+    // A keyword skip_variants strips from the pass.
+    let e = lib
+        .build_set(pass, Some(&[material("Glass", &["C"])]))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`Glass`") && e.contains("`C`") && e.contains("`s/P`"),
+        "{e}"
+    );
+    assert!(e.contains("skip_variants"), "{e}");
+    // Two options of one set.
+    let e = lib
+        .build_set(pass, Some(&[material("Both", &["A", "B"])]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`Both`") && e.contains("`s/P`"), "{e}");
+    // A multi_compile keyword is allowed (Unity: on when enabled globally or on the
+    // material) and changes no build set.
+    assert!(
+        lib.build_set(pass, Some(&[material("Foggy", &["FOG", "A"])]))
+            .is_ok()
+    );
+}

@@ -179,6 +179,16 @@ pub enum LightError {
         /// The angle given.
         angle_degrees: f32,
     },
+    /// A spot's inner angle (URP) outside `[0, outer]`, or not finite.
+    #[error(
+        "spot inner angle {inner_degrees}° must be between 0° and the outer angle {outer_degrees}°"
+    )]
+    SpotInnerAngle {
+        /// The inner angle given.
+        inner_degrees: f32,
+        /// The outer angle.
+        outer_degrees: f32,
+    },
     /// A directional cookie size that is not > 0.
     #[error("directional cookie size {size} must be > 0")]
     CookieSize {

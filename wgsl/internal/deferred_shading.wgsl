@@ -43,14 +43,6 @@
 #import deferred/depth
 #import lighting/light_bindings
 
-// inv_view_proj: clip to world (the inverse of the G-buffer pass's view_proj);
-// position.xyz: the camera's world position; view_proj: world to clip (vs_volume).
-struct DeferredCamera {
-    inv_view_proj: mat4x4f,
-    position: vec4f,
-    view_proj: mat4x4f,
-}
-
 @group(0) @binding(0) var rt0: texture_2d<f32>;
 @group(0) @binding(1) var rt1: texture_2d<f32>;
 @group(0) @binding(2) var rt2: texture_2d<f32>;

@@ -20,11 +20,6 @@
 #import deferred/depth
 #import lighting/shadow
 
-struct DeferredCamera {
-    inv_view_proj: mat4x4f,
-    position: vec4f,
-    view_proj: mat4x4f,
-}
 
 @group(0) @binding(3) var depth_tex: texture_2d<f32>;
 @group(0) @binding(4) var<uniform> deferred_camera: DeferredCamera;

@@ -16,9 +16,10 @@
 //   fn shadow_coords(world_to_shadow: mat4x4f, p: vec3f) -> vec3f   map uv (row 0 at the top), depth
 //   fn shadow_map_visibility(map, sampler, uv: vec2f, z: f32) -> f32
 //       a 2D map's visibility at uv for receiver depth z (bias already subtracted): one
-//       LessEqual tap, or with SHADOWS_SOFT the 3 x 3 tent (1 2 1) x (1 2 1) / 16. The spot's
+//       LessEqual tap, or with SHADOWS_SOFT (URP: _SHADOWS_SOFT) the 3 x 3 tent (1 2 1) x (1 2 1) / 16. The spot's
 //       SHADOWS_DEPTH (lighting/light_bindings) and the directional light's screen-space pass
-//       (internal/screen_space_shadows) both read their maps through it.
+//       (internal/screen_space_shadows) both read their maps through it, and so does URP's main
+//       light in internal/stencil_deferred (_MAIN_LIGHT_SHADOWS).
 
 struct Shadow {
     world_to_shadow: mat4x4f,
@@ -39,7 +40,7 @@ fn shadow_coords(world_to_shadow: mat4x4f, p: vec3f) -> vec3f {
 }
 
 fn shadow_map_visibility(map: texture_depth_2d, map_sampler: sampler_comparison, uv: vec2f, z: f32) -> f32 {
-#if defined(SHADOWS_SOFT)
+#if defined(SHADOWS_SOFT) || defined(_SHADOWS_SOFT)
     var v = 0.0;
     v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(-1, -1));
     v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, -1));

@@ -17,6 +17,8 @@
 //   fn urp_pack_float2_to_888(f: vec2f) -> vec3f   two 12-bit codes as three bytes / 255
 //   fn urp_pack_normal(n: vec3f) -> vec3f          GBuffer2.rgb
 //   fn urp_pack_flags(flags: u32) -> f32           flags / 255
+//   fn urp_unpack_normal(rgb: vec3f) -> vec3f      GBuffer2.rgb back to a unit normal
+//   fn urp_unpack_flags(a: f32) -> u32             GBuffer0.a back to the flags byte
 
 const URP_FLAG_RECEIVE_SHADOWS_OFF: u32 = 1u;
 const URP_FLAG_SPECULAR_HIGHLIGHTS_OFF: u32 = 2u;
@@ -73,4 +75,37 @@ fn urp_pack_normal(n: vec3f) -> vec3f {
 
 fn urp_pack_flags(flags: u32) -> f32 {
     return f32(flags) / 255.0;
+}
+
+// --- Reading the G-buffer back (the StencilDeferred lighting passes) ---
+
+// The 12-bit codes of three bytes / 255, each code / 4095 (Unpack888ToFloat2).
+fn urp_unpack_888_to_float2(f: vec3f) -> vec2f {
+    let b = vec3u(round(f * 255.0));
+    let x = b.x | ((b.z & 15u) << 8u);
+    let y = b.y | ((b.z >> 4u) << 8u);
+    return vec2f(f32(x), f32(y)) / 4095.0;
+}
+
+// UnpackNormalOctQuadEncode: (f, 1 - |f.x| - |f.y|), the lower hemisphere unfolded, normalized.
+fn urp_oct_decode(f: vec2f) -> vec3f {
+    var n = vec3f(f, 1.0 - abs(f.x) - abs(f.y));
+    let t = max(-n.z, 0.0);
+    n.x += select(t, -t, n.x >= 0.0);
+    n.y += select(t, -t, n.y >= 0.0);
+    return normalize(n);
+}
+
+// The unit world normal of GBuffer2.rgb.
+fn urp_unpack_normal(rgb: vec3f) -> vec3f {
+#if defined(_GBUFFER_NORMALS_OCT)
+    return urp_oct_decode(urp_unpack_888_to_float2(rgb) * 2.0 - 1.0);
+#else
+    return normalize(rgb);
+#endif
+}
+
+// The flags byte of GBuffer0.a: floor(a * 255 + 0.5) (UnpackMaterialFlags).
+fn urp_unpack_flags(a: f32) -> u32 {
+    return u32(floor(a * 255.0 + 0.5));
 }

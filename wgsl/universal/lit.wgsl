@@ -1,5 +1,6 @@
 #shader universal_lit
-// Unity URP's Lit shader, deferred path: the UniversalGBuffer pass (docs/urp.md). Material
+// Unity URP's Lit shader, deferred path: the UniversalGBuffer pass (docs/urp.md) and the
+// ShadowCaster pass (docs/urp.md §10). Material
 // keywords are shader_feature_local as in URP's Lit.shader; the pipeline keywords that change
 // what the G-buffer pass writes are multi_compile. 2^10 · 2^6 = 65536 combinations, of which
 // 49152 are variants: URP's mixed-lighting setup is one of None, ShadowMask and Subtractive
@@ -26,4 +27,15 @@
 #pragma multi_compile _ LIGHTMAP_ON
 #pragma exclude _MIXED_LIGHTING_SUBTRACTIVE SHADOWS_SHADOWMASK
 #import universal/lit_gbuffer_pass
+#endpass
+
+#pass ShadowCaster
+#tag LightMode ShadowCaster
+// URP Lit's ShadowCaster: depth only; the smoothness-in-albedo-alpha keyword changes the alpha
+// (so the cutout) only with _ALPHATEST_ON (without it, two pairs of variants render alike);
+// _CASTING_PUNCTUAL_LIGHT_SHADOW biases along the direction to a point or spot light.
+#pragma shader_feature_local _ALPHATEST_ON
+#pragma shader_feature_local _SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A
+#pragma multi_compile _ _CASTING_PUNCTUAL_LIGHT_SHADOW
+#import universal/shadow_caster_pass
 #endpass

@@ -4,7 +4,8 @@
 //
 // Provides:
 //   struct UrpSurface { albedo, alpha, metallic, specular, smoothness, occlusion, emission, normal_ts }
-//   fn urp_surface(uv: vec2f) -> UrpSurface         _ALPHATEST_ON discards alpha < cutoff here
+//   fn urp_alpha(albedo_alpha: f32) -> f32          URP's Alpha(): _ALPHATEST_ON discards here
+//   fn urp_surface(uv: vec2f) -> UrpSurface
 //   struct UrpBrdf { diffuse, specular, reflectivity, perceptual_roughness, roughness2, grazing }
 //   fn urp_brdf(s: UrpSurface) -> UrpBrdf
 //   fn urp_world_normal(normal_ts: vec3f, normal: vec3f, tangent: vec4f) -> vec3f
@@ -31,22 +32,28 @@ struct UrpBrdf {
     grazing: f32,
 }
 
+// URP's Alpha(): the base map's alpha times _BaseColor.a (_BaseColor.a alone when the base
+// map's alpha holds the smoothness); _ALPHATEST_ON discards alpha < _Cutoff (clip(alpha -
+// cutoff): alpha == cutoff is kept). Fragment stage only.
+fn urp_alpha(albedo_alpha: f32) -> f32 {
+#if defined(_SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A)
+    let alpha = material.base_color.a;
+#else
+    let alpha = albedo_alpha * material.base_color.a;
+#endif
+#if defined(_ALPHATEST_ON)
+    if alpha < material.params.z {
+        discard;
+    }
+#endif
+    return alpha;
+}
+
 fn urp_surface(uv: vec2f) -> UrpSurface {
     var s: UrpSurface;
     let albedo_alpha = textureSample(base_map, material_sampler, uv);
     s.albedo = albedo_alpha.rgb * material.base_color.rgb;
-    // With the smoothness in the base map's alpha, alpha is _BaseColor.a alone.
-#if defined(_SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A)
-    s.alpha = material.base_color.a;
-#else
-    s.alpha = albedo_alpha.a * material.base_color.a;
-#endif
-#if defined(_ALPHATEST_ON)
-    // clip(alpha - cutoff): alpha == cutoff is kept.
-    if s.alpha < material.params.z {
-        discard;
-    }
-#endif
+    s.alpha = urp_alpha(albedo_alpha.a);
 
 #if defined(_METALLICSPECGLOSSMAP)
     var spec_gloss = textureSample(metallic_gloss_map, material_sampler, uv);
@@ -101,13 +108,14 @@ fn urp_surface(uv: vec2f) -> UrpSurface {
 
 // Metallic: reflectivity = 1 − 0.96 · (1 − metallic), diffuse = albedo · (1 − reflectivity),
 // specular = mix(0.04, albedo, metallic). _SPECULAR_SETUP: reflectivity = max component of the
-// specular colour, diffuse = albedo · (1 − specular). roughness = max(pr², 2^-7),
+// specular colour, diffuse = albedo · (1 − reflectivity) (current URP's BRDF.hlsl; older URP
+// releases used albedo · (1 − specular) per channel). roughness = max(pr², 2^-7),
 // roughness² = max(roughness², 2^-14), grazing = saturate(smoothness + reflectivity).
 fn urp_brdf(s: UrpSurface) -> UrpBrdf {
     var b: UrpBrdf;
 #if defined(_SPECULAR_SETUP)
     b.reflectivity = max(max(s.specular.r, s.specular.g), s.specular.b);
-    b.diffuse = s.albedo * (vec3f(1.0) - s.specular);
+    b.diffuse = s.albedo * (1.0 - b.reflectivity);
     b.specular = s.specular;
 #else
     let one_minus_reflectivity = 0.96 * (1.0 - s.metallic);

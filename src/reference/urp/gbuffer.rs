@@ -389,14 +389,12 @@ pub struct UrpBrdf {
 
 /// `InitializeBRDFData`: metallic `reflectivity = 1 − 0.96 · (1 − metallic)`, diffuse
 /// `albedo · 0.96 · (1 − metallic)`, specular `mix(0.04, albedo, metallic)`; specular setup
-/// `reflectivity = max(specular)`, diffuse `albedo · (1 − specular)`.
+/// `reflectivity = max(specular)`, diffuse `albedo · (1 − reflectivity)` (current URP's
+/// `BRDF.hlsl`; older releases used `albedo · (1 − specular)` per channel).
 pub fn urp_brdf(k: &UrpKeywords, s: &UrpSurface) -> UrpBrdf {
     let (diffuse, specular, reflectivity) = if k.on(kw::SPECULAR_SETUP) {
-        (
-            s.albedo * (Vec3::ONE - s.specular),
-            s.specular,
-            s.specular.max_element(),
-        )
+        let reflectivity = s.specular.max_element();
+        (s.albedo * (1.0 - reflectivity), s.specular, reflectivity)
     } else {
         let one_minus = ONE_MINUS_DIELECTRIC_SPEC * (1.0 - s.metallic);
         (

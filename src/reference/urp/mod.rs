@@ -18,6 +18,8 @@
 //! | [`ufloat`] | `Rg11b10Ufloat`: 11-/10-bit unsigned floats, packing, decoding |
 //! | [`workflow`] | metallic-workflow reflectivity (`kDielectricSpec`) and its inverse |
 //! | [`gbuffer`] | what the `UniversalGBuffer` fragment writes per texel, per target |
+//! | [`lighting`] | the `StencilDeferred` lighting passes: URP's attenuation and BRDF from the G-buffer |
+//! | [`shadow`] | the ShadowCaster pass: URP's shadow bias and near-plane pancaking |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
 //! ```
@@ -40,7 +42,9 @@
 pub mod accuracy;
 pub mod flags;
 pub mod gbuffer;
+pub mod lighting;
 pub mod normal;
+pub mod shadow;
 pub mod srgb;
 pub mod ufloat;
 pub mod workflow;

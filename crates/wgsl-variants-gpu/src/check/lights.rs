@@ -409,11 +409,6 @@ pub(crate) fn lighting_resources(
     camera: &LightingCamera<'_>,
 ) -> Vec<BoundResource> {
     let (w, h) = (scene.width, scene.height);
-    let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
-    let mut uniform = Vec::new();
-    push_mat4(&mut uniform, camera.view_proj.inverse());
-    push_vec4(&mut uniform, camera.position.extend(1.0));
-    push_mat4(&mut uniform, camera.view_proj);
     let mut resources = vec![
         BoundResource::new(
             0,
@@ -430,20 +425,37 @@ pub(crate) fn lighting_resources(
             2,
             texture(TargetFormat::Rgb10a2Unorm, w, h, &gbuffer.targets[2]),
         ),
+    ];
+    resources.extend(depth_camera_resources(scene, camera));
+    resources.extend(rig.resources_for(light));
+    resources
+}
+
+/// Bindings 3 and 4 of the full-screen deferred passes (`deferred/depth`): the depth buffer as
+/// `R32Float` and the `DeferredCamera` uniform (inverse view-projection, position,
+/// view-projection).
+pub(crate) fn depth_camera_resources(
+    scene: &TestScene,
+    camera: &LightingCamera<'_>,
+) -> Vec<BoundResource> {
+    let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+    let mut uniform = Vec::new();
+    push_mat4(&mut uniform, camera.view_proj.inverse());
+    push_vec4(&mut uniform, camera.position.extend(1.0));
+    push_mat4(&mut uniform, camera.view_proj);
+    vec![
         BoundResource::new(
             0,
             3,
             Resource::Texture2d {
                 format: wgpu::TextureFormat::R32Float,
-                width: w,
-                height: h,
+                width: scene.width,
+                height: scene.height,
                 data: depth,
             },
         ),
         BoundResource::new(0, 4, Resource::Uniform(uniform)),
-    ];
-    resources.extend(rig.resources_for(light));
-    resources
+    ]
 }
 
 /// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.

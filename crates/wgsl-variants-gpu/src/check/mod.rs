@@ -21,6 +21,8 @@
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
+//! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
+//! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
@@ -39,6 +41,8 @@ pub mod scene;
 pub mod screen_shadows;
 pub mod shadows;
 pub mod urp;
+pub mod urp_caster;
+pub mod urp_lighting;
 pub mod volumes;
 
 use std::time::Instant;
@@ -90,7 +94,7 @@ pub const DEFAULT_COVER_ABOVE: u64 = 8192;
 pub const DEFAULT_COVER_T: usize = 3;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 10] = [
+pub const PASSES: [(&str, &str); 13] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -101,6 +105,9 @@ pub const PASSES: [(&str, &str); 10] = [
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
     ("universal_lit", "UniversalGBuffer"),
+    ("universal_lit", "ShadowCaster"),
+    ("stencil_deferred", "PunctualLit"),
+    ("stencil_deferred", "DirectionalLit"),
 ];
 
 /// The pseudo-shader name that selects the compute kernels.
@@ -224,10 +231,12 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     {
         rig.render_shadows(&ctx, lib)?;
     }
-    if selected
-        .iter()
-        .any(|&(s, _)| s == "deferred_shading" || s == "screen_space_shadows")
-    {
+    if selected.iter().any(|&(s, _)| {
+        matches!(
+            s,
+            "deferred_shading" | "screen_space_shadows" | "stencil_deferred"
+        )
+    }) {
         rig.render_screen_shadows(&ctx, lib, &scene)?;
     }
     let threads = options.threads();
@@ -302,13 +311,29 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             .passes
             .push(lights::check_deferred_shading(&ctx, lib, &scene, &rig)?);
     }
+    if selected.contains(&("universal_lit", "ShadowCaster")) {
+        report.passes.push(urp_caster::check_urp_shadow_caster(
+            &ctx, lib, &scene, &rig,
+        )?);
+    }
+    for &(s, p) in &selected {
+        if s == "stencil_deferred" {
+            report.passes.push(urp_lighting::check_stencil_deferred(
+                &ctx, lib, &scene, &rig, p,
+            )?);
+        }
+    }
     let chain: Vec<(&str, &str)> = selected
         .iter()
         .copied()
         .filter(|(s, _)| {
             !matches!(
                 *s,
-                "standard" | "deferred_shading" | "screen_space_shadows" | "universal_lit"
+                "standard"
+                    | "deferred_shading"
+                    | "screen_space_shadows"
+                    | "universal_lit"
+                    | "stencil_deferred"
             )
         })
         .collect();

@@ -7,13 +7,22 @@ use glam::Vec3;
 
 use super::compare::pixel;
 use super::deferred::{final_pass, render_chain, render_gbuffer};
+use super::lights::LightRig;
 use super::passes::standard_job;
 use super::scene::TestScene;
+use super::urp::{DEFAULT_SEED, UrpScene};
+use super::urp_lighting::{light_gbuffer, render_urp_gbuffer};
 use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
 use wgsl_variants::reference::ldr::ldr_decode;
 use wgsl_variants::reference::quantize::unorm;
 use wgsl_variants::reference::surface::Keywords;
+use wgsl_variants::reference::urp::flags::{
+    RECEIVE_SHADOWS_OFF, SPECULAR_HIGHLIGHTS_OFF, SPECULAR_SETUP, SUBTRACTIVE_MIXED_LIGHTING,
+};
+use wgsl_variants::reference::urp::normal::{
+    decode_normal_oct, decode_normal_snorm8, snorm8_to_f32,
+};
 
 /// The keyword set the pictures use by default: `standard/Deferred` with every map on and the
 /// per-pixel reflection probes, LDR (so the final frame goes through the final pass); its
@@ -140,7 +149,8 @@ fn light(format: TargetFormat, bytes: &[u8], i: usize) -> [f32; 4] {
 /// RT3, decoded), and `final`: with `UNITY_ENABLE_REFLECTION_BUFFERS` after the reflection
 /// probes (also `reflections`, the reflection buffer) and the add pass, then (LDR) the final
 /// pass; without, the final pass (LDR) or RT3 (HDR) directly. `standard/ForwardBase`: `final`
-/// (rgb) and `alpha`.
+/// (rgb) and `alpha`. `universal_lit/UniversalGBuffer`: URP's G-buffer views and its lighting
+/// (see `urp_pictures`).
 pub fn render_pictures(
     ctx: &GpuContext,
     lib: &Library,
@@ -223,10 +233,111 @@ pub fn render_pictures(
                 }),
             ])
         }
+        ("universal_lit", "UniversalGBuffer") => urp_pictures(ctx, lib, scene, keywords),
         _ => Err(GpuError::from(CheckError::NoPictures(format!(
             "{shader}/{pass}"
         )))),
     }
+}
+
+/// URP's G-buffer views of a `UniversalGBuffer` variant on the URP scene, and the lighting:
+/// `albedo` (GBuffer0 rgb as stored, sRGB), `flags` (GBuffer0 a: r ReceiveShadowsOff, g
+/// SpecularHighlightsOff, b SpecularSetup, all three at half with SubtractiveMixedLighting),
+/// `specular` (GBuffer1 rgb), `occlusion` (GBuffer1 a), `normal` (GBuffer2 decoded, `n · ½ + ½`),
+/// `smoothness` (GBuffer2 a), `gi` (GBuffer3: emission + GI) and `lighting` (GBuffer3 after
+/// `stencil_deferred`'s main light with its shadow, a point and a spot light).
+fn urp_pictures(
+    ctx: &GpuContext,
+    lib: &Library,
+    scene: &TestScene,
+    keywords: &[&str],
+) -> Result<Vec<Picture>, GpuError> {
+    let (w, h) = (scene.width, scene.height);
+    let urp = UrpScene::new(scene, DEFAULT_SEED);
+    let g = render_urp_gbuffer(ctx, lib, &urp, keywords)?;
+    let mut rig = LightRig::new(scene);
+    rig.render_screen_shadows(ctx, lib, scene)?;
+    let lit = light_gbuffer(ctx, lib, scene, &rig, &g)?;
+    let t = &g.targets;
+    let rgba8 = TargetFormat::Rgba8Unorm;
+    let texel = |t: &[u8], i: usize| [t[i * 4], t[i * 4 + 1], t[i * 4 + 2], t[i * 4 + 3]];
+    let normal = |i: usize| {
+        let b = texel(&t[2], i);
+        let n = if g.oct {
+            decode_normal_oct([b[0], b[1], b[2]])
+        } else {
+            decode_normal_snorm8([b[0] as i8, b[1] as i8, b[2] as i8])
+        };
+        rgb((n * 0.5 + Vec3::splat(0.5)).extend(1.0).to_array())
+    };
+    let smoothness = |i: usize| {
+        let a = texel(&t[2], i)[3];
+        grey(if g.oct {
+            f32::from(a) / 255.0
+        } else {
+            snorm8_to_f32(a as i8)
+        })
+    };
+    let flags = |i: usize| {
+        let byte = texel(&t[0], i)[3];
+        let bit = |b: u8| f32::from(u8::from(byte & b != 0));
+        let scale = if byte & SUBTRACTIVE_MIXED_LIGHTING != 0 {
+            0.5
+        } else {
+            1.0
+        };
+        [
+            bit(RECEIVE_SHADOWS_OFF) * scale,
+            bit(SPECULAR_HIGHLIGHTS_OFF) * scale,
+            bit(SPECULAR_SETUP) * scale,
+            1.0,
+        ]
+    };
+    let ufloat = |bytes: &[u8], i: usize| rgb(read(TargetFormat::Rg11b10Ufloat, bytes, i));
+    Ok(vec![
+        Picture::from_fn(
+            "albedo",
+            "GBuffer0 rgb: base albedo (sRGB as stored)",
+            w,
+            h,
+            |i| rgb(read(rgba8, &t[0], i)),
+        ),
+        Picture::from_fn(
+            "flags",
+            "GBuffer0 a: material flags (r ReceiveShadowsOff, g SpecularHighlightsOff, b SpecularSetup; half with SubtractiveMixedLighting)",
+            w,
+            h,
+            flags,
+        ),
+        Picture::from_fn(
+            "specular",
+            "GBuffer1 rgb: specular colour or reflectivity",
+            w,
+            h,
+            |i| rgb(read(rgba8, &t[1], i)),
+        ),
+        Picture::from_fn("occlusion", "GBuffer1 a: occlusion", w, h, |i| {
+            grey(read(rgba8, &t[1], i)[3])
+        }),
+        Picture::from_fn(
+            "normal",
+            "GBuffer2 rgb decoded: world normal · 0.5 + 0.5",
+            w,
+            h,
+            normal,
+        ),
+        Picture::from_fn("smoothness", "GBuffer2 a: smoothness", w, h, smoothness),
+        Picture::from_fn("gi", "GBuffer3: emission + baked GI (clamped)", w, h, |i| {
+            ufloat(&t[3], i)
+        }),
+        Picture::from_fn(
+            "lighting",
+            "GBuffer3 after stencil_deferred: the main light (soft shadow), a point and a spot light (clamped)",
+            w,
+            h,
+            |i| ufloat(&lit, i),
+        ),
+    ])
 }
 
 /// An HDR RT3 as an `Rgba8Unorm` frame (clamped, as an 8-bit target would store it).

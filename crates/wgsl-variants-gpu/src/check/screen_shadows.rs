@@ -11,10 +11,10 @@
 use std::time::Instant;
 
 use super::deferred::texture;
-use super::lights::LightRig;
+use super::lights::{LightRig, LightingCamera, depth_camera_resources};
 use super::passes::keyword_coverage;
 use super::report::{Mismatch, PassReport};
-use super::scene::{TestScene, push_mat4, push_vec4};
+use super::scene::TestScene;
 use super::shadows::{MAP_SIZE, SPOT_BIAS, refused, render_caster};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
@@ -172,28 +172,26 @@ fn collect_resources(
     params: &ShadowParams,
     map: &[u16],
 ) -> Vec<BoundResource> {
-    let depth: Vec<u8> = rig.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
-    let mut camera = Vec::new();
-    push_mat4(&mut camera, rig.view_proj.inverse());
-    push_vec4(&mut camera, scene.scene.camera_position.extend(1.0));
-    push_mat4(&mut camera, rig.view_proj);
+    let camera = LightingCamera {
+        view_proj: rig.view_proj,
+        position: scene.scene.camera_position,
+        depth: &rig.depth,
+    };
+    let mut out = depth_camera_resources(scene, &camera);
+    out.extend(shadow_map_resources(params, map));
+    out
+}
+
+/// Bindings 10-12 of a directional light's shadow (`lighting/shadow`): the `Shadow` uniform of
+/// `params`, the `Depth16Unorm` map's texels and the LessEqual comparison sampler. Shared by
+/// `Collect` and URP's main light (`stencil_deferred`, `_MAIN_LIGHT_SHADOWS`).
+pub(crate) fn shadow_map_resources(params: &ShadowParams, map: &[u16]) -> Vec<BoundResource> {
     let shadow: Vec<u8> = params
         .uniform()
         .into_iter()
         .flat_map(f32::to_le_bytes)
         .collect();
     vec![
-        BoundResource::new(
-            0,
-            3,
-            Resource::Texture2d {
-                format: wgpu::TextureFormat::R32Float,
-                width: scene.width,
-                height: scene.height,
-                data: depth,
-            },
-        ),
-        BoundResource::new(0, 4, Resource::Uniform(camera)),
         BoundResource::new(0, 10, Resource::Uniform(shadow)),
         BoundResource::new(
             0,

@@ -148,10 +148,28 @@ pub fn render_caster(
     let variant = lib
         .variant("standard", "ShadowCaster", keywords)
         .map_err(|e| CheckError::lookup(format!("standard/ShadowCaster {keywords:?}"), e))?;
-    let label = variant.label();
-    let wgsl = lib.wgsl(&variant);
-    let cube = keywords.contains(&"SHADOWS_CUBE");
-    let mesh = occluder_mesh();
+    render_depth(
+        ctx,
+        (&variant.label(), &lib.wgsl(&variant)),
+        &occluder_mesh(),
+        &caster_resources(view_proj, position),
+        size,
+        keywords.contains(&"SHADOWS_CUBE"),
+    )
+}
+
+/// Draws `mesh` with a caster program (`vs_main`, `fs_main`) into a `size × size`
+/// `Depth16Unorm` buffer (cleared to 1, test `Less`) and, with `cube`, an `Rgba16Float`
+/// colour target cleared to 1; both read back.
+pub(crate) fn render_depth(
+    ctx: &GpuContext,
+    (label, wgsl): (&str, &str),
+    mesh: &VertexBuffer,
+    resources: &[BoundResource],
+    size: u32,
+    cube: bool,
+) -> Result<CasterImage, GpuError> {
+    let label = label.to_owned();
     let layout = [Some(wgpu::VertexBufferLayout {
         array_stride: mesh.stride,
         step_mode: wgpu::VertexStepMode::Vertex,
@@ -165,7 +183,7 @@ pub fn render_caster(
     let (pipe, groups) = pipeline(
         ctx,
         &label,
-        &wgsl,
+        wgsl,
         ("vs_main", Some("fs_main")),
         &layout,
         None,
@@ -177,7 +195,7 @@ pub fn render_caster(
             bias: wgpu::DepthBiasState::default(),
         },
         if cube { &targets } else { &[] },
-        &caster_resources(view_proj, position),
+        resources,
     )?;
     let (depth_tex, color_tex) = ctx.scoped(&label, || {
         let texture = |format| {

@@ -170,17 +170,70 @@ pub fn render_light(
         blend: rt3_blend(gbuffer.hdr),
         rt3,
     };
-    render_volume(ctx, scene, rig, &lib.wgsl(&stencil), light, volume)
+    let (rt3, stencil) = render_volume(
+        ctx,
+        scene,
+        rig,
+        &lib.wgsl(&stencil),
+        light,
+        volume,
+        &StencilScheme::built_in(),
+    )?;
+    Ok(LightRender {
+        rt3,
+        stencil_marked: Some(stencil.iter().filter(|&&s| s == STENCIL_MARK as u8).count()),
+    })
+}
+
+/// How a volume draw uses the stencil: what the scene-depth draw stamps, the marking pass over
+/// the volume, and the light's test.
+pub(crate) struct StencilScheme {
+    /// Stencil values the scene-depth draw writes (through `stamp_mask`) into column ranges:
+    /// the material-type bits a G-buffer pass writes. Empty: the stencil stays cleared to 0.
+    pub(crate) stamps: Vec<(std::ops::Range<u32>, u32)>,
+    /// The write mask of the stamps.
+    pub(crate) stamp_mask: u32,
+    /// Faces the marking pass culls.
+    pub(crate) mark_cull: Option<wgpu::Face>,
+    /// The marking pass's stencil state and reference.
+    pub(crate) mark: (wgpu::StencilState, u32),
+    /// The light pass's stencil state and reference.
+    pub(crate) light: (wgpu::StencilState, u32),
+}
+
+impl StencilScheme {
+    /// Unity's built-in path (`stencil_write/StencilWrite`): front faces with depth-fail Replace
+    /// mark the pixels whose geometry lies in front of the volume; the light skips them.
+    fn built_in() -> StencilScheme {
+        let keep = wgpu::StencilOperation::Keep;
+        StencilScheme {
+            stamps: Vec::new(),
+            stamp_mask: 0,
+            mark_cull: Some(wgpu::Face::Back),
+            mark: (
+                stencil(
+                    wgpu::CompareFunction::Always,
+                    wgpu::StencilOperation::Replace,
+                    0xff,
+                ),
+                STENCIL_MARK,
+            ),
+            light: (
+                stencil(wgpu::CompareFunction::NotEqual, keep, 0),
+                STENCIL_MARK,
+            ),
+        }
+    }
 }
 
 /// The lighting draw's shader, bindings and target.
-struct LightPipelineInput<'a> {
-    label: &'a str,
-    wgsl: &'a str,
-    resources: Vec<BoundResource>,
-    format: wgpu::TextureFormat,
-    blend: wgpu::BlendState,
-    rt3: Vec<u8>,
+pub(crate) struct LightPipelineInput<'a> {
+    pub(crate) label: &'a str,
+    pub(crate) wgsl: &'a str,
+    pub(crate) resources: Vec<BoundResource>,
+    pub(crate) format: wgpu::TextureFormat,
+    pub(crate) blend: wgpu::BlendState,
+    pub(crate) rt3: Vec<u8>,
 }
 
 /// A render pipeline over `wgsl`'s `vertex` / `fragment` entry points (no fragment stage:
@@ -240,8 +293,25 @@ pub(crate) fn pipeline(
     Ok((pipeline, groups))
 }
 
+/// Stencil state that replaces the value where `compare` passes (and the depth test too),
+/// on both faces, through an all-ones write mask.
+fn stencil_replace(compare: wgpu::CompareFunction) -> wgpu::StencilState {
+    let face = wgpu::StencilFaceState {
+        compare,
+        fail_op: wgpu::StencilOperation::Keep,
+        depth_fail_op: wgpu::StencilOperation::Keep,
+        pass_op: wgpu::StencilOperation::Replace,
+    };
+    wgpu::StencilState {
+        front: face,
+        back: face,
+        read_mask: 0xff,
+        write_mask: 0xff,
+    }
+}
+
 /// Stencil state with the same test and operations on both faces.
-fn stencil(
+pub(crate) fn stencil(
     compare: wgpu::CompareFunction,
     depth_fail: wgpu::StencilOperation,
     write: u32,
@@ -274,15 +344,17 @@ fn depth_stencil(
     }
 }
 
-/// The stencil pre-pass and the light over `volume`; returns RT3 and the stencil's marks.
-fn render_volume(
+/// The scene depth (and `scheme`'s stamps), the stencil pass and the light over `volume`;
+/// returns RT3 and the stencil afterwards (one byte per pixel, row by row).
+pub(crate) fn render_volume(
     ctx: &GpuContext,
     scene: &TestScene,
     rig: &LightRig,
     stencil_wgsl: &str,
     light: LightPipelineInput<'_>,
     volume: &LightVolume,
-) -> Result<LightRender, GpuError> {
+    scheme: &StencilScheme,
+) -> Result<(Vec<u8>, Vec<u8>), GpuError> {
     let label = light.label;
     let (w, h) = (scene.width, scene.height);
     let mesh = VertexBuffer::from_f32(&[(0, 3)], &volume.positions);
@@ -291,7 +363,6 @@ fn render_volume(
         step_mode: wgpu::VertexStepMode::Vertex,
         attributes: &mesh.attributes,
     })];
-    let keep = wgpu::StencilOperation::Keep;
     let depth: Vec<u8> = rig.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
     let (fill, fill_groups) = pipeline(
         ctx,
@@ -303,7 +374,10 @@ fn render_volume(
         depth_stencil(
             true,
             wgpu::CompareFunction::Always,
-            stencil(wgpu::CompareFunction::Always, keep, 0),
+            wgpu::StencilState {
+                write_mask: scheme.stamp_mask,
+                ..stencil_replace(wgpu::CompareFunction::Always)
+            },
         ),
         &[],
         &[BoundResource::new(
@@ -325,15 +399,11 @@ fn render_volume(
         stencil_wgsl,
         ("vs_main", None),
         &layout,
-        Some(wgpu::Face::Back),
+        scheme.mark_cull,
         depth_stencil(
             false,
             wgpu::CompareFunction::LessEqual,
-            stencil(
-                wgpu::CompareFunction::Always,
-                wgpu::StencilOperation::Replace,
-                0xff,
-            ),
+            scheme.mark.0.clone(),
         ),
         &[],
         &[BoundResource::new(0, 0, Resource::Uniform(camera))],
@@ -353,7 +423,7 @@ fn render_volume(
         depth_stencil(
             false,
             wgpu::CompareFunction::GreaterEqual,
-            stencil(wgpu::CompareFunction::NotEqual, keep, 0),
+            scheme.light.0.clone(),
         ),
         &target,
         &light.resources,
@@ -438,11 +508,18 @@ fn render_volume(
                 pass.set_bind_group(*group, bind_group, &[]);
             }
             pass.draw(0..3, 0..1);
+            // The stamps: the depth again (unchanged) with each column range's stencil value.
+            for (columns, value) in &scheme.stamps {
+                pass.set_scissor_rect(columns.start, 0, columns.end - columns.start, h);
+                pass.set_stencil_reference(*value);
+                pass.draw(0..3, 0..1);
+            }
+            pass.set_scissor_rect(0, 0, w, h);
             pass.set_pipeline(&mark);
             for (group, bind_group) in &mark_groups {
                 pass.set_bind_group(*group, bind_group, &[]);
             }
-            pass.set_stencil_reference(STENCIL_MARK);
+            pass.set_stencil_reference(scheme.mark.1);
             pass.set_vertex_buffer(0, vertices.slice(..));
             pass.draw(0..count, 0..1);
         }
@@ -467,7 +544,7 @@ fn render_volume(
             for (group, bind_group) in &lit_groups {
                 pass.set_bind_group(*group, bind_group, &[]);
             }
-            pass.set_stencil_reference(STENCIL_MARK);
+            pass.set_stencil_reference(scheme.light.1);
             pass.set_vertex_buffer(0, vertices.slice(..));
             pass.draw(0..count, 0..1);
         }
@@ -481,16 +558,13 @@ fn render_volume(
     let (pending, stencil) = pending;
     let rt3 = finish_readbacks(ctx, label, vec![pending])?.remove(0);
     let rows = map_buffers(ctx, label, &[&stencil])?.remove(0);
-    let marked = rows
+    let stencil = rows
         .chunks(STENCIL_ROW as usize)
         .take(h as usize)
         .flat_map(|row| &row[..w as usize])
-        .filter(|&&s| s == STENCIL_MARK as u8)
-        .count();
-    Ok(LightRender {
-        rt3,
-        stencil_marked: Some(marked),
-    })
+        .copied()
+        .collect();
+    Ok((rt3, stencil))
 }
 
 /// Bytes per row of the stencil readback: one byte per pixel, padded to wgpu's copy alignment

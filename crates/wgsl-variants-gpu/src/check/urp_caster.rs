@@ -1,0 +1,335 @@
+//! `universal_lit/ShadowCaster` per texel: every variant renders the URP scene's quad into a
+//! 64 × 64 `Depth16Unorm` map — the variants without `_CASTING_PUNCTUAL_LIGHT_SHADOW` for the
+//! rig's directional light (an orthographic box, [`directional_shadow_view_proj`]), those with
+//! it for the rig's spot light (its perspective, [`spot_shadow_view_proj`]) — and each texel is
+//! compared with the reference: the quad's two triangles with their vertices placed by
+//! [`caster_clip`] (bias, pancaking), rasterized at texel centres (depth affine in screen
+//! space, uv perspective-correct), the alpha test against the base map's texel at that uv.
+//! Depth within 1 LSB of 16 bits ([`unorm_within`]); texels not covered or discarded hold
+//! the clear value 1. Texels within a hair of a triangle edge or of a base-map texel edge are
+//! left to the rasterizer and counted.
+
+use std::time::Instant;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use super::passes::keyword_coverage;
+use super::report::{Mismatch, PassReport};
+use super::scene::{TestScene, push_mat4, push_vec4};
+use super::screen_shadows::REGION_RADIUS;
+use super::shadows::{MAP_SIZE, render_depth};
+use super::urp::{DEFAULT_SEED, UrpScene};
+use crate::{BoundResource, CheckError, GpuContext, GpuError, Resource};
+use wgsl_variants::Library;
+use wgsl_variants::reference::light::LightShape;
+use wgsl_variants::reference::shadow::{directional_shadow_view_proj, spot_shadow_view_proj};
+use wgsl_variants::reference::tolerance::unorm_within;
+use wgsl_variants::reference::urp::shadow::{CasterLight, apply_shadow_bias, caster_clip};
+use wgsl_variants::variants::Space;
+
+/// URP's `_ShadowBias` of the directional light's map: (depth, normal) in world units.
+pub const DIRECTIONAL_BIAS: Vec2 = Vec2::new(-0.05, -0.08);
+
+/// URP's `_ShadowBias` of the spot light's map.
+pub const SPOT_BIAS: Vec2 = Vec2::new(-0.03, -0.05);
+
+/// The radius of the tight directional box: smaller than the quad, so its near plane cuts it
+/// (pancaking) and its far plane clips it.
+pub const TIGHT_RADIUS: f32 = 0.25;
+
+/// Barycentric margin: texel centres closer than this to a triangle edge are not compared.
+const EDGE_MARGIN: f32 = 1e-4;
+
+/// Texel margin: a uv closer than this (in base-map texels) to a texel edge is not compared.
+const UV_MARGIN: f32 = 1e-3;
+
+/// One light's map: view-projection, caster light and bias.
+#[derive(Clone, Copy, Debug)]
+struct CasterView {
+    view_proj: Mat4,
+    light: CasterLight,
+    bias: Vec2,
+}
+
+/// The views of the check from the rig's lights: directional, directional in a box tighter than
+/// the quad, spot.
+fn views(rig: &super::lights::LightRig, scene: &TestScene) -> Result<[CasterView; 3], GpuError> {
+    let refused = |message: &str| {
+        GpuError::from(CheckError::UnknownToReference {
+            variant: "universal_lit/ShadowCaster".to_owned(),
+            message: message.to_owned(),
+        })
+    };
+    let LightShape::Directional { direction, .. } = rig.directional_light.shape else {
+        return Err(refused("the rig's directional light is not directional"));
+    };
+    let LightShape::Spot {
+        position,
+        direction: axis,
+        angle_degrees,
+        range,
+    } = rig.spot_light.shape
+    else {
+        return Err(refused("the rig's spot light is not a spot"));
+    };
+    let forward = direction.normalize();
+    Ok([
+        CasterView {
+            view_proj: directional_shadow_view_proj(
+                forward,
+                scene.centre.extend(0.0),
+                REGION_RADIUS,
+            ),
+            light: CasterLight::Directional { to_light: -forward },
+            bias: DIRECTIONAL_BIAS,
+        },
+        CasterView {
+            view_proj: directional_shadow_view_proj(
+                forward,
+                scene.centre.extend(0.0),
+                TIGHT_RADIUS,
+            ),
+            light: CasterLight::Directional { to_light: -forward },
+            bias: DIRECTIONAL_BIAS,
+        },
+        CasterView {
+            view_proj: spot_shadow_view_proj(position, axis, angle_degrees, range),
+            light: CasterLight::Punctual { position },
+            bias: SPOT_BIAS,
+        },
+    ])
+}
+
+/// The caster's bindings: the URP scene's material, sampler, base map and object, the light's
+/// view-projection as the camera, and the `UrpShadowCaster` uniform.
+fn resources(urp: &UrpScene, view: &CasterView) -> Vec<BoundResource> {
+    let mut out: Vec<BoundResource> = urp
+        .resources()
+        .into_iter()
+        .filter(|r| (r.group, r.binding) != (0, 0))
+        .collect();
+    let mut camera = Vec::new();
+    push_mat4(&mut camera, view.view_proj);
+    push_vec4(&mut camera, Vec4::ZERO);
+    let (direction, position) = match view.light {
+        CasterLight::Directional { to_light } => (to_light, Vec3::ZERO),
+        CasterLight::Punctual { position } => (Vec3::ZERO, position),
+    };
+    let mut caster = Vec::new();
+    push_vec4(&mut caster, direction.extend(0.0));
+    push_vec4(&mut caster, position.extend(1.0));
+    push_vec4(&mut caster, view.bias.extend(0.0).extend(0.0));
+    out.push(BoundResource::new(0, 0, Resource::Uniform(camera)));
+    out.push(BoundResource::new(0, 4, Resource::Uniform(caster)));
+    out
+}
+
+/// What the reference says of one texel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Expected {
+    /// The quad's depth there.
+    Depth(f32),
+    /// Nothing drawn (not covered, or discarded): the clear value.
+    Clear,
+    /// Within a hair of an edge: not compared.
+    Edge,
+}
+
+/// The reference map of one variant (`alpha_test`, `albedo_alpha_smoothness` as its keywords)
+/// and how many of its depth texels lie on a triangle with a pancaked vertex.
+fn reference_map(
+    urp: &UrpScene,
+    view: &CasterView,
+    alpha_test: bool,
+    albedo_alpha_smoothness: bool,
+) -> (Vec<Expected>, usize) {
+    let s = &urp.scene;
+    let n = (s.normal_matrix * s.object_normal.extend(0.0))
+        .truncate()
+        .normalize();
+    // Object corners and uvs as the quad's vertex buffer (top-left is uv (0, 0)).
+    let corner = |ox: f32, oy: f32| {
+        let p = (s.model * Vec4::new(ox, oy, 0.0, 1.0)).truncate();
+        let clip = caster_clip(view.view_proj, p, n, view.light, view.bias);
+        let unclamped = view.view_proj
+            * apply_shadow_bias(p, n, view.light.direction(p), view.bias).extend(1.0);
+        let size = MAP_SIZE as f32;
+        let ndc = clip.truncate() / clip.w;
+        (
+            Vec2::new((ndc.x * 0.5 + 0.5) * size, (0.5 - ndc.y * 0.5) * size),
+            ndc.z,
+            1.0 / clip.w,
+            Vec2::new((ox + 1.0) * 0.5, (1.0 - oy) * 0.5),
+            unclamped.z < 0.0,
+        )
+    };
+    let (tl, tr, bl, br) = (
+        corner(-1.0, 1.0),
+        corner(1.0, 1.0),
+        corner(-1.0, -1.0),
+        corner(1.0, -1.0),
+    );
+    let triangles = [[tl, bl, tr], [tr, bl, br]];
+    let base = &s.maps.main_tex;
+    let cutoff = urp.material.cutoff;
+    let base_alpha = urp.material.base_color.w;
+    let mut pancaked = 0usize;
+    let map = (0..MAP_SIZE * MAP_SIZE)
+        .map(|i| {
+            let c = Vec2::new((i % MAP_SIZE) as f32 + 0.5, (i / MAP_SIZE) as f32 + 0.5);
+            let mut out = Expected::Clear;
+            for t in &triangles {
+                let cross = |a: Vec2, b: Vec2, p: Vec2| (b - a).perp_dot(p - a);
+                let area = cross(t[0].0, t[1].0, t[2].0);
+                if area.abs() < 1e-12 {
+                    continue;
+                }
+                let b = [
+                    cross(t[1].0, t[2].0, c) / area,
+                    cross(t[2].0, t[0].0, c) / area,
+                    cross(t[0].0, t[1].0, c) / area,
+                ];
+                if b.iter().any(|&x| x < -EDGE_MARGIN) {
+                    continue;
+                }
+                if b.iter().any(|&x| x < EDGE_MARGIN) {
+                    return Expected::Edge;
+                }
+                let depth: f32 = (0..3).map(|k| b[k] * t[k].1).sum();
+                // Beyond the far plane the GPU clips; at it, either way.
+                if depth > 1.0 + 1e-4 {
+                    continue;
+                }
+                if depth > 1.0 - 1e-4 {
+                    return Expected::Edge;
+                }
+                let inv_w: f32 = (0..3).map(|k| b[k] * t[k].2).sum();
+                let uv = (0..3).map(|k| t[k].3 * b[k] * t[k].2).sum::<Vec2>() / inv_w;
+                let texel = uv * Vec2::new(base.width as f32, base.height as f32);
+                let frac = texel - texel.floor();
+                if alpha_test
+                    && (frac.min_element() < UV_MARGIN || frac.max_element() > 1.0 - UV_MARGIN)
+                {
+                    return Expected::Edge;
+                }
+                let alpha = if albedo_alpha_smoothness {
+                    base_alpha
+                } else {
+                    let tx = (texel.x.floor() as u32).min(base.width - 1);
+                    let ty = (texel.y.floor() as u32).min(base.height - 1);
+                    base.get(tx, ty).w * base_alpha
+                };
+                out = if alpha_test && alpha < cutoff {
+                    Expected::Clear
+                } else {
+                    pancaked += usize::from(t.iter().any(|v| v.4));
+                    Expected::Depth(depth)
+                };
+            }
+            out
+        })
+        .collect();
+    (map, pancaked)
+}
+
+/// Checks every variant of `universal_lit/ShadowCaster` against [`reference_map`].
+pub fn check_urp_shadow_caster(
+    ctx: &GpuContext,
+    lib: &Library,
+    scene: &TestScene,
+    rig: &super::lights::LightRig,
+) -> Result<PassReport, GpuError> {
+    let start = Instant::now();
+    let what = "universal_lit/ShadowCaster";
+    let pass = lib
+        .pass("universal_lit", "ShadowCaster")
+        .map_err(|e| CheckError::lookup(what, e))?;
+    let choices = Space::full(pass).enumerate(1000).map_err(|source| {
+        GpuError::from(CheckError::Budget {
+            what: what.to_owned(),
+            source,
+        })
+    })?;
+    let urp = UrpScene::new(scene, DEFAULT_SEED);
+    let [directional, tight, spot] = views(rig, scene)?;
+    let mesh = scene.quad();
+    let mut report = PassReport::new("universal_lit", "ShadowCaster");
+    let (mut edges, mut clear, mut discarded, mut pancaked) = (0usize, 0usize, 0usize, 0usize);
+    let mut outputs = Vec::new();
+    for choice in &choices {
+        let variant = wgsl_variants::Variant {
+            pass,
+            choice: choice.clone(),
+        };
+        let names = variant.keywords();
+        let on = |k: &str| names.contains(&k);
+        let views = if on("_CASTING_PUNCTUAL_LIGHT_SHADOW") {
+            vec![spot]
+        } else {
+            vec![directional, tight]
+        };
+        let label = variant.label();
+        let wgsl = lib.wgsl(&variant);
+        let mut per_view = Vec::new();
+        for view in views {
+            let image = render_depth(
+                ctx,
+                (&label, &wgsl),
+                &mesh,
+                &resources(&urp, &view),
+                MAP_SIZE,
+                false,
+            )?;
+            report.draws += 1;
+            let alpha_test = on("_ALPHATEST_ON");
+            let (expected, on_pancaked) = reference_map(
+                &urp,
+                &view,
+                alpha_test,
+                on("_SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A"),
+            );
+            pancaked += on_pancaked;
+            let (plain, _) = reference_map(&urp, &view, false, false);
+            for (i, want) in expected.iter().enumerate() {
+                let got = image.depth[i];
+                let (x, y) = (i as u32 % MAP_SIZE, i as u32 / MAP_SIZE);
+                let ok = match *want {
+                    Expected::Edge => {
+                        edges += 1;
+                        continue;
+                    }
+                    Expected::Clear => {
+                        clear += 1;
+                        discarded += usize::from(matches!(plain[i], Expected::Depth(_)));
+                        got == u16::MAX
+                    }
+                    Expected::Depth(d) => unorm_within(u32::from(got), d, 16),
+                };
+                report.record(ok, || Mismatch {
+                    shader: "universal_lit".to_owned(),
+                    pass: "ShadowCaster".to_owned(),
+                    keywords: label.clone(),
+                    target: "shadow map Depth16Unorm".to_owned(),
+                    pixel: [x, y],
+                    expected: match *want {
+                        Expected::Depth(d) => vec![d],
+                        _ => vec![1.0],
+                    },
+                    got: vec![f32::from(got) / 65535.0],
+                    got_raw: vec![u32::from(got)],
+                });
+            }
+            per_view.push(image.depth);
+        }
+        outputs.push(per_view);
+        report.variants_run += 1;
+        report.distinct_shaders += 1;
+    }
+    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
+    report.judge_keywords();
+    report.notes.push(format!(
+        "{MAP_SIZE}x{MAP_SIZE} Depth16Unorm maps of the URP scene's quad: directional light (orthographic boxes of radius {REGION_RADIUS} and {TIGHT_RADIUS}, bias {DIRECTIONAL_BIAS}; {pancaked} texels on a triangle with a vertex pancaked onto the near plane) without _CASTING_PUNCTUAL_LIGHT_SHADOW, spot light (perspective, bias {SPOT_BIAS}) with it; {clear} clear texel comparisons ({discarded} discarded by the alpha test), {edges} edge texels left to the rasterizer"
+    ));
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}

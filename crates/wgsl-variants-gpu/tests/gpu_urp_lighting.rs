@@ -1,0 +1,214 @@
+//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (8)
+//! and `stencil_deferred/DirectionalLit` (16), drawn over G-buffers `universal_lit`'s
+//! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
+//! reference (`wgsl_variants::reference::urp::lighting`), each keyword proven to change at
+//! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
+//! the older URP's diffuse formula) are caught where, and only where, the bug shows.
+//!
+//! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
+//! print SKIPPED and pass, unless `CI=true` or `WGSL_VARIANTS_REQUIRE_GPU=1`.
+
+mod common;
+
+use wgsl_variants::Library;
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
+
+fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
+    let mut options = CheckOptions::default();
+    options.shader = Some("stencil_deferred".to_owned());
+    options.pass = Some(pass.to_owned());
+    options.adapter = common::gpu::adapter_filter();
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+#[test]
+fn every_lighting_variant_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    // (pass, variants, keywords judged: every set's options but the first)
+    for (pass, variants, keywords) in [("PunctualLit", 8, 3), ("DirectionalLit", 16, 5)] {
+        let Some(report) = run(&lib, pass) else {
+            return;
+        };
+        let p = &report.passes[0];
+        eprintln!(
+            "stencil_deferred/{pass} on {}: {} texels over {} variants ({} draws) in {:.1} s",
+            report.adapter, p.pixels_compared, p.variants_run, p.draws, p.seconds
+        );
+        for k in &p.keywords {
+            eprintln!(
+                "  {}: {} of {} pairs changed",
+                k.keyword, k.pairs_changed, k.pairs
+            );
+        }
+        for note in &p.notes {
+            eprintln!("  note: {note}");
+        }
+        assert!(p.passed(), "{report}");
+        assert_eq!(p.mismatches, 0, "{report}");
+        assert_eq!(p.variants_run, variants);
+        // Each variant over the 3 G-buffers of its normal encoding, with 2 layer masks.
+        assert_eq!(
+            (p.draws, p.pixels_compared),
+            (variants * 6, variants * 6 * 256)
+        );
+        assert_eq!(p.keywords.len(), keywords, "{report}");
+        assert!(p.untested_keywords.is_empty(), "{report}");
+        for k in &p.keywords {
+            assert!(k.pairs_changed > 0, "{report}");
+        }
+        if pass == "DirectionalLit" {
+            assert!(
+                p.notes
+                    .iter()
+                    .any(|n| n.contains("in the main light's shadow")),
+                "some pixels must be shadowed: {report}"
+            );
+        }
+    }
+}
+
+/// Runs `pass` over the bundled library with one planted bug and returns the keyword sets of
+/// the variants with mismatches.
+fn mismatching(path: &str, from: &str, to: &str, pass: &str) -> Option<Vec<String>> {
+    let lib = common::mutate::bundled_with(path, from, to);
+    let report = run(&lib, pass)?;
+    let p = &report.passes[0];
+    let mut keywords: Vec<String> = p
+        .first_mismatches
+        .iter()
+        .map(|m| m.keywords.clone())
+        .collect();
+    keywords.dedup();
+    assert!(p.mismatches > 0, "the planted bug is caught: {report}");
+    Some(keywords)
+}
+
+#[test]
+fn a_wrong_specular_constant_is_caught() {
+    // URP's d = (n·h)² (r² − 1) + 1.00001; 1.01 flattens the highlight.
+    let Some(bad) = mismatching(
+        "universal/lighting.wgsl",
+        "+ 1.00001;",
+        "+ 1.01;",
+        "PunctualLit",
+    ) else {
+        return;
+    };
+    eprintln!("caught, e.g. in {}", bad[0]);
+}
+
+#[test]
+fn an_ignored_receive_shadows_off_flag_is_caught_only_where_it_matters() {
+    let Some(bad) = mismatching(
+        "universal/stencil_deferred_pass.wgsl",
+        "if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {",
+        "if flags == flags {",
+        "DirectionalLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        // Only the main light's shadowed variants over the G-buffer whose flags say
+        // ReceiveShadowsOff.
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
+        assert!(k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn the_older_specular_setup_diffuse_is_caught_only_in_the_specular_setup() {
+    // URP's BRDFDataFromGbuffer: diffuse = albedo · (1 − max(specular)); older URPs used
+    // albedo · (1 − specular) per channel.
+    let Some(bad) = mismatching(
+        "universal/lighting.wgsl",
+        "    b.diffuse = albedo * (1.0 - reflectivity);",
+        "    b.diffuse = albedo * select(vec3f(1.0 - reflectivity), 1.0 - specular, specular_setup);",
+        "PunctualLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_SPECULAR_SETUP"), "{k}");
+    }
+}
+
+#[test]
+fn the_urp_pictures_show_the_gbuffer_and_the_light() {
+    use wgsl_variants_gpu::check::{TestScene, pictures};
+    let Some(ctx) = common::gpu::or_skip(
+        wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "the URP pictures",
+    ) else {
+        return;
+    };
+    let lib = Library::bundled().unwrap();
+    let scene = TestScene::default();
+    let pics = pictures::render_pictures(
+        &ctx,
+        &lib,
+        &scene,
+        "universal_lit",
+        "UniversalGBuffer",
+        &[
+            "_RECEIVE_SHADOWS_OFF",
+            "_SPECULAR_SETUP",
+            "_GBUFFER_NORMALS_OCT",
+        ],
+    )
+    .unwrap();
+    let names: Vec<&str> = pics.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "albedo",
+            "flags",
+            "specular",
+            "occlusion",
+            "normal",
+            "smoothness",
+            "gi",
+            "lighting"
+        ]
+    );
+    let by_name = |n: &str| pics.iter().find(|p| p.name == n).unwrap();
+    // ReceiveShadowsOff in red, SpecularSetup in blue, at every pixel.
+    for px in by_name("flags").rgba.chunks(4) {
+        assert_eq!(px, [255, 0, 255, 255]);
+    }
+    // The lights add to GBuffer3: brighter somewhere, never darker.
+    let (gi, lit) = (&by_name("gi").rgba, &by_name("lighting").rgba);
+    assert!(gi.iter().zip(lit.iter()).all(|(g, l)| l >= g));
+    assert!(gi.iter().zip(lit.iter()).any(|(g, l)| l > g));
+}
+
+#[test]
+fn urp_light_volumes_with_the_stencil_equal_full_screen_on_lit_texels_only() {
+    use wgsl_variants::reference::urp::lighting::UrpLightKind;
+    use wgsl_variants_gpu::check::urp_lighting::compare_urp_volume;
+    use wgsl_variants_gpu::check::{LightRig, TestScene};
+    let Some(ctx) = common::gpu::or_skip(
+        wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "URP's light volumes",
+    ) else {
+        return;
+    };
+    let lib = Library::bundled().unwrap();
+    let scene = TestScene::default();
+    let mut rig = LightRig::new(&scene);
+    rig.render_screen_shadows(&ctx, &lib, &scene).unwrap();
+    for kind in [UrpLightKind::Point, UrpLightKind::Spot] {
+        let c = compare_urp_volume(&ctx, &lib, &scene, &rig, kind).unwrap();
+        eprintln!(
+            "{kind:?}: {} Lit texels lit by the volume, {} Unlit texels the full-screen draw reached, {} differing",
+            c.lit,
+            c.unlit_reached,
+            c.differing.len()
+        );
+        // The volume draw gives the full-screen result, bit for bit, where the G-buffer pass
+        // stamped Lit, and leaves the Unlit half as it was; the light pass zeroed StencilLight.
+        assert!(c.differing.is_empty(), "{kind:?}: {:?}", c.differing);
+        assert_eq!(c.stencil_light_left, 0, "{kind:?}");
+        // Neither comparison is vacuous: the light reaches both halves.
+        assert!(c.lit > 10 && c.unlit_reached > 10, "{kind:?}: {c:?}");
+    }
+}

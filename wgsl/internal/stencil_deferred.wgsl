@@ -1,0 +1,32 @@
+#shader stencil_deferred
+// URP's StencilDeferred lighting (Hidden/Universal Render Pipeline/StencilDeferred; docs/urp.md
+// §9): after universal_lit's UniversalGBuffer pass, one draw per light adds its direct light to
+// GBuffer3 (Rg11b10Ufloat, blend One One), reading GBuffer0-2 and the depth buffer. Point and
+// spot lights are drawn as their volumes (vs_volume) after a stencil pass marks the pixels inside
+// (internal/stencil_write's vertex stage with URP's stencil ops, docs/urp.md §9), and test the
+// stencil's material-type bits (Lit = 0b01 << 5); directional lights cover the screen (vs_main).
+// The program is universal/stencil_deferred_pass; each pass is one of URP's.
+
+#pass PunctualLit
+#tag UniversalMaterialType Lit
+#pragma multi_compile _POINT _SPOT
+#pragma multi_compile _ _GBUFFER_NORMALS_OCT
+#pragma multi_compile _ _LIGHT_LAYERS
+#import universal/stencil_deferred_pass
+#endpass
+
+#pass DirectionalLit
+#tag UniversalMaterialType Lit
+// _DEFERRED_MAIN_LIGHT: this draw is the frame's main light (its own uniform, and its shadows);
+// the main light's shadow keywords change nothing without it, so they require it (URP strips
+// those variants instead).
+#pragma multi_compile _DIRECTIONAL
+#pragma multi_compile _ _DEFERRED_MAIN_LIGHT
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS
+#pragma multi_compile _ _SHADOWS_SOFT
+#pragma multi_compile _ _GBUFFER_NORMALS_OCT
+#pragma multi_compile _ _LIGHT_LAYERS
+#pragma require _MAIN_LIGHT_SHADOWS _DEFERRED_MAIN_LIGHT
+#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS
+#import universal/stencil_deferred_pass
+#endpass

@@ -1,0 +1,107 @@
+// universal/stencil_deferred_pass: the fragment program of URP's StencilDeferred lighting passes
+// (internal/stencil_deferred; URP's StencilDeferred.shader DeferredShading, docs/urp.md §9): one
+// light added to GBuffer3 from GBuffer0-2 and the depth buffer.
+//
+//   group 0: 0 gbuffer0 (the Rgba8UnormSrgb target: reads linear albedo), 1 gbuffer1,
+//            2 gbuffer2 (Rgba8Unorm with _GBUFFER_NORMALS_OCT, else Rgba8Snorm),
+//            3 depth (R32Float copy of the depth buffer), 4 camera (DeferredCamera),
+//            5 light (UrpLight; the additional light this draw shades),
+//            6 rendering_layers (texture_2d<u32>, the G-buffer's R32Uint target; _LIGHT_LAYERS),
+//            7 main_light (UrpLight; _DEFERRED_MAIN_LIGHT: the frame's main light),
+//            10 shadow (Shadow), 11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler
+//               (sampler_comparison, nearest, LessEqual, clamp to edge) (_MAIN_LIGHT_SHADOWS)
+// All G-buffer reads are textureLoad at the fragment's pixel.
+//
+// Provides the entry points:
+//   @vertex   vs_main    a full-screen triangle (directional lights; volumes crossing the near plane)
+//   @vertex   vs_volume  the light's volume (world positions at @location(0))
+//   @fragment fs_main    -> @location(0) the light (rgb; the host blends One One onto GBuffer3)
+
+#import internal/fullscreen
+#import deferred/depth
+#import universal/gbuffer
+#import universal/lighting
+#if defined(_MAIN_LIGHT_SHADOWS)
+#import lighting/shadow
+#endif
+
+@group(0) @binding(0) var gbuffer0: texture_2d<f32>;
+@group(0) @binding(1) var gbuffer1: texture_2d<f32>;
+@group(0) @binding(2) var gbuffer2: texture_2d<f32>;
+@group(0) @binding(3) var depth_tex: texture_2d<f32>;
+@group(0) @binding(4) var<uniform> deferred_camera: DeferredCamera;
+#if !defined(_DEFERRED_MAIN_LIGHT)
+@group(0) @binding(5) var<uniform> light: UrpLight;
+#endif
+#if defined(_LIGHT_LAYERS)
+@group(0) @binding(6) var rendering_layers: texture_2d<u32>;
+#endif
+#if defined(_DEFERRED_MAIN_LIGHT)
+@group(0) @binding(7) var<uniform> main_light: UrpLight;
+#endif
+#if defined(_MAIN_LIGHT_SHADOWS)
+@group(0) @binding(10) var<uniform> shadow: Shadow;
+@group(0) @binding(11) var shadow_map: texture_depth_2d;
+@group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
+#endif
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
+    return fullscreen_position(vertex_index);
+}
+
+@vertex
+fn vs_volume(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
+    return deferred_camera.view_proj * vec4f(world_position, 1.0);
+}
+
+// The main light's realtime shadow (URP's MainLightShadow: 1 - strength + strength ·
+// visibility), 1 for a texel whose material says ReceiveShadowsOff.
+fn urp_deferred_shadow(p: vec3f, flags: u32) -> f32 {
+#if defined(_MAIN_LIGHT_SHADOWS)
+    if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {
+        let c = shadow_coords(shadow.world_to_shadow, p);
+        let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - shadow.params.y);
+        return shadow_mix(shadow.params.x, visibility);
+    }
+#endif
+    return 1.0;
+}
+
+@fragment
+fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
+    let pixel = fullscreen_pixel(frag_position);
+#if defined(_DEFERRED_MAIN_LIGHT)
+    let l = main_light;
+#else
+    let l = light;
+#endif
+#if defined(_LIGHT_LAYERS)
+    // Not a discard: URP's pass must still clear the stencil bit of this pixel.
+    if (l.layer_mask.x & textureLoad(rendering_layers, pixel, 0).r) == 0u {
+        return vec4f(0.0);
+    }
+#endif
+    let g0 = textureLoad(gbuffer0, pixel, 0);
+    let g1 = textureLoad(gbuffer1, pixel, 0);
+    let g2 = textureLoad(gbuffer2, pixel, 0);
+    let depth = textureLoad(depth_tex, pixel, 0).r;
+    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+    let flags = urp_unpack_flags(g0.a);
+
+#if defined(_DIRECTIONAL)
+    let s = vec4f(l.direction.xyz, 1.0);
+#elif defined(_SPOT)
+    var s = urp_punctual_sample(l, p);
+    s.w *= urp_angle_attenuation(l.direction.xyz, s.xyz, l.attenuation.zw);
+#else
+    // _POINT: no cone (URP's angle term is 1 for a point light's attenuation (0, 1)).
+    let s = urp_punctual_sample(l, p);
+#endif
+    let attenuation = s.w * urp_deferred_shadow(p, flags);
+    let brdf = urp_brdf_from_gbuffer(g0.rgb, g1.rgb, g2.a, (flags & URP_FLAG_SPECULAR_SETUP) != 0u);
+    let n = urp_unpack_normal(g2.rgb);
+    let v = urp_safe_normalize(deferred_camera.position.xyz - p);
+    let c = urp_lighting_physically_based(brdf, l.color.rgb, attenuation, s.xyz, n, v, (flags & URP_FLAG_SPECULAR_HIGHLIGHTS_OFF) != 0u);
+    return vec4f(c, 0.0);
+}
