@@ -535,5 +535,8 @@ fn bake_cover_bakes_the_covering_sets() {
         .target(BakeTarget::Wgsl)
         .write_to(tempfile::tempdir().unwrap().path())
         .unwrap();
-    assert_eq!(mixed.variants, 147 - 12 - 4 - 4 - 4 - 8 + 1536 + 8 + 8 + 8 + 16);
+    assert_eq!(
+        mixed.variants,
+        147 - 12 - 4 - 4 - 4 - 8 + 1536 + 8 + 8 + 8 + 16
+    );
 }

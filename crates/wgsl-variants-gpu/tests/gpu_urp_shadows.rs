@@ -35,7 +35,10 @@ fn every_urp_shadow_caster_variant_matches_the_reference() {
     assert!(p.pixels_compared > 12 * 4096 * 9 / 10, "{report}");
     assert!(p.untested_keywords.is_empty(), "{report}");
     let note = &p.notes[0];
-    assert!(!note.contains(" 0 texels on a triangle with a vertex pancaked"), "{note}");
+    assert!(
+        !note.contains(" 0 texels on a triangle with a vertex pancaked"),
+        "{note}"
+    );
     assert!(!note.contains("(0 discarded by the alpha test)"), "{note}");
 }
 
@@ -45,7 +48,12 @@ fn mismatching(path: &str, from: &str, to: &str) -> Option<Vec<String>> {
     let report = run(&lib)?;
     let p = &report.passes[0];
     assert!(p.mismatches > 0, "the planted bug is caught: {report}");
-    Some(p.first_mismatches.iter().map(|m| m.keywords.clone()).collect())
+    Some(
+        p.first_mismatches
+            .iter()
+            .map(|m| m.keywords.clone())
+            .collect(),
+    )
 }
 
 #[test]

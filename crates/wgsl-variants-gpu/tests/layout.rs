@@ -29,8 +29,14 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
             let hdr = v.keywords().contains(&"UNITY_HDR_ON");
             let urp = pass.name == "UniversalGBuffer";
             let lightmap = v.keywords().contains(&"LIGHTMAP_ON");
+            // URP's ShadowCaster writes depth only; URP's lighting passes add to GBuffer3.
+            let depth_only = pass.shader == "universal_lit" && pass.name == "ShadowCaster";
             let formats: Vec<wgpu::TextureFormat> = if urp {
                 urp_gbuffer_formats(&v.keywords())
+            } else if depth_only {
+                Vec::new()
+            } else if pass.shader == "stencil_deferred" {
+                vec![wgpu::TextureFormat::Rg11b10Ufloat]
             } else if deferred {
                 vec![
                     wgpu::TextureFormat::Rgba8Unorm,
@@ -45,13 +51,13 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
             } else {
                 vec![wgpu::TextureFormat::Rgba16Float]
             };
-            let has_mesh = pass.shader == "standard" || urp;
+            let has_mesh = pass.shader == "standard" || pass.shader == "universal_lit";
             // The light volumes' stencil pre-pass is depth-only: no fragment stage; the
             // lighting pass has a second vertex entry point for volumes. Both read world
             // positions at @location(0).
             let stencil_only = pass.name == "StencilWrite";
             let entries: &[&str] = match pass.name.as_str() {
-                "Lighting" => &["vs_main", "vs_volume"],
+                "Lighting" | "PunctualLit" | "DirectionalLit" => &["vs_main", "vs_volume"],
                 _ => &["vs_main"],
             };
             for &entry in entries {
@@ -108,7 +114,7 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
                                 targets: &targets,
                             }),
                             primitive: Default::default(),
-                            depth_stencil: stencil_only.then(|| wgpu::DepthStencilState {
+                            depth_stencil: (stencil_only || depth_only).then(|| wgpu::DepthStencilState {
                                 format: wgpu::TextureFormat::Depth24PlusStencil8,
                                 depth_write_enabled: Some(false),
                                 depth_compare: Some(wgpu::CompareFunction::LessEqual),

@@ -18,7 +18,7 @@ use super::compare::{format_name, pixel};
 use super::deferred::{
     CHAIN_INPUTS, GBufferImage, compare_texel, render_gbuffer, rt3_blend, texture,
 };
-use super::passes::keyword_coverage;
+use super::passes::{keyword_coverage, small_pass};
 use super::report::PassReport;
 use super::scene::{MapTexture, TestScene, cube_resource, push_mat4, push_vec4};
 use super::screen_shadows::ScreenShadows;
@@ -36,7 +36,6 @@ use wgsl_variants::reference::light::{
 use wgsl_variants::reference::quantize::unorm_to_f32;
 use wgsl_variants::reference::shadow::ShadowKeywords;
 use wgsl_variants::reference::surface::{Keywords, reflections_add};
-use wgsl_variants::variants::Space;
 
 /// The smallest distance, in texels (2D cookie) or [`face_margin`] units (cube cookie), between
 /// a cookie lookup of the check and an edge.
@@ -302,6 +301,15 @@ impl LightRig {
             .map_or((1.0, 1.0), |s| s.factor(t, keywords, p))
     }
 
+    /// What the full-screen deferred passes see of the rig's camera over `scene`.
+    pub(crate) fn camera<'a>(&'a self, scene: &TestScene) -> LightingCamera<'a> {
+        LightingCamera {
+            view_proj: self.view_proj,
+            position: scene.scene.camera_position,
+            depth: &self.depth,
+        }
+    }
+
     /// The bindings of any light `params` with the rig's cookies, and the rig's shadow maps
     /// (the spot's shadow uniform for the rig's spot light, the point's otherwise).
     pub fn resources_for(&self, params: &LightParams) -> Vec<BoundResource> {
@@ -472,11 +480,7 @@ fn run_lighting(
 ) -> Result<Vec<[f32; 4]>, GpuError> {
     let (w, h) = (scene.width, scene.height);
     let format = gbuffer.rt3_format();
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
+    let camera = rig.camera(scene);
     let out = render_lighting(
         ctx,
         scene,
@@ -541,16 +545,7 @@ pub fn check_deferred_shading(
     rig: &LightRig,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let what = "deferred_shading/Lighting";
-    let pass = lib
-        .pass("deferred_shading", "Lighting")
-        .map_err(|e| CheckError::lookup(what, e))?;
-    let choices = Space::full(pass).enumerate(1000).map_err(|source| {
-        GpuError::from(CheckError::Budget {
-            what: what.to_owned(),
-            source,
-        })
-    })?;
+    let (pass, choices) = small_pass(lib, "deferred_shading", "Lighting")?;
     let mut report = PassReport::new("deferred_shading", "Lighting");
     // The G-buffers, rendered once per input and HDR mode.
     let mut gbuffers: HashMap<(usize, bool), GBufferImage> = HashMap::new();

@@ -467,3 +467,20 @@ pub fn keyword_coverage(
     }
     out
 }
+
+/// `shader/pass` and every variant of its full space (at most 1000: the small passes the
+/// checks run whole).
+pub(crate) fn small_pass<'l>(
+    lib: &'l Library,
+    shader: &str,
+    pass: &str,
+) -> Result<(&'l Pass, Vec<Choice>), GpuError> {
+    let what = format!("{shader}/{pass}");
+    let pass = lib
+        .pass(shader, pass)
+        .map_err(|e| CheckError::lookup(&what, e))?;
+    let choices = wgsl_variants::Space::full(pass)
+        .enumerate(1000)
+        .map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
+    Ok((pass, choices))
+}

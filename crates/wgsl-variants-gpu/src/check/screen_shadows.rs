@@ -11,7 +11,7 @@
 use std::time::Instant;
 
 use super::deferred::texture;
-use super::lights::{LightRig, LightingCamera, depth_camera_resources};
+use super::lights::{LightRig, depth_camera_resources};
 use super::passes::keyword_coverage;
 use super::report::{Mismatch, PassReport};
 use super::scene::TestScene;
@@ -172,11 +172,7 @@ fn collect_resources(
     params: &ShadowParams,
     map: &[u16],
 ) -> Vec<BoundResource> {
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
+    let camera = rig.camera(scene);
     let mut out = depth_camera_resources(scene, &camera);
     out.extend(shadow_map_resources(params, map));
     out

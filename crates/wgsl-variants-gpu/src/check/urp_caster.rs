@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::passes::keyword_coverage;
+use super::passes::{keyword_coverage, small_pass};
 use super::report::{Mismatch, PassReport};
 use super::scene::{TestScene, push_mat4, push_vec4};
 use super::screen_shadows::REGION_RADIUS;
@@ -25,7 +25,6 @@ use wgsl_variants::reference::light::LightShape;
 use wgsl_variants::reference::shadow::{directional_shadow_view_proj, spot_shadow_view_proj};
 use wgsl_variants::reference::tolerance::unorm_within;
 use wgsl_variants::reference::urp::shadow::{CasterLight, apply_shadow_bias, caster_clip};
-use wgsl_variants::variants::Space;
 
 /// URP's `_ShadowBias` of the directional light's map: (depth, normal) in world units.
 pub const DIRECTIONAL_BIAS: Vec2 = Vec2::new(-0.05, -0.08);
@@ -240,16 +239,7 @@ pub fn check_urp_shadow_caster(
     rig: &super::lights::LightRig,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let what = "universal_lit/ShadowCaster";
-    let pass = lib
-        .pass("universal_lit", "ShadowCaster")
-        .map_err(|e| CheckError::lookup(what, e))?;
-    let choices = Space::full(pass).enumerate(1000).map_err(|source| {
-        GpuError::from(CheckError::Budget {
-            what: what.to_owned(),
-            source,
-        })
-    })?;
+    let (pass, choices) = small_pass(lib, "universal_lit", "ShadowCaster")?;
     let urp = UrpScene::new(scene, DEFAULT_SEED);
     let [directional, tight, spot] = views(rig, scene)?;
     let mesh = scene.quad();

@@ -24,7 +24,7 @@ use std::time::Instant;
 use super::compare::format_name;
 use super::deferred::texture;
 use super::lights::{LightRig, LightingCamera, depth_camera_resources};
-use super::passes::keyword_coverage;
+use super::passes::{keyword_coverage, small_pass};
 use super::report::{Mismatch, PassReport};
 use super::scene::TestScene;
 use super::screen_shadows::{ScreenShadow, shadow_map_resources};
@@ -44,7 +44,6 @@ use wgsl_variants::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
 use wgsl_variants::reference::urp::ufloat::unpack_rg11b10;
-use wgsl_variants::variants::Space;
 
 /// The material keywords of the G-buffers the lighting variants read (each also rendered
 /// with `_GBUFFER_NORMALS_OCT`, and always with `_WRITE_RENDERING_LAYERS`).
@@ -211,24 +210,8 @@ pub fn check_stencil_deferred(
     pass_name: &str,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let what = format!("stencil_deferred/{pass_name}");
-    let pass = lib
-        .pass("stencil_deferred", pass_name)
-        .map_err(|e| CheckError::lookup(&what, e))?;
-    let choices = Space::full(pass).enumerate(1000).map_err(|source| {
-        GpuError::from(CheckError::Budget {
-            what: what.clone(),
-            source,
-        })
-    })?;
-    let main_shadow = rig
-        .screen_shadows
-        .as_ref()
-        .and_then(|s| s.light(LightType::Directional))
-        .ok_or_else(|| CheckError::UnknownToReference {
-            variant: what.clone(),
-            message: "the main light's shadow map was not rendered".to_owned(),
-        })?;
+    let (pass, choices) = small_pass(lib, "stencil_deferred", pass_name)?;
+    let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -242,11 +225,7 @@ pub fn check_stencil_deferred(
         }
     }
     let lights = UrpLights::new(rig);
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
+    let camera = rig.camera(scene);
     let mut report = PassReport::new("stencil_deferred", pass_name);
     let mut outputs: Vec<Vec<Vec<u8>>> = Vec::new();
     let mut uncertain = 0usize;
@@ -384,19 +363,8 @@ pub(crate) fn light_gbuffer(
     rig: &LightRig,
     gbuffer: &UrpGBuffer,
 ) -> Result<Vec<u8>, GpuError> {
-    let main_shadow = rig
-        .screen_shadows
-        .as_ref()
-        .and_then(|s| s.light(LightType::Directional))
-        .ok_or_else(|| CheckError::UnknownToReference {
-            variant: "stencil_deferred".to_owned(),
-            message: "the main light's shadow map was not rendered".to_owned(),
-        })?;
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
+    let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
+    let camera = rig.camera(scene);
     let lights = UrpLights::new(rig);
     let mut common = Vec::new();
     if gbuffer.oct {
@@ -469,6 +437,19 @@ pub(crate) fn draw_light(
         &main_shadow.map_texels,
     ));
     Ok(render(ctx, &job)?.remove(0))
+}
+
+/// The main light's map: the rig's `DIRECTIONAL` light's of [`super::screen_shadows`].
+fn main_light_shadow<'r>(rig: &'r LightRig, what: &str) -> Result<&'r ScreenShadow, GpuError> {
+    rig.screen_shadows
+        .as_ref()
+        .and_then(|s| s.light(LightType::Directional))
+        .ok_or_else(|| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: what.to_owned(),
+                message: "the main light's shadow map was not rendered".to_owned(),
+            })
+        })
 }
 
 /// URP's lighting blend: `One One` on colour (GBuffer3 += light), `Zero One` on alpha.
@@ -659,16 +640,8 @@ pub fn compare_urp_volume(
     let stencil_pass = lib
         .variant("stencil_write", "StencilWrite", &[] as &[&str])
         .map_err(|e| CheckError::lookup("stencil_write/StencilWrite", e))?;
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
-    let main_shadow = rig
-        .screen_shadows
-        .as_ref()
-        .and_then(|s| s.light(LightType::Directional))
-        .ok_or_else(|| refused("the main light's shadow map was not rendered".into()))?;
+    let camera = rig.camera(scene);
+    let main_shadow = main_light_shadow(rig, &what)?;
     let initial = gbuffer.targets[3].clone();
     let full = draw_light(
         ctx,

@@ -21,7 +21,7 @@
 use glam::Vec3;
 
 use super::deferred::{GBufferImage, rt3_blend};
-use super::lights::{LightRig, LightingCamera, lighting_resources, render_lighting};
+use super::lights::{LightRig, lighting_resources, render_lighting};
 use super::scene::{TestScene, push_mat4};
 use crate::light_volume::{LightDraw, LightVolume};
 use crate::render::create_bind_groups;
@@ -141,11 +141,7 @@ pub fn render_light(
         .variant("deferred_shading", "Lighting", &keywords)
         .map_err(|e| CheckError::lookup("deferred_shading/Lighting", e))?;
     let (label, wgsl) = (variant.label(), lib.wgsl(&variant));
-    let camera = LightingCamera {
-        view_proj: rig.view_proj,
-        position: scene.scene.camera_position,
-        depth: &rig.depth,
-    };
+    let camera = rig.camera(scene);
     let rt3 = gbuffer.targets[3].clone();
     let volume = match draw {
         LightDraw::FullScreen(_) => {
