@@ -231,7 +231,7 @@ fn reference_map(
     (map, pancaked)
 }
 
-/// Checks every variant of `universal_lit/ShadowCaster` against [`reference_map`].
+/// Checks every variant of `universal_lit/ShadowCaster` against the reference map (module docs).
 pub fn check_urp_shadow_caster(
     ctx: &GpuContext,
     lib: &Library,

@@ -593,7 +593,8 @@ pub struct UrpVolumeComparison {
 }
 
 /// Draws the check's `kind` light (point or spot) of `PunctualLit` over a URP G-buffer as its
-/// volume (`crate::light_volume`) with [`urp_stencil_scheme`], and full-screen, and compares.
+/// volume (`crate::light_volume`) with URP's stencil scheme (`urp_stencil_scheme`, docs/urp.md §9),
+/// and full-screen, and compares.
 ///
 /// # Errors
 /// [`GpuError`] from the draws; a light that would be drawn full-screen (crossing the near
