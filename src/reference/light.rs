@@ -189,6 +189,20 @@ pub enum LightError {
         /// The outer angle.
         outer_degrees: f32,
     },
+    /// More additional lights than a URP forward draw takes.
+    #[error("{count} additional lights, but URP's forward pass takes at most {max} per object")]
+    TooManyAdditional {
+        /// The lights given.
+        count: usize,
+        /// The limit.
+        max: usize,
+    },
+    /// A directional light among URP's additional lights (the forward pass's are point and
+    /// spot lights; the directional one is the main light).
+    #[error(
+        "an additional light of URP's forward pass must be a point or spot light, not directional"
+    )]
+    AdditionalDirectional,
     /// A directional cookie size that is not > 0.
     #[error("directional cookie size {size} must be > 0")]
     CookieSize {

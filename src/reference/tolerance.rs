@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | unorm targets (8- and 10-bit, and the 2-bit alpha) | [`UNORM_LSB`] = 1 step, measured from either correct rounding | docs/shading.md §1: Vulkan may round a tie either way, and the GPU's `f32` value before quantization may differ from the CPU's by a few ULP, which can move it across a rounding boundary — by one step, never more |
 //! | `Rgba16Float` targets | [`F16_ULP`] = 1 f16 step from the round-to-nearest-even of the reference `f32` | docs/shading.md §1: the same argument; 1 f16 ULP is 2^13 f32 ULPs, far above any `f32` arithmetic difference |
-//! | `Rg11b10Ufloat` targets (URP's GBuffer3) | [`UFLOAT_ULP`] = 1 step of each channel's format (2^-6 relative on the 11-bit r, g; 2^-5 on the 10-bit b) from the round-to-nearest-even of the reference | the conversion may round toward zero and leaves ties open (Khronos Data Format Specification, unsigned 11/10-bit floats): one step either way |
+//! | `Rg11b10Ufloat` targets (URP's GBuffer3 and forward camera target) | [`UFLOAT_ULP`] = 1 step of each channel's format (2^-6 relative on the 11-bit r, g; 2^-5 on the 10-bit b) from the round-to-nearest-even of the reference (where a shadow tap may flip, from the GPU value clamped into the interval of both outcomes) | the conversion may round toward zero and leaves ties open (Khronos Data Format Specification, unsigned 11/10-bit floats): one step either way |
 //! | `Rgba8UnormSrgb` colour channels (URP's GBuffer0) | [`UNORM_LSB`] around the exact sRGB encoding's rounding ([`srgb8_within`]) | the GPU may approximate the transfer function before rounding |
 //! | `Rgba8Snorm` channels (URP's GBuffer2 without `_GBUFFER_NORMALS_OCT`) | [`UNORM_LSB`] step from either correct rounding ([`snorm8_within`]) | the unorm argument, on `clamp(x, −1, 1) · 127` |
 //! | octahedral normals (URP's GBuffer2 with `_GBUFFER_NORMALS_OCT`) | [`OCT_CODE_STEP`] = 1 on each of the two 12-bit codes ([`oct888_within`]) | the codes are truncated (`trunc(f · 4095.5)`), so a few `f32` ULPs in the normal move a code by one; comparing bytes would turn that into 255 steps of the low byte |
@@ -479,6 +479,11 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
         }
         UrpTexel::Snorm8(v) => (0..4).all(|i| snorm8_within(got[i] as i8, v[i])),
         UrpTexel::Ufloat(v) => rg11b10_within(word, v),
+        UrpTexel::UfloatBetween(a, b) => {
+            // The GPU value clamped into the interval, then within one step of the clamped value.
+            let got = super::urp::ufloat::unpack_rg11b10(word);
+            rg11b10_within(word, got.clamp(a.min(b), a.max(b)))
+        }
         UrpTexel::F32(x) => f32_within(f32::from_bits(word), x),
         UrpTexel::U32(x) => word == x,
     }

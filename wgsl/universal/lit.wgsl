@@ -1,8 +1,8 @@
 #shader universal_lit
-// Unity URP's Lit shader, deferred path: the UniversalGBuffer pass (docs/urp.md) and the
-// ShadowCaster pass (docs/urp.md §10). Material
+// Unity URP's Lit shader: the UniversalGBuffer pass (docs/urp.md), the UniversalForward pass
+// (docs/urp.md §11) and the ShadowCaster pass (docs/urp.md §10). Material
 // keywords are shader_feature_local as in URP's Lit.shader; the pipeline keywords that change
-// what the G-buffer pass writes are multi_compile. 2^10 · 2^6 = 65536 combinations, of which
+// what the G-buffer pass writes are multi_compile. G-buffer: 2^10 · 2^6 = 65536 combinations, of which
 // 49152 are variants: URP's mixed-lighting setup is one of None, ShadowMask and Subtractive
 // (its `MixedLightingSetup` enum), so the pipeline never sets both keywords of the exclusion.
 
@@ -27,6 +27,34 @@
 #pragma multi_compile _ LIGHTMAP_ON
 #pragma exclude _MIXED_LIGHTING_SUBTRACTIVE SHADOWS_SHADOWMASK
 #import universal/lit_gbuffer_pass
+#endpass
+
+#pass UniversalForward
+#tag LightMode UniversalForward
+// URP Lit's forward pass: the same material keywords; the pipeline keywords of the main
+// light's shadow (hard or soft), the additional lights (none, per vertex, per pixel), light
+// layers and baked lighting (a lightmap, with subtractive mixing). The soft-shadow and
+// subtractive keywords change nothing without the keyword they refine, so they require it:
+// 1024 · 3 · 3 · 2 · 3 = 55296 variants.
+#pragma shader_feature_local _NORMALMAP
+#pragma shader_feature_local _ALPHATEST_ON
+#pragma shader_feature_local _EMISSION
+#pragma shader_feature_local _METALLICSPECGLOSSMAP
+#pragma shader_feature_local _SPECULAR_SETUP
+#pragma shader_feature_local _OCCLUSIONMAP
+#pragma shader_feature_local _SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A
+#pragma shader_feature_local _RECEIVE_SHADOWS_OFF
+#pragma shader_feature_local _SPECULARHIGHLIGHTS_OFF
+#pragma shader_feature_local _ENVIRONMENTREFLECTIONS_OFF
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS
+#pragma multi_compile _ _SHADOWS_SOFT
+#pragma multi_compile _ _ADDITIONAL_LIGHTS_VERTEX _ADDITIONAL_LIGHTS
+#pragma multi_compile _ _LIGHT_LAYERS
+#pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
+#pragma multi_compile _ LIGHTMAP_ON
+#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS
+#pragma require _MIXED_LIGHTING_SUBTRACTIVE LIGHTMAP_ON
+#import universal/lit_forward_pass
 #endpass
 
 #pass ShadowCaster

@@ -1,6 +1,7 @@
 //! `wgsl-variants check-gpu`: the GPU proof of the bundled library (see
 //! [`wgsl_variants_gpu::check`]): every variant of the standard passes, the deferred
-//! reflection and final passes, URP's UniversalGBuffer (a covering set unless `--full`), and
+//! reflection and final passes, URP's Lit passes (UniversalGBuffer and UniversalForward: a
+//! covering set unless `--full`), URP's lighting passes, and
 //! the compute kernels, compared with the CPU reference.
 
 use std::process::ExitCode;
@@ -13,8 +14,9 @@ use super::{Context, Failed};
 /// `check-gpu` arguments.
 #[derive(clap::Args, Debug)]
 pub struct CheckGpuArgs {
-    /// Only this shader (standard, deferred_shading, deferred_reflections, deferred_final,
-    /// universal_lit; kernels for the compute kernels).
+    /// Only this shader (standard, deferred_shading, screen_space_shadows,
+    /// deferred_reflections, deferred_final, universal_lit, stencil_deferred; kernels for the
+    /// compute kernels).
     #[arg(long, value_name = "SHADER")]
     shader: Option<String>,
     /// Only passes (or kernels) with this name.
@@ -34,15 +36,16 @@ pub struct CheckGpuArgs {
     #[arg(long, value_name = "K/N")]
     shard: Option<wgsl_variants::variants::Shard>,
     /// Check a T-wise covering set (T from 1 to 4) of each pass instead of every variant.
-    /// Without it, passes past 8192 variants (URP's UniversalGBuffer) get a 3-wise covering
-    /// set.
+    /// Without it, passes past 8192 variants (URP's UniversalGBuffer and UniversalForward) get
+    /// a 3-wise covering set.
     #[arg(long, value_name = "T", conflicts_with = "full")]
     cover: Option<usize>,
     /// Cover only passes whose space holds more than N variants (with --cover, as validate's;
     /// without it, the size past which the default 3-wise covering set applies).
     #[arg(long, value_name = "N", conflicts_with = "full")]
     cover_above: Option<u64>,
-    /// Check every variant of every selected pass, URP's 49,152 included (no covering set).
+    /// Check every variant of every selected pass, URP's 49,152 and 55,296 included (no
+    /// covering set).
     #[arg(long)]
     full: bool,
 }

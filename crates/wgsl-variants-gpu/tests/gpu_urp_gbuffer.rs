@@ -105,7 +105,7 @@ fn the_comparison_catches_a_wrong_texel() {
         let mut report = PassReport::new(&pass.shader, &pass.name);
         compare_variant(
             &mut report,
-            &urp,
+            &urp.scene,
             pass,
             "{planted}",
             &targets,

@@ -70,17 +70,8 @@ fn every_lighting_variant_matches_the_reference() {
 /// Runs `pass` over the bundled library with one planted bug and returns the keyword sets of
 /// the variants with mismatches.
 fn mismatching(path: &str, from: &str, to: &str, pass: &str) -> Option<Vec<String>> {
-    let lib = common::mutate::bundled_with(path, from, to);
-    let report = run(&lib, pass)?;
-    let p = &report.passes[0];
-    let mut keywords: Vec<String> = p
-        .first_mismatches
-        .iter()
-        .map(|m| m.keywords.clone())
-        .collect();
-    keywords.dedup();
-    assert!(p.mismatches > 0, "the planted bug is caught: {report}");
-    Some(keywords)
+    let report = run(&common::mutate::bundled_with(path, from, to), pass)?;
+    Some(common::mutate::caught_in(&report))
 }
 
 #[test]

@@ -44,16 +44,8 @@ fn every_urp_shadow_caster_variant_matches_the_reference() {
 
 /// The keyword sets of the variants with mismatches under one planted bug.
 fn mismatching(path: &str, from: &str, to: &str) -> Option<Vec<String>> {
-    let lib = common::mutate::bundled_with(path, from, to);
-    let report = run(&lib)?;
-    let p = &report.passes[0];
-    assert!(p.mismatches > 0, "the planted bug is caught: {report}");
-    Some(
-        p.first_mismatches
-            .iter()
-            .map(|m| m.keywords.clone())
-            .collect(),
-    )
+    let report = run(&common::mutate::bundled_with(path, from, to))?;
+    Some(common::mutate::caught_in(&report))
 }
 
 #[test]

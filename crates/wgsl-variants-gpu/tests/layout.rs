@@ -29,13 +29,15 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
             let hdr = v.keywords().contains(&"UNITY_HDR_ON");
             let urp = pass.name == "UniversalGBuffer";
             let lightmap = v.keywords().contains(&"LIGHTMAP_ON");
-            // URP's ShadowCaster writes depth only; URP's lighting passes add to GBuffer3.
+            // URP's ShadowCaster writes depth only.
             let depth_only = pass.shader == "universal_lit" && pass.name == "ShadowCaster";
             let formats: Vec<wgpu::TextureFormat> = if urp {
                 urp_gbuffer_formats(&v.keywords())
             } else if depth_only {
                 Vec::new()
-            } else if pass.shader == "stencil_deferred" {
+            } else if pass.shader == "stencil_deferred" || pass.name == "UniversalForward" {
+                // URP's lighting passes add to GBuffer3; URP's forward pass draws into the
+                // HDR camera target of URP's default format.
                 vec![wgpu::TextureFormat::Rg11b10Ufloat]
             } else if deferred {
                 vec![

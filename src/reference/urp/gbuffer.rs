@@ -430,7 +430,16 @@ pub fn urp_world_normal(k: &UrpKeywords, normal_ts: Vec3, geo: &Geometry) -> Vec
 /// Baked GI: the lightmap texel with `LIGHTMAP_ON` (minus the main light's estimated
 /// contribution where shadowed, with `_MIXED_LIGHTING_SUBTRACTIVE`: URP's
 /// `SubtractDirectMainLightFromLightmap`), else `max(0, L0 + L1)` spherical harmonics.
-pub fn urp_baked_gi(k: &UrpKeywords, tex: &UrpTexels, light: &UrpLighting, n: Vec3) -> Vec3 {
+/// `shadow` is the main light's realtime shadow attenuation at the pixel and `strength` the
+/// shadow's strength (the subtraction's `mix(gi, max(subtracted, shadow colour), strength)`).
+pub fn urp_baked_gi(
+    k: &UrpKeywords,
+    tex: &UrpTexels,
+    light: &UrpLighting,
+    n: Vec3,
+    shadow: f32,
+    strength: f32,
+) -> Vec3 {
     if !k.on(kw::LIGHTMAP_ON) {
         let n1 = n.extend(1.0);
         return Vec3::new(light.sh_r.dot(n1), light.sh_g.dot(n1), light.sh_b.dot(n1))
@@ -440,18 +449,48 @@ pub fn urp_baked_gi(k: &UrpKeywords, tex: &UrpTexels, light: &UrpLighting, n: Ve
     if !k.on(kw::MIXED_LIGHTING_SUBTRACTIVE) {
         return gi;
     }
-    let shadow = if k.on(kw::RECEIVE_SHADOWS_OFF) {
+    let lambert = light.main_light_color * light.main_light_dir.dot(n).clamp(0.0, 1.0);
+    let subtracted = gi - lambert * (1.0 - shadow);
+    let realtime = gi.lerp(subtracted.max(light.subtractive_shadow_color), strength);
+    gi.min(realtime)
+}
+
+/// The G-buffer pass's main-light shadow attenuation: 1 with `_RECEIVE_SHADOWS_OFF` (URP's
+/// `MainLightRealtimeShadow`), else the scene's stand-in [`UrpLighting::shadow_attenuation`].
+pub fn gbuffer_main_light_shadow(k: &UrpKeywords, light: &UrpLighting) -> f32 {
+    if k.on(kw::RECEIVE_SHADOWS_OFF) {
         1.0
     } else {
         light.shadow_attenuation
+    }
+}
+
+/// URP's `GlobalIllumination`: `(baked · diffuse + env · surfaceReduction ·
+/// mix(specular, grazing, (1 − N·V)^4)) · occlusion` with `surfaceReduction = 1 / (r² + 1)`;
+/// `env` is the environment cube's colour in the reflected direction (uniform faces, so the
+/// mip level does not matter), or `_GlossyEnvironmentColor` with
+/// `_ENVIRONMENTREFLECTIONS_OFF`.
+#[allow(clippy::too_many_arguments)]
+pub fn global_illumination(
+    k: &UrpKeywords,
+    b: &UrpBrdf,
+    baked: Vec3,
+    n: Vec3,
+    v: Vec3,
+    occlusion: f32,
+    light: &UrpLighting,
+    env: &CubeFaces,
+) -> Vec3 {
+    let fresnel = (1.0 - n.dot(v).clamp(0.0, 1.0)).powi(4);
+    let environment = if k.on(kw::ENVIRONMENTREFLECTIONS_OFF) {
+        light.glossy_environment_color
+    } else {
+        env.sample(reflect(-v, n)).truncate()
     };
-    let lambert = light.main_light_color * light.main_light_dir.dot(n).clamp(0.0, 1.0);
-    let subtracted = gi - lambert * (1.0 - shadow);
-    let realtime = gi.lerp(
-        subtracted.max(light.subtractive_shadow_color),
-        light.shadow_strength,
-    );
-    gi.min(realtime)
+    let surface_reduction = 1.0 / (b.roughness2 + 1.0);
+    (baked * b.diffuse
+        + environment * surface_reduction * b.specular.lerp(Vec3::splat(b.grazing), fresnel))
+        * occlusion
 }
 
 /// What the fragment writes, before the targets store it.
@@ -491,17 +530,9 @@ pub fn shade_gbuffer(
     let b = urp_brdf(k, &s);
     let n = urp_world_normal(k, s.normal_ts, &pixel.geometry);
     let v = (light.camera_position - pixel.geometry.world_position).normalize();
-    // GlobalIllumination: (gi · diffuse + env · surfaceReduction ·
-    // mix(specular, grazing, (1 − N·V)^4)) · occlusion.
-    let fresnel = (1.0 - n.dot(v).clamp(0.0, 1.0)).powi(4);
-    let environment = if k.on(kw::ENVIRONMENTREFLECTIONS_OFF) {
-        light.glossy_environment_color
-    } else {
-        env.sample(reflect(-v, n)).truncate()
-    };
-    let surface_reduction = 1.0 / (b.roughness2 + 1.0);
-    let gi = urp_baked_gi(k, tex, light, n) * b.diffuse
-        + environment * surface_reduction * b.specular.lerp(Vec3::splat(b.grazing), fresnel);
+    let shadow = gbuffer_main_light_shadow(k, light);
+    let baked = urp_baked_gi(k, tex, light, n, shadow, light.shadow_strength);
+    let gi = global_illumination(k, &b, baked, n, v, s.occlusion, light, env);
     let packed_specular = if k.on(kw::SPECULARHIGHLIGHTS_OFF) {
         Vec3::ZERO
     } else if k.on(kw::SPECULAR_SETUP) {
@@ -514,7 +545,7 @@ pub fn shade_gbuffer(
         gbuffer1: packed_specular.extend(s.occlusion),
         normal: n,
         smoothness: s.smoothness,
-        gbuffer3: s.emission + gi * s.occlusion,
+        gbuffer3: s.emission + gi,
         depth_as_color: k.on(kw::RENDER_PASS_ENABLED).then_some(pixel.depth),
         shadow_mask: k.writes_shadow_mask().then(|| {
             if k.on(kw::LIGHTMAP_ON) {
@@ -549,6 +580,9 @@ pub enum UrpTexel {
     Snorm8(Vec4),
     /// `Rg11b10Ufloat`.
     Ufloat(Vec3),
+    /// `Rg11b10Ufloat` where the reference allows any value between two (per channel, either
+    /// order): a shadow-map tap within a hair of flipping (the forward pass's main light).
+    UfloatBetween(Vec3, Vec3),
     /// `R32Float`.
     F32(f32),
     /// `R32Uint`.
@@ -572,6 +606,7 @@ impl UrpTexel {
                 out
             }
             UrpTexel::Ufloat(v) => v.to_array().to_vec(),
+            UrpTexel::UfloatBetween(a, b) => a.to_array().into_iter().chain(b.to_array()).collect(),
             UrpTexel::F32(x) => vec![x],
             UrpTexel::U32(x) => vec![x as f32],
         }
@@ -688,7 +723,11 @@ mod tests {
             lightmap: Vec3::ONE,
             ..UrpTexels::default()
         };
-        assert_eq!(urp_baked_gi(&k, &tex, &light, Vec3::Z), Vec3::splat(0.625));
+        let shadow = gbuffer_main_light_shadow(&k, &light);
+        assert_eq!(
+            urp_baked_gi(&k, &tex, &light, Vec3::Z, shadow, 0.5),
+            Vec3::splat(0.625)
+        );
         assert_eq!(k.flags().to_byte(), 4);
         // Receiving no shadows: nothing is subtracted.
         let k = UrpKeywords::from_names(&[
@@ -697,7 +736,11 @@ mod tests {
             "_RECEIVE_SHADOWS_OFF",
         ])
         .unwrap();
-        assert_eq!(urp_baked_gi(&k, &tex, &light, Vec3::Z), Vec3::ONE);
+        let shadow = gbuffer_main_light_shadow(&k, &light);
+        assert_eq!(
+            urp_baked_gi(&k, &tex, &light, Vec3::Z, shadow, 0.5),
+            Vec3::ONE
+        );
     }
 
     #[test]

@@ -19,6 +19,7 @@
 //! | [`workflow`] | metallic-workflow reflectivity (`kDielectricSpec`) and its inverse |
 //! | [`gbuffer`] | what the `UniversalGBuffer` fragment writes per texel, per target |
 //! | [`lighting`] | the `StencilDeferred` lighting passes: URP's attenuation and BRDF from the G-buffer |
+//! | [`forward`] | the `UniversalForward` pass: the surface lit by the main light, the additional lights and GI in one pass |
 //! | [`shadow`] | the ShadowCaster pass: URP's shadow bias and near-plane pancaking |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
@@ -41,6 +42,7 @@
 
 pub mod accuracy;
 pub mod flags;
+pub mod forward;
 pub mod gbuffer;
 pub mod lighting;
 pub mod normal;

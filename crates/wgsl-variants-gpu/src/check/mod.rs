@@ -21,6 +21,7 @@
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
+//! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
@@ -42,6 +43,7 @@ pub mod screen_shadows;
 pub mod shadows;
 pub mod urp;
 pub mod urp_caster;
+pub mod urp_forward;
 pub mod urp_lighting;
 pub mod volumes;
 
@@ -94,7 +96,7 @@ pub const DEFAULT_COVER_ABOVE: u64 = 8192;
 pub const DEFAULT_COVER_T: usize = 3;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 13] = [
+pub const PASSES: [(&str, &str); 14] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -105,6 +107,7 @@ pub const PASSES: [(&str, &str); 13] = [
     ("deferred_reflections", "Add"),
     ("deferred_final", "Final"),
     ("universal_lit", "UniversalGBuffer"),
+    ("universal_lit", "UniversalForward"),
     ("universal_lit", "ShadowCaster"),
     ("stencil_deferred", "PunctualLit"),
     ("stencil_deferred", "DirectionalLit"),
@@ -231,12 +234,15 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     {
         rig.render_shadows(&ctx, lib)?;
     }
-    if selected.iter().any(|&(s, _)| {
-        matches!(
-            s,
-            "deferred_shading" | "screen_space_shadows" | "stencil_deferred"
-        )
-    }) {
+    let forward_selected = selected.contains(&("universal_lit", "UniversalForward"));
+    if forward_selected
+        || selected.iter().any(|&(s, _)| {
+            matches!(
+                s,
+                "deferred_shading" | "screen_space_shadows" | "stencil_deferred"
+            )
+        })
+    {
         rig.render_screen_shadows(&ctx, lib, &scene)?;
     }
     let threads = options.threads();
@@ -249,7 +255,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     let urp_selected = selected.contains(&("universal_lit", "UniversalGBuffer"));
     // One device per worker, shared by the standard and URP passes.
     let mut contexts = Vec::new();
-    if !standard.is_empty() || urp_selected {
+    if !standard.is_empty() || urp_selected || forward_selected {
         for _ in 1..threads {
             contexts.push(GpuContext::new(options.adapter.as_deref())?);
         }
@@ -272,16 +278,29 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             )?);
         }
     }
-    if urp_selected {
+    let urp_scene = urp::UrpScene::new(&scene, urp::DEFAULT_SEED);
+    for (name, on) in [
+        ("UniversalGBuffer", urp_selected),
+        ("UniversalForward", forward_selected),
+    ] {
+        if !on {
+            continue;
+        }
         let pass = lib
-            .pass("universal_lit", "UniversalGBuffer")
-            .map_err(|e| CheckError::lookup(String::from("universal_lit/UniversalGBuffer"), e))?;
-        let urp_scene = urp::UrpScene::new(&scene, urp::DEFAULT_SEED);
-        let workers = upload_workers(&ctx, &contexts, &urp_scene.resources(), "URP scene")?;
-        report.passes.push(urp::check_universal_gbuffer(
+            .pass("universal_lit", name)
+            .map_err(|e| CheckError::lookup(format!("universal_lit/{name}"), e))?;
+        let forward;
+        let spec: &dyn urp::UrpColorPass = if name == "UniversalForward" {
+            forward = urp_forward::UrpForwardScene::new(&urp_scene, &rig)?;
+            &forward
+        } else {
+            &urp_scene
+        };
+        let workers = upload_workers(&ctx, &contexts, &spec.resources(), name)?;
+        report.passes.push(urp::check_urp_color_pass(
             &workers,
             lib,
-            &urp_scene,
+            spec,
             pass,
             urp::Selection {
                 cover: options.cover_for(space_size(pass)),

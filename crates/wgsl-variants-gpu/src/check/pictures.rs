@@ -10,7 +10,8 @@ use super::deferred::{final_pass, render_chain, render_gbuffer};
 use super::lights::LightRig;
 use super::passes::standard_job;
 use super::scene::TestScene;
-use super::urp::{DEFAULT_SEED, UrpScene};
+use super::urp::{DEFAULT_SEED, UrpColorPass, UrpScene};
+use super::urp_forward::UrpForwardScene;
 use super::urp_lighting::{light_gbuffer, render_urp_gbuffer};
 use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
@@ -150,7 +151,8 @@ fn light(format: TargetFormat, bytes: &[u8], i: usize) -> [f32; 4] {
 /// probes (also `reflections`, the reflection buffer) and the add pass, then (LDR) the final
 /// pass; without, the final pass (LDR) or RT3 (HDR) directly. `standard/ForwardBase`: `final`
 /// (rgb) and `alpha`. `universal_lit/UniversalGBuffer`: URP's G-buffer views and its lighting
-/// (see `urp_pictures`).
+/// (see `urp_pictures`). `universal_lit/UniversalForward`: `lit`, the camera target of
+/// [`super::urp_forward`]'s scene.
 pub fn render_pictures(
     ctx: &GpuContext,
     lib: &Library,
@@ -234,6 +236,24 @@ pub fn render_pictures(
             ])
         }
         ("universal_lit", "UniversalGBuffer") => urp_pictures(ctx, lib, scene, keywords),
+        ("universal_lit", "UniversalForward") => {
+            let variant = lib
+                .variant(shader, pass, keywords)
+                .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
+            let mut rig = LightRig::new(scene);
+            rig.render_screen_shadows(ctx, lib, scene)?;
+            let forward = UrpForwardScene::new(&UrpScene::new(scene, DEFAULT_SEED), &rig)?;
+            let mut job = forward.job(&variant.label(), &lib.wgsl(&variant), &variant.keywords());
+            job.resources = forward.resources();
+            let out = render(ctx, &job)?.remove(0);
+            Ok(vec![Picture::from_fn(
+                "lit",
+                "the camera target: GI, the main light (with its shadow), the additional lights and the emission (clamped)",
+                w,
+                h,
+                |i| rgb(read(TargetFormat::Rg11b10Ufloat, &out, i)),
+            )])
+        }
         _ => Err(GpuError::from(CheckError::NoPictures(format!(
             "{shader}/{pass}"
         )))),

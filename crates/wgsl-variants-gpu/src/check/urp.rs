@@ -334,6 +334,59 @@ pub fn cleared(target: &ColorTarget) -> UrpTexel {
     }
 }
 
+/// What the check needs of one of `universal_lit`'s colour passes (`UniversalGBuffer`,
+/// `UniversalForward`): its targets, its render job and its reference, so one loop renders,
+/// compares and judges both.
+pub(crate) trait UrpColorPass {
+    /// The URP scene the pass draws.
+    fn urp(&self) -> &UrpScene;
+    /// Every resource a variant of the pass may bind (uploaded once per worker).
+    fn resources(&self) -> Vec<BoundResource>;
+    /// The colour targets of a variant with these keywords, named for reports.
+    fn targets(&self, keywords: &[&str]) -> Vec<(String, ColorTarget)>;
+    /// The render job of one variant's composed text.
+    fn job(&self, label: &str, wgsl: &str, keywords: &[&str]) -> RenderJob;
+    /// The reference texels of every target at every pixel (`None`: discarded); `Err` names
+    /// a keyword the reference does not know.
+    fn reference_image(&self, keywords: &[&str]) -> Result<Vec<Option<Vec<UrpTexel>>>, String>;
+    /// What the report says of the scene and the comparison.
+    fn note(&self) -> String;
+}
+
+impl UrpColorPass for UrpScene {
+    fn urp(&self) -> &UrpScene {
+        self
+    }
+
+    fn resources(&self) -> Vec<BoundResource> {
+        UrpScene::resources(self)
+    }
+
+    fn targets(&self, keywords: &[&str]) -> Vec<(String, ColorTarget)> {
+        urp_targets(keywords)
+    }
+
+    fn job(&self, label: &str, wgsl: &str, keywords: &[&str]) -> RenderJob {
+        UrpScene::job(self, label, wgsl, keywords)
+    }
+
+    fn reference_image(&self, keywords: &[&str]) -> Result<Vec<Option<Vec<UrpTexel>>>, String> {
+        let k = UrpKeywords::from_names(keywords).map_err(|e| e.to_string())?;
+        Ok(self
+            .scene
+            .pixels()
+            .map(|(x, y)| self.reference(&k, x, y).map(|o| o.texels(&k)))
+            .collect())
+    }
+
+    fn note(&self) -> String {
+        format!(
+            "{}x{} pixels, GBuffer0-3 and the optional targets of each variant; discarded pixels compared with the clear colour; octahedral normals by their 12-bit codes",
+            self.scene.width, self.scene.height
+        )
+    }
+}
+
 /// Which variants of the pass to check.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Selection {
@@ -370,26 +423,18 @@ pub(crate) fn select(pass: &Pass, selection: Selection) -> Result<Vec<Choice>, G
         .collect())
 }
 
-/// The reference texels of every target of a variant at every pixel (`None`: discarded).
-fn reference_image(urp: &UrpScene, k: &UrpKeywords) -> Vec<Option<Vec<UrpTexel>>> {
-    urp.scene
-        .pixels()
-        .map(|(x, y)| urp.reference(k, x, y).map(|o| o.texels(k)))
-        .collect()
-}
-
 /// Compares one variant's read-back targets with its reference image; every texel recorded
 /// in `report`.
 pub fn compare_variant(
     report: &mut PassReport,
-    urp: &UrpScene,
+    scene: &TestScene,
     pass: &Pass,
     label: &str,
     targets: &[(String, ColorTarget)],
     expected: &[Option<Vec<UrpTexel>>],
     bytes: &[Vec<u8>],
 ) {
-    for (i, (x, y)) in urp.scene.pixels().enumerate() {
+    for (i, (x, y)) in scene.pixels().enumerate() {
         let want = &expected[i];
         if want.is_none() {
             report.discarded_compared += targets.len();
@@ -420,36 +465,31 @@ pub fn compare_variant(
     }
 }
 
-/// Checks the selected variants of `universal_lit/UniversalGBuffer`.
-pub(crate) fn check_universal_gbuffer(
+/// Checks the selected variants of one of `universal_lit`'s colour passes (`spec` says which):
+/// each distinct text rendered once, every texel of every target against the reference.
+pub(crate) fn check_urp_color_pass(
     workers: &[Worker<'_>],
     lib: &Library,
-    urp: &UrpScene,
+    spec: &dyn UrpColorPass,
     pass: &Pass,
     selection: Selection,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
     let mut report = PassReport::new(&pass.shader, &pass.name);
     let mut choices = select(pass, selection)?;
-    let keywords_of = |choice: &Choice| -> Result<UrpKeywords, GpuError> {
-        let names = choice.keywords(pass);
-        UrpKeywords::from_names(&names).map_err(|e| {
-            GpuError::from(CheckError::UnknownToReference {
-                variant: choice.label(pass),
-                message: e.to_string(),
+    let image_of = |choice: &Choice| -> Result<Vec<Option<Vec<UrpTexel>>>, GpuError> {
+        spec.reference_image(&choice.keywords(pass))
+            .map_err(|message| {
+                GpuError::from(CheckError::UnknownToReference {
+                    variant: choice.label(pass),
+                    message,
+                })
             })
-        })
     };
-    // Validate every keyword set up front; references are computed per variant when compared
-    // (the full space's would not fit in memory at once).
-    let keywords = choices
-        .iter()
-        .map(&keywords_of)
-        .collect::<Result<Vec<_>, _>>()?;
     let covering = selection.cover.is_some();
     let sampled = selection.sample > 1 || selection.shard.is_some();
     let partners = if covering && !sampled {
-        add_partners(pass, urp, &mut choices, &keywords, &keywords_of)?
+        add_partners(pass, &mut choices, &image_of)?
     } else {
         0
     };
@@ -467,7 +507,7 @@ pub(crate) fn check_universal_gbuffer(
         let index = match distinct.get(&text) {
             Some(&index) => index,
             None => {
-                jobs.push(urp.job(&variant.label(), &text, &variant.keywords()));
+                jobs.push(spec.job(&variant.label(), &text, &variant.keywords()));
                 distinct.insert(text, jobs.len() - 1);
                 jobs.len() - 1
             }
@@ -478,15 +518,17 @@ pub(crate) fn check_universal_gbuffer(
     report.draws = jobs.len();
     let outputs = render_all(workers, &jobs)?;
 
+    // References are computed per variant as it is compared (the full space's would not fit
+    // in memory at once).
     for (v, choice) in choices.iter().enumerate() {
-        let targets = urp_targets(&choice.keywords(pass));
+        let targets = spec.targets(&choice.keywords(pass));
         compare_variant(
             &mut report,
-            urp,
+            &spec.urp().scene,
             pass,
             &choice.label(pass),
             &targets,
-            &reference_image(urp, &keywords_of(choice)?),
+            &image_of(choice)?,
             &outputs[text_of[v]],
         );
         report.variants_run += 1;
@@ -513,23 +555,18 @@ pub(crate) fn check_universal_gbuffer(
             choices.len() - partners
         ));
     }
-    report.notes.push(format!(
-        "{}x{} pixels, GBuffer0-3 and the optional targets of each variant; discarded pixels compared with the clear colour; octahedral normals by their 12-bit codes",
-        urp.scene.width, urp.scene.height
-    ));
+    report.notes.push(spec.note());
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
 }
 
 /// For each keyword: the first variant with it on whose reference changes when it is turned
-/// off, and that partner added to `choices` (with its reference) unless already there.
-/// Returns how many were added.
+/// off, and that partner added to `choices` unless already there. Returns how many were
+/// added.
 fn add_partners(
     pass: &Pass,
-    urp: &UrpScene,
     choices: &mut Vec<Choice>,
-    keywords: &[UrpKeywords],
-    keywords_of: &impl Fn(&Choice) -> Result<UrpKeywords, GpuError>,
+    image_of: &impl Fn(&Choice) -> Result<Vec<Option<Vec<UrpTexel>>>, GpuError>,
 ) -> Result<usize, GpuError> {
     let mut present: HashSet<Choice> = choices.iter().cloned().collect();
     let original = choices.len();
@@ -545,9 +582,7 @@ fn add_partners(
                 let mut partner = choices[v].0.clone();
                 partner[s] = 0;
                 let partner = Choice(partner);
-                if reference_image(urp, &keywords_of(&partner)?)
-                    == reference_image(urp, &keywords[v])
-                {
+                if image_of(&partner)? == image_of(&choices[v])? {
                     continue;
                 }
                 if present.insert(partner.clone()) {

@@ -440,7 +440,10 @@ pub(crate) fn draw_light(
 }
 
 /// The main light's map: the rig's `DIRECTIONAL` light's of [`super::screen_shadows`].
-fn main_light_shadow<'r>(rig: &'r LightRig, what: &str) -> Result<&'r ScreenShadow, GpuError> {
+pub(crate) fn main_light_shadow<'r>(
+    rig: &'r LightRig,
+    what: &str,
+) -> Result<&'r ScreenShadow, GpuError> {
     rig.screen_shadows
         .as_ref()
         .and_then(|s| s.light(LightType::Directional))

@@ -20,3 +20,17 @@ pub fn bundled_with(path: &str, from: &str, to: &str) -> Library {
         .collect();
     Library::from_raw(raw, &Default::default()).unwrap()
 }
+
+/// The keyword sets of the variants with mismatches in the first pass of `report` (a check of
+/// a library with a planted bug), asserting that the bug was caught at all.
+pub fn caught_in(report: &wgsl_variants_gpu::check::CheckReport) -> Vec<String> {
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0, "the planted bug is caught: {report}");
+    let mut keywords: Vec<String> = p
+        .first_mismatches
+        .iter()
+        .map(|m| m.keywords.clone())
+        .collect();
+    keywords.dedup();
+    keywords
+}

@@ -1,0 +1,239 @@
+//! `universal_lit/UniversalForward` on the URP scene: every selected variant rendered into an
+//! `Rg11b10Ufloat` camera target (URP's default HDR colour format), read back and compared
+//! texel by texel with [`wgsl_variants::reference::urp::forward::shade_forward`] through
+//! [`wgsl_variants::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
+//! changed a texel (the loop of [`super::urp`], with the same covering set and partners).
+//!
+//! The scene is [`UrpScene`]'s quad, maps, lightmap and environment, lit by the [`LightRig`]:
+//! its `DIRECTIONAL` light is the main light (with its shadow map from [`super::screen_shadows`]
+//! for `_MAIN_LIGHT_SHADOWS`), and three additional lights: the rig's point and spot lights on
+//! a layer the mesh has, and a second point light on a layer it does not (lit only without
+//! `_LIGHT_LAYERS`). `_ADDITIONAL_LIGHTS_VERTEX` is checked against the reference evaluated at
+//! the quad's four corners and interpolated across its two triangles as the rasterizer does
+//! (the camera is orthographic, so screen-linear). Where a shadow-map tap at a pixel is within
+//! a hair of flipping, the texel is compared within the interval of both outcomes.
+
+use glam::{Vec3, Vec4};
+
+use super::lights::LightRig;
+use super::passes::CLEAR;
+use super::screen_shadows::{ScreenShadow, shadow_map_resources};
+use super::urp::{RENDERING_LAYERS, UrpColorPass, UrpScene};
+use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, SPOT_INNER_FRACTION, main_light_shadow};
+use crate::{BoundResource, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
+use wgsl_variants::reference::light::{Light, LightShape};
+use wgsl_variants::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
+use wgsl_variants::reference::urp::forward::{
+    MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward, vertex_lighting,
+};
+use wgsl_variants::reference::urp::gbuffer::UrpTexel;
+use wgsl_variants::reference::urp::lighting::UrpLight;
+
+use super::compare::format_name;
+use crate::CheckError;
+
+/// The second point light's position (lit only without `_LIGHT_LAYERS`).
+const OTHER_POINT: Vec3 = Vec3::new(-0.6, -0.4, 0.9);
+
+/// The URP scene lit for the forward pass.
+#[derive(Clone, Debug)]
+pub struct UrpForwardScene {
+    /// The URP scene, its main light replaced by the rig's `DIRECTIONAL` light.
+    pub urp: UrpScene,
+    /// The main light's layer mask and the additional lights.
+    pub lights: UrpForwardLights,
+    /// The main light's shadow map.
+    pub shadow: ScreenShadow,
+}
+
+impl UrpForwardScene {
+    /// The forward scene over `urp` with `rig`'s lights; the rig must have its screen shadows
+    /// rendered ([`LightRig::render_screen_shadows`]).
+    pub fn new(urp: &UrpScene, rig: &LightRig) -> Result<UrpForwardScene, GpuError> {
+        let params = |light: Light, inner: f32, mask: u32| {
+            UrpLight::new(light, inner, mask).params().map_err(|e| {
+                GpuError::from(CheckError::UnknownToReference {
+                    variant: "universal_lit/UniversalForward".to_owned(),
+                    message: e.to_string(),
+                })
+            })
+        };
+        let spot_inner = match rig.spot_light.shape {
+            LightShape::Spot { angle_degrees, .. } => angle_degrees * SPOT_INNER_FRACTION,
+            _ => 0.0,
+        };
+        let main = params(rig.directional_light, 0.0, MATCHING_LAYERS)?;
+        let other = Light::point(OTHER_POINT, 2.0, Vec3::new(1.5, 0.6, 0.9));
+        let additional = vec![
+            params(rig.point_light, 0.0, MATCHING_LAYERS)?,
+            params(rig.spot_light, spot_inner, MATCHING_LAYERS)?,
+            params(other, 0.0, OTHER_LAYERS)?,
+        ];
+        let lights = UrpForwardLights::new(MATCHING_LAYERS, additional).map_err(|e| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: "universal_lit/UniversalForward".to_owned(),
+                message: e.to_string(),
+            })
+        })?;
+        let mut urp = urp.clone();
+        urp.lighting.main_light_dir = main.direction;
+        urp.lighting.main_light_color = main.color;
+        Ok(UrpForwardScene {
+            urp,
+            lights,
+            shadow: main_light_shadow(rig, "universal_lit/UniversalForward")?.clone(),
+        })
+    }
+
+    /// The per-vertex additional light interpolated at pixel `(x, y)`: the reference at the
+    /// quad's corners (world position and normal as the vertex stage computes them), linear
+    /// across the triangle (top-left, bottom-left, top-right) or (top-right, bottom-left,
+    /// bottom-right) that holds the pixel centre.
+    pub fn interpolated_vertex_lighting(&self, k: &UrpForwardKeywords, x: u32, y: u32) -> Vec3 {
+        let s = &self.urp.scene;
+        let normal = (s.normal_matrix * s.object_normal.extend(0.0))
+            .truncate()
+            .normalize();
+        let corner = |ox: f32, oy: f32| {
+            let p = (s.model * Vec4::new(ox, oy, 0.0, 1.0)).truncate();
+            vertex_lighting(k, &self.lights, p, normal, RENDERING_LAYERS)
+        };
+        let (tl, tr, bl, br) = (
+            corner(-1.0, 1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+        );
+        let u = (x as f32 + 0.5) / s.width as f32;
+        let v = (y as f32 + 0.5) / s.height as f32;
+        if u + v <= 1.0 {
+            tl + (tr - tl) * u + (bl - tl) * v
+        } else {
+            br + (bl - br) * (1.0 - u) + (tr - br) * (1.0 - v)
+        }
+    }
+
+    /// The main light's shadow at `p` for a variant: the interval of its outcomes
+    /// ([`shadow_factor`]), `NONE` twice where the variant reads no map.
+    fn main_light_shadow(&self, k: &UrpForwardKeywords, p: Vec3) -> [MainLightShadow; 2] {
+        if !k.reads_shadow_map() {
+            return [MainLightShadow::NONE; 2];
+        }
+        let (lo, hi) = shadow_factor(
+            &self.shadow.params,
+            ShadowKeywords {
+                depth: true,
+                cube: false,
+                screen: false,
+                soft: k.shadows_soft,
+            },
+            ShadowMaps {
+                map: Some(&self.shadow.map),
+                cube: None,
+            },
+            p,
+        );
+        [lo, hi].map(|attenuation| MainLightShadow {
+            attenuation,
+            strength: self.shadow.params.strength,
+        })
+    }
+
+    /// The reference texel at pixel `(x, y)`; `None` where the variant discards it.
+    pub fn reference(&self, k: &UrpForwardKeywords, x: u32, y: u32) -> Option<UrpTexel> {
+        let urp = &self.urp;
+        let pixel = urp.pixel(x, y);
+        let tex = urp.texels(x, y);
+        let vl = self.interpolated_vertex_lighting(k, x, y);
+        let [lo, hi] = self
+            .main_light_shadow(k, pixel.geometry.world_position)
+            .map(|shadow| {
+                shade_forward(
+                    k,
+                    &urp.material,
+                    &tex,
+                    &pixel,
+                    &urp.lighting,
+                    urp.environment(),
+                    shadow,
+                    &self.lights,
+                    vl,
+                )
+            });
+        match (lo?, hi?) {
+            (a, b) if a == b => Some(UrpTexel::Ufloat(a)),
+            (a, b) => Some(UrpTexel::UfloatBetween(a, b)),
+        }
+    }
+
+    /// The camera target, cleared to a value the scene never writes.
+    fn target() -> ColorTarget {
+        ColorTarget::new(TargetFormat::Rg11b10Ufloat).with_clear(CLEAR[3])
+    }
+}
+
+impl UrpColorPass for UrpForwardScene {
+    fn urp(&self) -> &UrpScene {
+        &self.urp
+    }
+
+    /// The URP scene's resources, the lights (0/4) and the main light's map (0/10-12).
+    fn resources(&self) -> Vec<BoundResource> {
+        let mut out = self.urp.resources();
+        out.push(BoundResource::new(
+            0,
+            4,
+            Resource::Uniform(self.lights.uniform()),
+        ));
+        out.extend(shadow_map_resources(
+            &self.shadow.params,
+            &self.shadow.map_texels,
+        ));
+        out
+    }
+
+    fn targets(&self, _keywords: &[&str]) -> Vec<(String, ColorTarget)> {
+        vec![(
+            format!("camera {}", format_name(TargetFormat::Rg11b10Ufloat)),
+            Self::target(),
+        )]
+    }
+
+    fn job(&self, label: &str, wgsl: &str, keywords: &[&str]) -> RenderJob {
+        let mut job = self.urp.job(label, wgsl, keywords);
+        job.targets = vec![Self::target()];
+        job
+    }
+
+    fn reference_image(&self, keywords: &[&str]) -> Result<Vec<Option<Vec<UrpTexel>>>, String> {
+        let k = UrpForwardKeywords::from_names(keywords).map_err(|e| e.to_string())?;
+        Ok(self
+            .urp
+            .scene
+            .pixels()
+            .map(|(x, y)| self.reference(&k, x, y).map(|t| vec![t]))
+            .collect())
+    }
+
+    fn note(&self) -> String {
+        let s = &self.urp.scene;
+        let shadowed = s
+            .pixels()
+            .filter(|&(x, y)| {
+                let k = UrpForwardKeywords {
+                    main_light_shadows: true,
+                    ..UrpForwardKeywords::default()
+                };
+                let [lo, _] =
+                    self.main_light_shadow(&k, self.urp.pixel(x, y).geometry.world_position);
+                lo.attenuation < 1.0
+            })
+            .count();
+        format!(
+            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners",
+            s.width,
+            s.height,
+            self.lights.additional().len()
+        )
+    }
+}

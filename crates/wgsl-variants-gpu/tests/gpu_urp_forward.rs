@@ -1,0 +1,139 @@
+//! The GPU proof of URP's `universal_lit/UniversalForward`: the default selection (a t = 3
+//! covering set plus one partner per keyword) rendered on the URP scene lit by the main light
+//! (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat`
+//! camera target compared with `reference::urp::forward`, every keyword shown to change a
+//! texel; and libraries with planted bugs (the per-vertex light not multiplied by the diffuse
+//! colour, light layers ignored by the per-pixel loop, the subtractive mix's shadow strength
+//! wrong) caught where, and only where, the bug shows. The full space (55,296 variants) is the
+//! ignored test `every_universal_forward_variant_matches_the_reference`
+//! (`cargo test --release -p wgsl-variants-gpu --test gpu_urp_forward -- --ignored`).
+//!
+//! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
+//! print SKIPPED and pass, unless `CI=true` or `WGSL_VARIANTS_REQUIRE_GPU=1`.
+
+mod common;
+
+use wgsl_variants::Library;
+use wgsl_variants::variants::Space;
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
+
+fn run(lib: &Library, full: bool) -> Option<CheckReport> {
+    let mut options = CheckOptions::default();
+    options.shader = Some("universal_lit".into());
+    options.pass = Some("UniversalForward".into());
+    options.adapter = common::gpu::adapter_filter();
+    options.full = full;
+    common::gpu::or_skip(check::run(lib, &options), "the GPU check")
+}
+
+fn assert_passes(report: &CheckReport, at_least: usize) {
+    let p = &report.passes[0];
+    println!("{report}");
+    assert_eq!(
+        (p.shader.as_str(), p.pass.as_str()),
+        ("universal_lit", "UniversalForward")
+    );
+    assert!(p.variants_run >= at_least, "{} variants", p.variants_run);
+    assert_eq!(p.mismatches, 0, "{report}");
+    assert!(p.discarded_compared > 0, "the alpha test discarded nothing");
+    // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS,
+    // _SHADOWS_SOFT, the two additional-light options, _LIGHT_LAYERS, subtractive, lightmap.
+    assert_eq!(p.keywords.len(), 17);
+    assert!(p.untested_keywords.is_empty(), "{:?}", p.untested_keywords);
+    assert!(
+        p.keywords.iter().all(|k| k.pairs_changed > 0),
+        "{:?}",
+        p.keywords
+    );
+    assert!(
+        p.notes
+            .iter()
+            .any(|n| n.contains("hard shadow covers") && !n.contains("covers 0 of")),
+        "some pixels must be in the main light's shadow: {report}"
+    );
+    assert!(report.passed());
+}
+
+#[test]
+fn covering_set_of_universal_forward_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let Some(report) = run(&lib, false) else {
+        return;
+    };
+    let pass = lib.pass("universal_lit", "UniversalForward").unwrap();
+    let cover = Space::full(pass).covering(3).unwrap().len();
+    assert_passes(&report, cover);
+    assert!(report.passes[0].variants_run <= cover + 17);
+}
+
+#[test]
+#[ignore = "55,296 variants: run with --ignored (the README gives the time)"]
+fn every_universal_forward_variant_matches_the_reference() {
+    let Some(report) = run(&Library::bundled().unwrap(), true) else {
+        return;
+    };
+    assert_passes(&report, 55_296);
+}
+
+/// Runs the forward pass's default selection over the bundled library with one planted bug
+/// and returns the keyword sets of the variants with mismatches.
+fn mismatching(path: &str, from: &str, to: &str) -> Option<Vec<String>> {
+    let report = run(&common::mutate::bundled_with(path, from, to), false)?;
+    Some(common::mutate::caught_in(&report))
+}
+
+#[test]
+fn vertex_light_without_the_diffuse_colour_is_caught_only_per_vertex() {
+    // URP: vertexLightingColor = vertexLighting · brdfData.diffuse.
+    let Some(bad) = mismatching(
+        "universal/lit_forward_pass.wgsl",
+        "color += in.vertex_lighting * b.diffuse;",
+        "color += in.vertex_lighting;",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_ADDITIONAL_LIGHTS_VERTEX"), "{k}");
+    }
+}
+
+#[test]
+fn light_layers_ignored_per_pixel_are_caught_only_with_light_layers() {
+    let Some(bad) = mismatching(
+        "universal/lit_forward_pass.wgsl",
+        "        if urp_lights_mesh(light.layer_mask.x) {\n            let a = ",
+        "        if true {\n            let a = ",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_LIGHT_LAYERS"), "{k}");
+        assert!(
+            k.contains("_ADDITIONAL_LIGHTS") && !k.contains("_ADDITIONAL_LIGHTS_VERTEX"),
+            "{k}"
+        );
+    }
+}
+
+#[test]
+fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows() {
+    // The subtractive mix takes the main light's shadow strength (URP's
+    // SubtractDirectMainLightFromLightmap); full strength instead changes shadowed texels.
+    let Some(bad) = mismatching(
+        "universal/lit_forward_pass.wgsl",
+        "return vec2f(shadow_mix(shadow.params.x, visibility), shadow.params.x);",
+        "return vec2f(shadow_mix(shadow.params.x, visibility), 1.0);",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        for needed in [
+            "_MIXED_LIGHTING_SUBTRACTIVE",
+            "LIGHTMAP_ON",
+            "_MAIN_LIGHT_SHADOWS",
+        ] {
+            assert!(k.contains(needed), "{k}");
+        }
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}

@@ -1,0 +1,143 @@
+// universal/lit_forward_pass: URP Lit's UniversalForward program (URP's LitForwardPass.hlsl,
+// Lighting.hlsl UniversalFragmentPBR, RealtimeLights.hlsl; docs/urp.md §11): the surface lit
+// in one pass — global illumination (universal/gi), the main directional light with its
+// shadow, the additional point and spot lights per pixel (_ADDITIONAL_LIGHTS) or per vertex
+// (_ADDITIONAL_LIGHTS_VERTEX), and the emission — into the HDR camera target.
+//
+//   group 0-2: universal/bindings (camera, lighting, environment; material; object, lightmap)
+//   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
+//                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
+//              10 shadow (Shadow), 11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler
+//                (sampler_comparison) (the main light's map: _MAIN_LIGHT_SHADOWS without
+//                _RECEIVE_SHADOWS_OFF)
+//
+// Provides the entry points:
+//   @vertex   vs_main(UrpVertexInput) -> UrpVertexOutput
+//   @fragment fs_main(UrpVertexOutput) -> @location(0) vec4f   (rgb: radiance; a: 1, opaque)
+
+#import universal/bindings
+#import universal/surface
+#import universal/lit_vertex
+#import universal/gi
+#import universal/lighting
+#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
+#import lighting/shadow
+#endif
+
+// URP's limit of additional lights per object in the forward path.
+const URP_MAX_ADDITIONAL_LIGHTS: u32 = 8u;
+
+// params.x: how many of `lights` are used (at most 8); params.y: the main light's
+// rendering-layer mask (_LIGHT_LAYERS).
+struct ForwardLights {
+    params: vec4u,
+    lights: array<UrpLight, 8>,
+}
+
+#if defined(_ADDITIONAL_LIGHTS) || defined(_ADDITIONAL_LIGHTS_VERTEX) || defined(_LIGHT_LAYERS)
+@group(0) @binding(4) var<uniform> forward_lights: ForwardLights;
+#endif
+#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
+@group(0) @binding(10) var<uniform> shadow: Shadow;
+@group(0) @binding(11) var shadow_map: texture_depth_2d;
+@group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
+#endif
+
+// Whether a light with this rendering-layer mask lights the mesh (_LIGHT_LAYERS: any layer in
+// common with the mesh's; URP's IsMatchingLightLayer).
+fn urp_lights_mesh(layer_mask: u32) -> bool {
+#if defined(_LIGHT_LAYERS)
+    return (layer_mask & object.rendering_layers.x) != 0u;
+#else
+    return true;
+#endif
+}
+
+// An additional light at p: xyz the unit direction to it, w its distance times angle
+// attenuation (a point light's angle terms (0, 1) give 1; URP's GetAdditionalPerObjectLight).
+fn urp_additional_light(light: UrpLight, p: vec3f) -> vec4f {
+    var s = urp_punctual_sample(light, p);
+    s.w *= urp_angle_attenuation(light.direction.xyz, s.xyz, light.attenuation.zw);
+    return s;
+}
+
+@vertex
+fn vs_main(in: UrpVertexInput) -> UrpVertexOutput {
+    var out = urp_vertex(in);
+#if defined(_ADDITIONAL_LIGHTS_VERTEX)
+    // URP's VertexLighting: each additional light's Lambert term at the vertex (no shadow, no
+    // specular), interpolated; the fragment multiplies it by the diffuse colour.
+    var lit = vec3f(0.0);
+    let count = min(forward_lights.params.x, URP_MAX_ADDITIONAL_LIGHTS);
+    for (var i = 0u; i < count; i++) {
+        let light = forward_lights.lights[i];
+        if urp_lights_mesh(light.layer_mask.x) {
+            let s = urp_additional_light(light, out.world_position);
+            lit += light.color.rgb * s.w * saturate(dot(out.normal, s.xyz));
+        }
+    }
+    out.vertex_lighting = lit;
+#endif
+    return out;
+}
+
+// The main light's realtime shadow at p: x the attenuation (URP's MainLightRealtimeShadow:
+// 1 − strength + strength · visibility; 1 without _MAIN_LIGHT_SHADOWS or with
+// _RECEIVE_SHADOWS_OFF), y the shadow's strength (0 where there is no shadow).
+fn urp_main_light_shadow(p: vec3f) -> vec2f {
+#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
+    let c = shadow_coords(shadow.world_to_shadow, p);
+    let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - shadow.params.y);
+    return vec2f(shadow_mix(shadow.params.x, visibility), shadow.params.x);
+#else
+    return vec2f(1.0, 0.0);
+#endif
+}
+
+// URP's BRDFData for direct light: InitializeBRDFData's roughness terms (4r + 2, r² − 1).
+fn urp_direct_brdf(b: UrpBrdf) -> UrpBrdfData {
+    let roughness = max(b.perceptual_roughness * b.perceptual_roughness, URP_HALF_MIN_SQRT);
+    return UrpBrdfData(b.diffuse, b.specular, b.roughness2, roughness * 4.0 + 2.0, b.roughness2 - 1.0);
+}
+
+@fragment
+fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
+    let s = urp_surface(in.uv);
+    let b = urp_brdf(s);
+    let direct = urp_direct_brdf(b);
+    let n = urp_world_normal(s.normal_ts, normalize(in.normal), in.tangent);
+    let p = in.world_position;
+    let v = normalize(camera.position.xyz - p);
+#if defined(_SPECULARHIGHLIGHTS_OFF)
+    let specular_off = true;
+#else
+    let specular_off = false;
+#endif
+
+    let shadow = urp_main_light_shadow(p);
+    var color = urp_global_illumination(b, urp_baked_gi(in, n, shadow.x, shadow.y), n, v, s.occlusion);
+
+#if defined(_LIGHT_LAYERS)
+    let main_layers = forward_lights.params.y;
+#else
+    let main_layers = 0xffffffffu;
+#endif
+    if urp_lights_mesh(main_layers) {
+        color += urp_lighting_physically_based(direct, lighting.main_light_color.rgb, shadow.x, lighting.main_light_dir.xyz, n, v, specular_off);
+    }
+
+#if defined(_ADDITIONAL_LIGHTS)
+    let count = min(forward_lights.params.x, URP_MAX_ADDITIONAL_LIGHTS);
+    for (var i = 0u; i < count; i++) {
+        let light = forward_lights.lights[i];
+        if urp_lights_mesh(light.layer_mask.x) {
+            let a = urp_additional_light(light, p);
+            color += urp_lighting_physically_based(direct, light.color.rgb, a.w, a.xyz, n, v, specular_off);
+        }
+    }
+#endif
+#if defined(_ADDITIONAL_LIGHTS_VERTEX)
+    color += in.vertex_lighting * b.diffuse;
+#endif
+    return vec4f(color + s.emission, 1.0);
+}
