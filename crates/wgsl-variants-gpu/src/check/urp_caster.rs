@@ -72,25 +72,14 @@ fn views(rig: &super::lights::LightRig, scene: &TestScene) -> Result<[CasterView
         return Err(refused("the rig's spot light is not a spot"));
     };
     let forward = direction.normalize();
+    let directional = |radius: f32| CasterView {
+        view_proj: directional_shadow_view_proj(forward, scene.centre.extend(0.0), radius),
+        light: CasterLight::Directional { to_light: -forward },
+        bias: DIRECTIONAL_BIAS,
+    };
     Ok([
-        CasterView {
-            view_proj: directional_shadow_view_proj(
-                forward,
-                scene.centre.extend(0.0),
-                REGION_RADIUS,
-            ),
-            light: CasterLight::Directional { to_light: -forward },
-            bias: DIRECTIONAL_BIAS,
-        },
-        CasterView {
-            view_proj: directional_shadow_view_proj(
-                forward,
-                scene.centre.extend(0.0),
-                TIGHT_RADIUS,
-            ),
-            light: CasterLight::Directional { to_light: -forward },
-            bias: DIRECTIONAL_BIAS,
-        },
+        directional(REGION_RADIUS),
+        directional(TIGHT_RADIUS),
         CasterView {
             view_proj: spot_shadow_view_proj(position, axis, angle_degrees, range),
             light: CasterLight::Punctual { position },
