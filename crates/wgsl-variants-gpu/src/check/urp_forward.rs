@@ -15,22 +15,20 @@
 
 use glam::{Vec3, Vec4};
 
+use super::compare::format_name;
 use super::lights::LightRig;
 use super::passes::CLEAR;
 use super::screen_shadows::{ScreenShadow, shadow_map_resources};
 use super::urp::{RENDERING_LAYERS, UrpColorPass, UrpScene};
-use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, SPOT_INNER_FRACTION, main_light_shadow};
-use crate::{BoundResource, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
-use wgsl_variants::reference::light::{Light, LightShape};
+use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, spot_inner_degrees};
+use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
+use wgsl_variants::reference::light::{Light, LightError};
 use wgsl_variants::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants::reference::urp::forward::{
     MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward, vertex_lighting,
 };
 use wgsl_variants::reference::urp::gbuffer::UrpTexel;
 use wgsl_variants::reference::urp::lighting::UrpLight;
-
-use super::compare::format_name;
-use crate::CheckError;
 
 /// The second point light's position (lit only without `_LIGHT_LAYERS`).
 const OTHER_POINT: Vec3 = Vec3::new(-0.6, -0.4, 0.9);
@@ -50,31 +48,23 @@ impl UrpForwardScene {
     /// The forward scene over `urp` with `rig`'s lights; the rig must have its screen shadows
     /// rendered ([`LightRig::render_screen_shadows`]).
     pub fn new(urp: &UrpScene, rig: &LightRig) -> Result<UrpForwardScene, GpuError> {
-        let params = |light: Light, inner: f32, mask: u32| {
-            UrpLight::new(light, inner, mask).params().map_err(|e| {
-                GpuError::from(CheckError::UnknownToReference {
-                    variant: "universal_lit/UniversalForward".to_owned(),
-                    message: e.to_string(),
-                })
+        let refused = |e: LightError| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: "universal_lit/UniversalForward".to_owned(),
+                message: e.to_string(),
             })
         };
-        let spot_inner = match rig.spot_light.shape {
-            LightShape::Spot { angle_degrees, .. } => angle_degrees * SPOT_INNER_FRACTION,
-            _ => 0.0,
+        let params = |light: Light, inner: f32, mask: u32| {
+            UrpLight::new(light, inner, mask).params().map_err(refused)
         };
         let main = params(rig.directional_light, 0.0, MATCHING_LAYERS)?;
         let other = Light::point(OTHER_POINT, 2.0, Vec3::new(1.5, 0.6, 0.9));
         let additional = vec![
             params(rig.point_light, 0.0, MATCHING_LAYERS)?,
-            params(rig.spot_light, spot_inner, MATCHING_LAYERS)?,
+            params(rig.spot_light, spot_inner_degrees(rig), MATCHING_LAYERS)?,
             params(other, 0.0, OTHER_LAYERS)?,
         ];
-        let lights = UrpForwardLights::new(MATCHING_LAYERS, additional).map_err(|e| {
-            GpuError::from(CheckError::UnknownToReference {
-                variant: "universal_lit/UniversalForward".to_owned(),
-                message: e.to_string(),
-            })
-        })?;
+        let lights = UrpForwardLights::new(MATCHING_LAYERS, additional).map_err(refused)?;
         let mut urp = urp.clone();
         urp.lighting.main_light_dir = main.direction;
         urp.lighting.main_light_color = main.color;

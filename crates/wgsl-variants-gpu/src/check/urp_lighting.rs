@@ -56,6 +56,17 @@ pub const GBUFFER_INPUTS: [&[&str]; 3] = [
 /// The spot's inner angle as a fraction of its outer angle.
 pub const SPOT_INNER_FRACTION: f32 = 0.6;
 
+/// The inner angle (URP's `innerSpotAngle`, degrees) the checks give the rig's spot light:
+/// [`SPOT_INNER_FRACTION`] of its outer angle.
+pub(crate) fn spot_inner_degrees(rig: &LightRig) -> f32 {
+    match rig.spot_light.shape {
+        wgsl_variants::reference::light::LightShape::Spot { angle_degrees, .. } => {
+            angle_degrees * SPOT_INNER_FRACTION
+        }
+        _ => 0.0,
+    }
+}
+
 /// A light mask sharing layer 8 with the mesh's [`super::urp::RENDERING_LAYERS`].
 pub const MATCHING_LAYERS: u32 = 1 << 8;
 
@@ -113,18 +124,12 @@ struct UrpLights {
 
 impl UrpLights {
     fn new(rig: &LightRig) -> UrpLights {
-        let spot_inner = match rig.spot_light.shape {
-            wgsl_variants::reference::light::LightShape::Spot { angle_degrees, .. } => {
-                angle_degrees * SPOT_INNER_FRACTION
-            }
-            _ => 0.0,
-        };
         UrpLights {
             point: rig.point_light,
             spot: rig.spot_light,
             main: rig.directional_light,
             additional: rig.directional_cookie_light,
-            spot_inner,
+            spot_inner: spot_inner_degrees(rig),
         }
     }
 
