@@ -190,12 +190,17 @@ fn texture_sample_types_follow_wgpu_rules() {
         BindingKind::Texture { sample_type, .. } => *sample_type,
         other => panic!("{name} is {other:?}"),
     };
-    // Loaded with textureLoad only: any float format, including Rgba32Float positions.
-    for name in ["rt0", "rt1", "rt2", "position_tex"] {
+    // Loaded with textureLoad only: any float format, including the R32Float depth.
+    for name in ["rt0", "rt1", "rt2", "depth_tex"] {
         assert_eq!(sample_type(name), SampleType::UnfilterableFloat, "{name}");
     }
     assert_eq!(sample_type("probe_cube"), SampleType::Float);
-    let uniforms = r.bindings.iter().find(|b| b.name == "reflection").unwrap();
-    // Probe (5 × vec4f) + camera position (vec4f).
-    assert_eq!(uniforms.kind, BindingKind::UniformBuffer { size: 96 });
+    let size = |name: &str| &r.bindings.iter().find(|b| b.name == name).unwrap().kind;
+    // Probe: 5 × vec4f.
+    assert_eq!(size("probe"), &BindingKind::UniformBuffer { size: 80 });
+    // DeferredCamera: inverse view-projection, position, view-projection.
+    assert_eq!(
+        size("deferred_camera"),
+        &BindingKind::UniformBuffer { size: 144 }
+    );
 }

@@ -4,30 +4,28 @@
 // Reflections: one full-screen draw per probe (the host orders them: larger box volume first,
 //   higher importance later), into an Rgba16Float reflection buffer cleared to 0 with
 //   SrcAlpha / OneMinusSrcAlpha blending: result = mix(previous, rgb, falloff).
-//   group 0: 0 rt0, 1 rt1, 2 rt2, 3 world position (Rgba32Float, xyz), 4 reflection uniforms,
-//            5 probe cube, 6 probe sampler.
+//   group 0: 0 rt0, 1 rt1, 2 rt2, 3 depth (R32Float copy of the depth buffer; the world position
+//            is rebuilt from it, deferred/depth), 4 camera (DeferredCamera), 5 probe cube,
+//            6 probe sampler, 7 probe (Probe).
 // Add: one full-screen draw adding the reflection buffer (group 0 binding 0) to RT3; the host
 //   blends One / One (UNITY_HDR_ON, src = refl, a = 0) or DstColor / Zero (LDR,
 //   src = exp2(-max(refl, 0)), a = 1), which leaves RT3's alpha of 1 as it is.
 
 #pass Reflections
 #import internal/fullscreen
+#import deferred/depth
 #import deferred/probe
 #import deferred/gbuffer
 #import lighting/brdf
 
-struct ReflectionUniforms {
-    probe: Probe,
-    camera_position: vec4f,
-}
-
 @group(0) @binding(0) var rt0: texture_2d<f32>;
 @group(0) @binding(1) var rt1: texture_2d<f32>;
 @group(0) @binding(2) var rt2: texture_2d<f32>;
-@group(0) @binding(3) var position_tex: texture_2d<f32>;
-@group(0) @binding(4) var<uniform> reflection: ReflectionUniforms;
+@group(0) @binding(3) var depth_tex: texture_2d<f32>;
+@group(0) @binding(4) var<uniform> deferred_camera: DeferredCamera;
 @group(0) @binding(5) var probe_cube: texture_cube<f32>;
 @group(0) @binding(6) var probe_sampler: sampler;
+@group(0) @binding(7) var<uniform> probe: Probe;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
@@ -43,14 +41,14 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let gbuffer0 = textureLoad(rt0, pixel, 0);
     let gbuffer1 = textureLoad(rt1, pixel, 0);
     let gbuffer2 = textureLoad(rt2, pixel, 0);
-    let p = textureLoad(position_tex, pixel, 0).xyz;
-    let probe = reflection.probe;
+    let depth = textureLoad(depth_tex, pixel, 0).r;
+    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
 
     let occlusion = gbuffer0.a;
     let spec_color = gbuffer1.rgb;
     let smoothness = gbuffer1.a;
     let n = gbuffer_decode_normal(gbuffer2.rgb);
-    let v = brdf_view_dir(reflection.camera_position.xyz, p);
+    let v = brdf_view_dir(deferred_camera.position.xyz, p);
     let r = brdf_reflect_dir(v, n);
 
     let dir = probe_box_project_grown(r, p, probe);

@@ -12,9 +12,10 @@ use std::time::Instant;
 use glam::{Vec3, Vec4};
 
 use super::compare::{format_name, pixel, texel_within};
+use super::lights::{LightingCamera, depth_camera_resources};
 use super::passes::{keyword_coverage, standard_job};
 use super::report::{Mismatch, PassReport};
-use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource};
+use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource, push_probe};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
     TargetFormat, render,
@@ -212,6 +213,13 @@ fn run_reflections(
         operation: wgpu::BlendOperation::Add,
     };
     let stored: Vec<GBufferTexel> = (0..(w * h) as usize).map(|i| gbuffer.texel(i)).collect();
+    // The pass rebuilds each pixel's position from the depth of the scene's own camera.
+    let depth = scene.depth_buffer();
+    let camera = LightingCamera {
+        view_proj: scene.view_proj,
+        position: scene.scene.camera_position,
+        depth: &depth,
+    };
     let mut previous: Option<Vec<u8>> = None;
     for (step, &p) in order.iter().enumerate() {
         let (probe, cube) = &scene.deferred_probes[p];
@@ -239,11 +247,11 @@ fn run_reflections(
                 2,
                 texture(TargetFormat::Rgb10a2Unorm, w, h, &gbuffer.targets[2]),
             ),
-            BoundResource::new(0, 3, scene.position_texture()),
-            BoundResource::new(0, 4, Resource::Uniform(scene.reflection_uniforms(probe))),
             BoundResource::new(0, 5, cube_resource(cube)),
             BoundResource::new(0, 6, Resource::Sampler { nearest: true }),
+            BoundResource::new(0, 7, Resource::Uniform(probe_uniform(probe))),
         ];
+        job.resources.extend(depth_camera_resources(scene, &camera));
         let out = render(ctx, &job)?.remove(0);
         if let Some(report) = report.as_deref_mut() {
             report.draws += 1;
@@ -625,4 +633,11 @@ pub fn check_deferred_chain(
         reports.push(fin);
     }
     Ok(reports)
+}
+
+/// The `Probe` uniform of the deferred reflection pass (`deferred/probe`'s record).
+fn probe_uniform(probe: &wgsl_variants::reference::probe::Probe) -> Vec<u8> {
+    let mut out = Vec::new();
+    push_probe(&mut out, probe);
+    out
 }

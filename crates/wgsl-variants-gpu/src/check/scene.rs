@@ -434,11 +434,13 @@ impl TestScene {
         let model =
             Mat4::from_translation(centre.extend(0.0)) * Mat4::from_scale(Vec3::splat(half_size));
         let normal_matrix = Mat4::from_scale(Vec3::splat(1.0 / half_size));
-        // Orthographic: world (x, y) -> clip ((x - cx) / s, (y - cy) / s), depth 0.5.
+        // Orthographic: world (x, y, z) -> clip ((x - cx) / s, (y - cy) / s), depth 0.5 - z / 4
+        // (a box 4 deep around the quad, whose plane z = 0 lies at depth 0.5; invertible, so
+        // the deferred passes can rebuild positions from depth).
         let view_proj = Mat4::from_cols(
             Vec4::new(1.0 / half_size, 0.0, 0.0, 0.0),
             Vec4::new(0.0, 1.0 / half_size, 0.0, 0.0),
-            Vec4::ZERO,
+            Vec4::new(0.0, 0.0, -0.25, 0.0),
             Vec4::new(-centre.x / half_size, -centre.y / half_size, 0.5, 1.0),
         );
 
@@ -702,31 +704,16 @@ impl TestScene {
         ]
     }
 
-    /// The uniform block of the deferred reflection pass for one probe
-    /// (`ReflectionUniforms` of `wgsl/internal/deferred_reflections.wgsl`).
-    pub fn reflection_uniforms(&self, probe: &Probe) -> Vec<u8> {
-        let mut out = Vec::new();
-        push_probe(&mut out, probe);
-        push_vec4(&mut out, self.scene.camera_position.extend(1.0));
-        out
-    }
-
-    /// The world positions at the pixel centres as an `Rgba32Float` texture (w = 1), what the
-    /// deferred reflection pass reads.
-    pub fn position_texture(&self) -> Resource {
-        let data = self
-            .pixels()
-            .flat_map(|(x, y)| {
-                let p = self.world_position(x, y).extend(1.0);
-                p.to_array().into_iter().flat_map(f32::to_le_bytes)
+    /// The depth buffer of the scene's camera: each pixel's clip-space `z / w` (the quad
+    /// covers every pixel), one `f32` per pixel, row by row — what the deferred reflection pass
+    /// rebuilds world positions from.
+    pub fn depth_buffer(&self) -> Vec<f32> {
+        self.pixels()
+            .map(|(x, y)| {
+                let clip = self.view_proj * self.world_position(x, y).extend(1.0);
+                clip.z / clip.w
             })
-            .collect();
-        Resource::Texture2d {
-            format: wgpu::TextureFormat::Rgba32Float,
-            width: self.width,
-            height: self.height,
-            data,
-        }
+            .collect()
     }
 }
 
