@@ -34,7 +34,9 @@ cargo test --release --workspace -- --nocapture
 # The examples (README "Using the shaders in your renderer"): a wgpu program that builds its
 # layouts from reflection and writes a PNG, and a crate whose build.rs bakes the library. The
 # crate has its own workspace; it shares this target folder.
+# `cargo test` built the example with the workspace's features; running that binary avoids a
+# second build of the library with the GPU crate's features alone (about 3 minutes cold).
 echo "== example: render_variant"
-cargo run --release -p wgsl-variants-gpu --example render_variant -- target/render_variant.png
+target/release/examples/render_variant target/render_variant.png
 echo "== example crate: examples/baked"
 CARGO_TARGET_DIR="$PWD/target" cargo run --release --manifest-path examples/baked/Cargo.toml

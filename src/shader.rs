@@ -90,6 +90,10 @@ pub struct Pass {
     /// `#pragma require` / `#pragma exclude` constraints, one per pair of keywords, in order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub constraints: Vec<Constraint>,
+    /// Shader defs with a fixed value in every variant (declaration files' `constants`;
+    /// none in this crate's own dialect, whose modules `#define` them).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constants: Vec<crate::declaration::Constant>,
     /// Where the pass is declared.
     #[serde(skip)]
     pub span: Span,
@@ -181,6 +185,7 @@ impl Pass {
             sets,
             skip_variants: skip.into_iter().map(|n| n.0.to_string()).collect(),
             exclude_renderers: exclude,
+            constants: decl.constants,
             span: decl.span,
             body: decl.body,
             module,

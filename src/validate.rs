@@ -17,6 +17,8 @@ use crate::variants::{Choice, Shard, Space};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stage {
+    /// The tree's composer (naga_oil for a naga_oil tree: its preprocessor and imports).
+    Compose,
     /// The WGSL front end (syntax, name resolution, types).
     Parse,
     /// naga's IR validator.
@@ -117,6 +119,12 @@ fn validate_with(
     variant: &str,
     validator: &mut naga::valid::Validator,
 ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+    if let Some(failure) = &composed.failure {
+        return Err(VariantError {
+            variant: variant.to_string(),
+            ..(**failure).clone()
+        });
+    }
     let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| VariantError {
         variant: variant.to_string(),
         stage: Stage::Parse,

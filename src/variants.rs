@@ -37,9 +37,10 @@ impl Choice {
 
     /// The defines a variant starts with: each keyword that is on, with value 1.
     pub fn defines(&self, pass: &Pass) -> HashMap<Box<str>, i64> {
-        self.keywords(pass)
-            .into_iter()
-            .map(|k| (Box::from(k), 1))
+        pass.constants
+            .iter()
+            .map(|c| (Box::from(c.name.as_str()), c.value.as_i64()))
+            .chain(self.keywords(pass).into_iter().map(|k| (Box::from(k), 1)))
             .collect()
     }
 

@@ -40,6 +40,8 @@ fn kind(problem: &LoadProblem) -> &'static str {
             LinkError::DuplicateShader { .. } => "link::duplicate_shader",
             LinkError::DuplicatePass { .. } => "link::duplicate_pass",
             LinkError::TooLarge { .. } => "link::too_large",
+            LinkError::DuplicateImportPath { .. } => "link::duplicate_import_path",
+            LinkError::UnknownEntry { .. } => "link::unknown_entry",
         },
         LoadProblem::Keyword(e) => match e {
             KeywordError::DuplicateInSet { .. } => "keyword::duplicate_in_set",
@@ -50,6 +52,7 @@ fn kind(problem: &LoadProblem) -> &'static str {
             KeywordError::Contradictory { .. } => "keyword::contradictory",
             KeywordError::TooCoupled { .. } => "keyword::too_coupled",
         },
+        LoadProblem::Declaration(_) => "declaration",
         _ => "other",
     }
 }

@@ -64,6 +64,28 @@ pub enum LinkError {
         /// The first.
         first: Span,
     },
+    /// Two naga_oil modules with the same `#define_import_path`.
+    #[error("two modules define import path `{name}`")]
+    DuplicateImportPath {
+        /// The import path.
+        name: String,
+        /// The second definition.
+        span: Span,
+        /// The first.
+        first: Span,
+    },
+    /// A declaration file names an entry module the tree does not have.
+    #[error("shader `{shader}`'s entry `{path}` is not a module of the tree{hint}")]
+    UnknownEntry {
+        /// The shader.
+        shader: String,
+        /// The path as written.
+        path: String,
+        /// A close match, as `; did you mean …?`, or empty.
+        hint: String,
+        /// Where it is written.
+        span: Span,
+    },
     /// The library is larger than the source-size limit.
     #[error("the library's sources total {bytes} bytes, past the limit of {limit}")]
     TooLarge {
@@ -79,12 +101,17 @@ impl LinkError {
     pub fn diagnostic(&self) -> Diagnostic {
         let d = Diagnostic::new(self.to_string());
         match self {
-            LinkError::MissingImport { span, .. } => d
-                .at(*span, "imported here")
-                .note("paths are relative to the library root, `/`-separated, without `.wgsl`"),
+            LinkError::MissingImport { span, path, .. } => d.at(*span, "imported here").note(
+                if path.contains("::") {
+                    "naga_oil imports name a module's `#define_import_path`, then optionally its items"
+                } else {
+                    "paths are relative to the library root, `/`-separated, without `.wgsl`"
+                },
+            ),
             LinkError::LeavesRoot { span, .. } | LinkError::TooDeep { span, .. } => {
                 d.at(*span, "imported here")
             }
+            LinkError::UnknownEntry { span, .. } => d.at(*span, "named here"),
             LinkError::Cycle { cycle } => {
                 let mut d = d;
                 for (i, (module, span)) in
@@ -100,7 +127,8 @@ impl LinkError {
                 d
             }
             LinkError::DuplicateShader { span, first, .. }
-            | LinkError::DuplicatePass { span, first, .. } => d
+            | LinkError::DuplicatePass { span, first, .. }
+            | LinkError::DuplicateImportPath { span, first, .. } => d
                 .at(*span, "declared again here")
                 .also(*first, "first declared here"),
             LinkError::TooLarge { .. } => d,
@@ -127,6 +155,9 @@ pub enum LoadProblem {
     /// A pass's keyword pragmas are inconsistent.
     #[error(transparent)]
     Keyword(#[from] KeywordError),
+    /// The declaration file is malformed.
+    #[error(transparent)]
+    Declaration(#[from] crate::declaration::DeclarationError),
 }
 
 impl LoadProblem {
@@ -138,6 +169,7 @@ impl LoadProblem {
             LoadProblem::Parse(e) => e.diagnostic(),
             LoadProblem::Link(e) => e.diagnostic(),
             LoadProblem::Keyword(e) => e.diagnostic(),
+            LoadProblem::Declaration(e) => e.diagnostic(),
         }
     }
 }

@@ -7,8 +7,8 @@ use rayon::prelude::*;
 
 use crate::diagnostic::SourceFiles;
 use crate::lookup::suggest;
-use crate::preprocess::tree::ParsedModule;
-use crate::preprocess::{ParseError, ParseLimits, parse_module};
+use crate::preprocess::tree::{ImportRef, Node, ParsedModule, ShaderDecl};
+use crate::preprocess::{Dialect, ParseError, ParseLimits, parse_module_in};
 use crate::shader::{Pass, Shader};
 use crate::source::{self, RawFile};
 
@@ -53,6 +53,155 @@ pub(crate) fn load(
     escaping: &[String],
     options: &LoadOptions,
 ) -> Result<Loaded, LoadError> {
+    let (files, paths, mut modules) = parse_all(raw, Dialect::WgslVariants, options)?;
+    let mut problems = Vec::new();
+    let resolved = resolve_paths(&modules, &paths, escaping, &mut problems);
+    if problems.is_empty() {
+        problems.extend(
+            check_graph(&modules, &paths, &resolved, options.max_import_depth)
+                .into_iter()
+                .map(Into::into),
+        );
+    }
+    let decls = modules
+        .iter_mut()
+        .enumerate()
+        .filter_map(|(id, m)| m.shader.take().map(|d| (d, m.file, id)))
+        .collect();
+    assemble(files, paths, modules, resolved, decls, problems)
+}
+
+/// Loads a tree whose keywords a declaration file declares (`declaration`: its path and
+/// bytes), written in the file's dialect: imports resolve by `#define_import_path` names,
+/// and each shader's passes compose its entry module.
+pub(crate) fn load_declared(
+    raw: Vec<RawFile>,
+    declaration: RawFile,
+    options: &LoadOptions,
+) -> Result<Loaded, LoadError> {
+    // The declaration's file id comes after the modules'; its `exclude` list decides how many
+    // modules there are, so it is parsed once for the list and again with its final id.
+    let text = String::from_utf8_lossy(&declaration.bytes).into_owned();
+    let exclude = crate::declaration::parse(raw.len(), &text)
+        .map(|d| d.exclude)
+        .unwrap_or_default();
+    let raw: Vec<RawFile> = raw
+        .into_iter()
+        .filter(|f| {
+            !exclude.iter().any(|e| {
+                f.path == *e || f.path.starts_with(&format!("{}/", e.trim_end_matches('/')))
+            })
+        })
+        .collect();
+    let (mut files, paths, mut modules) = parse_all(raw, Dialect::NagaOil, options)?;
+    let (ids, errors) = source::decode(vec![declaration], &mut files);
+    if let Some(e) = errors.into_iter().next() {
+        return Err(LoadError {
+            files,
+            problems: vec![e.into()],
+        });
+    }
+    let decl = match crate::declaration::parse(ids[0], files.text(ids[0])) {
+        Ok(d) => d,
+        Err(errors) => {
+            return Err(LoadError {
+                files,
+                problems: errors.into_iter().map(Into::into).collect(),
+            });
+        }
+    };
+    let mut problems = Vec::new();
+    let mut entries = Vec::new();
+    for shader in &decl.shaders {
+        let (entry, span) = &shader.entry;
+        let stem = entry.strip_suffix(".wgsl").unwrap_or(entry);
+        match paths.iter().position(|p| p == stem) {
+            Some(id) => entries.push(id),
+            None => {
+                let hint = suggest(stem, paths.iter().map(String::as_str))
+                    .map(|s| format!("; did you mean `{s}.wgsl`?"))
+                    .unwrap_or_default();
+                problems.push(
+                    LinkError::UnknownEntry {
+                        shader: shader.name.clone(),
+                        path: entry.clone(),
+                        hint,
+                        span: *span,
+                    }
+                    .into(),
+                );
+            }
+        }
+    }
+    let names = import_names(&modules);
+    for module in &mut modules {
+        inline_imports(module, files.text(module.file), &names);
+    }
+    let resolved = resolve_names(&modules, &names, &entries, &mut problems);
+    if problems.is_empty() {
+        problems.extend(
+            check_graph(&modules, &paths, &resolved, options.max_import_depth)
+                .into_iter()
+                .map(Into::into),
+        );
+    }
+    let decls = decl
+        .shaders
+        .into_iter()
+        .zip(entries)
+        .map(|(shader, id)| {
+            let passes = shader
+                .passes
+                .into_iter()
+                .map(|mut p| {
+                    p.body = modules[id].body.clone();
+                    p
+                })
+                .collect();
+            let decl = ShaderDecl {
+                name: shader.name,
+                span: shader.span,
+                passes,
+            };
+            (decl, modules[id].file, id)
+        })
+        .collect();
+    assemble(files, paths, modules, resolved, decls, problems)
+}
+
+/// The loaded library: its shaders built from `decls` (each with its file and the module its
+/// passes compose) when no problem was found so far, or every problem.
+fn assemble(
+    files: SourceFiles,
+    paths: Vec<String>,
+    modules: Vec<ParsedModule>,
+    resolved: Vec<Vec<usize>>,
+    decls: Vec<(ShaderDecl, crate::diagnostic::FileId, usize)>,
+    mut problems: Vec<LoadProblem>,
+) -> Result<Loaded, LoadError> {
+    let shaders = if problems.is_empty() {
+        build_shaders(decls, &mut problems)
+    } else {
+        Vec::new()
+    };
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
+    }
+    Ok(Loaded {
+        files,
+        modules,
+        paths,
+        resolved,
+        shaders,
+    })
+}
+
+/// Decodes and parses every module file in `dialect`; module ids are file ids.
+fn parse_all(
+    raw: Vec<RawFile>,
+    dialect: Dialect,
+    options: &LoadOptions,
+) -> Result<(SourceFiles, Vec<String>, Vec<ParsedModule>), LoadError> {
     let mut files = SourceFiles::new();
     let total: usize = raw.iter().map(|f| f.bytes.len()).sum();
     if total > options.max_total_bytes {
@@ -70,7 +219,7 @@ pub(crate) fn load(
     let mut problems: Vec<LoadProblem> = decode_errors.into_iter().map(Into::into).collect();
     let parsed: Vec<Result<ParsedModule, Vec<ParseError>>> = ids
         .par_iter()
-        .map(|&id| parse_module(id, files.text(id), options.parse))
+        .map(|&id| parse_module_in(dialect, id, files.text(id), options.parse))
         .collect();
     let mut modules = Vec::with_capacity(parsed.len());
     for result in parsed {
@@ -82,14 +231,23 @@ pub(crate) fn load(
     if !problems.is_empty() {
         return Err(LoadError { files, problems });
     }
-    // Module ids are file ids here: every file decoded and parsed.
+    Ok((files, paths, modules))
+}
+
+/// Resolves `#import path/of/file` by path (this crate's dialect).
+fn resolve_paths(
+    modules: &[ParsedModule],
+    paths: &[String],
+    escaping: &[String],
+    problems: &mut Vec<LoadProblem>,
+) -> Vec<Vec<usize>> {
     let by_path: HashMap<&str, usize> = paths
         .iter()
         .enumerate()
         .map(|(i, p)| (p.as_str(), i))
         .collect();
     let mut resolved = Vec::with_capacity(modules.len());
-    for module in &modules {
+    for module in modules {
         let mut targets = Vec::with_capacity(module.imports.len());
         for import in &module.imports {
             match by_path.get(import.path.as_str()) {
@@ -127,28 +285,209 @@ pub(crate) fn load(
         }
         resolved.push(targets);
     }
-    if problems.is_empty() {
-        problems.extend(
-            check_graph(&modules, &paths, &resolved, options.max_import_depth)
-                .into_iter()
-                .map(Into::into),
-        );
+    resolved
+}
+
+/// naga_oil: the modules each `#define_import_path` name belongs to (more than one is an
+/// error once a composed module imports the name).
+fn import_names(modules: &[ParsedModule]) -> HashMap<String, Vec<usize>> {
+    let mut names: HashMap<String, Vec<usize>> = HashMap::new();
+    for (id, m) in modules.iter().enumerate() {
+        if let Some((name, _)) = &m.import_name {
+            names.entry(name.clone()).or_default().push(id);
+        }
     }
-    let shaders = if problems.is_empty() {
-        build_shaders(&mut modules, &mut problems)
-    } else {
-        Vec::new()
-    };
-    if !problems.is_empty() {
-        return Err(LoadError { files, problems });
+    names
+}
+
+/// The module a naga_oil path names: its longest prefix that is an import path (`a::b::f`
+/// is item `f` of module `a::b`).
+fn module_of<'n>(path: &str, names: &'n HashMap<String, Vec<usize>>) -> Option<&'n [usize]> {
+    let mut end = path.len();
+    loop {
+        if let Some(m) = names.get(&path[..end]) {
+            return Some(m);
+        }
+        end = path[..end].rfind("::")?;
     }
-    Ok(Loaded {
-        files,
-        modules,
-        paths,
-        resolved,
-        shaders,
-    })
+}
+
+/// naga_oil: resolves each `#import` of the modules the `entries` reach to the module its
+/// path (or a prefix of it) names. Modules no entry reaches are not part of any declared
+/// shader: their imports are left unresolved and unchecked (naga_oil never reads them).
+fn resolve_names(
+    modules: &[ParsedModule],
+    names: &HashMap<String, Vec<usize>>,
+    entries: &[usize],
+    problems: &mut Vec<LoadProblem>,
+) -> Vec<Vec<usize>> {
+    let mut resolved: Vec<Option<Vec<usize>>> = vec![None; modules.len()];
+    // An ambiguous name is reported once, however many modules import it.
+    let mut ambiguous: Vec<usize> = Vec::new();
+    let mut queue: Vec<usize> = entries.to_vec();
+    while let Some(m) = queue.pop() {
+        if resolved[m].is_some() {
+            continue;
+        }
+        let targets = modules[m]
+            .imports
+            .iter()
+            .map(|import| match module_of(&import.path, names) {
+                Some(&[t]) => t,
+                Some(found) => {
+                    if ambiguous.contains(&found[0]) {
+                        return found[0];
+                    }
+                    ambiguous.push(found[0]);
+                    let at = |t: usize| modules[t].import_name.as_ref().map_or(import.span, |n| n.1);
+                    problems.push(
+                        LinkError::DuplicateImportPath {
+                            name: modules[found[0]]
+                                .import_name
+                                .as_ref()
+                                .map_or_else(String::new, |n| n.0.clone()),
+                            span: at(found[1]),
+                            first: at(found[0]),
+                        }
+                        .into(),
+                    );
+                    found[0]
+                }
+                None => {
+                    let hint = suggest(&import.path, names.keys().map(String::as_str))
+                        .map(|s| format!("; did you mean `{s}`?"))
+                        .unwrap_or_default();
+                    problems.push(
+                        LinkError::MissingImport {
+                            path: import.path.clone(),
+                            reason: format!(
+                                "no module of the tree has this `#define_import_path` or a prefix of it{hint}"
+                            ),
+                            span: import.span,
+                        }
+                        .into(),
+                    );
+                    usize::MAX
+                }
+            })
+            .collect::<Vec<usize>>();
+        queue.extend(targets.iter().copied().filter(|&t| t != usize::MAX));
+        resolved[m] = Some(targets);
+    }
+    resolved
+        .into_iter()
+        .map(Option::unwrap_or_default)
+        .collect()
+}
+
+/// naga_oil: items used by their full path (`my_lib::lighting::shade(…)`) import their module
+/// without an `#import` line; each such use becomes an import before its run of lines, under
+/// the same conditions, so the import graph and the audit see it.
+fn inline_imports(module: &mut ParsedModule, text: &str, names: &HashMap<String, Vec<usize>>) {
+    let ParsedModule {
+        file,
+        body,
+        lines,
+        comment_only,
+        imports,
+        ..
+    } = module;
+    add_inline(body, (*file, text), (lines, comment_only), imports, names);
+}
+
+fn add_inline(
+    nodes: &mut Vec<Node>,
+    (file, text): (crate::diagnostic::FileId, &str),
+    (lines, comment_only): (&[std::ops::Range<u32>], &[bool]),
+    imports: &mut Vec<ImportRef>,
+    names: &HashMap<String, Vec<usize>>,
+) {
+    let mut out = Vec::with_capacity(nodes.len());
+    for mut node in std::mem::take(nodes) {
+        match &mut node {
+            Node::Text(run) => {
+                let mut seen = Vec::new();
+                for (i, line) in lines[run.start as usize..run.end as usize]
+                    .iter()
+                    .enumerate()
+                {
+                    if comment_only[run.start as usize + i] {
+                        continue;
+                    }
+                    let start = line.start as usize;
+                    // Paths in comments import nothing.
+                    let code = text[start..line.end as usize]
+                        .split("//")
+                        .next()
+                        .unwrap_or("");
+                    for (at, path) in qualified_paths(code) {
+                        if let Some(m) = module_of(path, names)
+                            && !seen.contains(&m[0])
+                        {
+                            seen.push(m[0]);
+                            out.push(Node::Import(imports.len()));
+                            imports.push(ImportRef {
+                                path: path.to_string(),
+                                span: crate::diagnostic::Span::new(
+                                    file,
+                                    start + at..start + at + path.len(),
+                                ),
+                            });
+                        }
+                    }
+                }
+            }
+            Node::If(cond) => {
+                for (_, branch) in &mut cond.branches {
+                    add_inline(branch, (file, text), (lines, comment_only), imports, names);
+                }
+                add_inline(
+                    &mut cond.otherwise,
+                    (file, text),
+                    (lines, comment_only),
+                    imports,
+                    names,
+                );
+            }
+            _ => {}
+        }
+        out.push(node);
+    }
+    *nodes = out;
+}
+
+/// `a::b::c` paths in a line of WGSL (names joined by `::`), with their byte offsets.
+fn qualified_paths(line: &str) -> Vec<(usize, &str)> {
+    let bytes = line.as_bytes();
+    let is_name = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        if is_name(bytes[i]) && (i == 0 || !is_name(bytes[i - 1])) {
+            let start = i;
+            let mut end = i;
+            let mut parts = 0;
+            loop {
+                while end < bytes.len() && is_name(bytes[end]) {
+                    end += 1;
+                }
+                parts += 1;
+                if line[end..].starts_with("::") && bytes.get(end + 2).is_some_and(|&b| is_name(b))
+                {
+                    end += 2;
+                } else {
+                    break;
+                }
+            }
+            if parts > 1 {
+                out.push((start, &line[start..end]));
+            }
+            i = end.max(i + 1);
+        } else {
+            i += 1;
+        }
+    }
+    out
 }
 
 /// Finds import cycles and chains deeper than `limit`, without recursion (trees can hold
@@ -229,13 +568,14 @@ fn check_graph(
     errors
 }
 
-fn build_shaders(modules: &mut [ParsedModule], problems: &mut Vec<LoadProblem>) -> Vec<Shader> {
+/// Builds the shaders of `decls` (each with its file and the module its passes compose).
+fn build_shaders(
+    decls: Vec<(ShaderDecl, crate::diagnostic::FileId, usize)>,
+    problems: &mut Vec<LoadProblem>,
+) -> Vec<Shader> {
     let mut shaders: Vec<Shader> = Vec::new();
     let mut first_span = HashMap::new();
-    for (id, module) in modules.iter_mut().enumerate() {
-        let Some(decl) = module.shader.take() else {
-            continue;
-        };
+    for (decl, file, id) in decls {
         if let Some(&first) = first_span.get(&decl.name) {
             problems.push(
                 LinkError::DuplicateShader {
@@ -272,7 +612,7 @@ fn build_shaders(modules: &mut [ParsedModule], problems: &mut Vec<LoadProblem>) 
         shaders.push(Shader {
             name: decl.name,
             passes,
-            file: module.file,
+            file,
         });
     }
     shaders

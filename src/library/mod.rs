@@ -2,6 +2,8 @@
 
 mod error;
 mod load;
+#[cfg(feature = "naga-oil")]
+mod naga_oil;
 
 use std::path::Path;
 
@@ -39,6 +41,9 @@ pub struct Library {
     resolved: Vec<Vec<usize>>,
     shaders: Vec<Shader>,
     origin: Origin,
+    dialect: crate::Dialect,
+    #[cfg(feature = "naga-oil")]
+    naga_oil: Option<naga_oil::NagaOilEngine>,
 }
 
 impl std::fmt::Debug for Library {
@@ -80,6 +85,33 @@ impl Variant<'_> {
     }
 }
 
+/// In-memory `(path, text)` pairs as files, sorted by path (the order a folder loads in).
+fn raw_files<P: Into<String>, T: Into<String>>(
+    sources: impl IntoIterator<Item = (P, T)>,
+) -> Vec<RawFile> {
+    let mut raw: Vec<RawFile> = sources
+        .into_iter()
+        .map(|(p, t)| RawFile {
+            path: p.into(),
+            bytes: t.into().into_bytes(),
+        })
+        .collect();
+    raw.sort_by(|a, b| a.path.cmp(&b.path));
+    raw
+}
+
+/// The failure of a naga_oil variant when this build has no naga_oil (the `naga-oil` cargo
+/// feature off).
+fn unreachable_engine(variant: &Variant<'_>) -> Result<String, VariantError> {
+    Err(VariantError {
+        variant: variant.label(),
+        stage: crate::validate::Stage::Compose,
+        message: "this build of wgsl-variants has no naga_oil (cargo feature `naga-oil`): naga_oil trees load and audit, but cannot compose".into(),
+        labels: Vec::new(),
+        notes: Vec::new(),
+    })
+}
+
 impl Library {
     /// The library bundled with this crate (`wgsl/`, embedded at build time).
     pub fn bundled() -> Result<Library, LoadError> {
@@ -96,7 +128,9 @@ impl Library {
         Library::from_dir_with(root, &LoadOptions::default())
     }
 
-    /// Loads every `.wgsl` file under `root` with explicit limits.
+    /// Loads every `.wgsl` file under `root` with explicit limits. A tree with a
+    /// [declaration file](crate::declaration) (`wgsl-variants.toml`) at its root is read in
+    /// the file's dialect (naga_oil's); any other tree in this crate's own.
     pub fn from_dir_with(
         root: impl AsRef<Path>,
         options: &LoadOptions,
@@ -107,7 +141,85 @@ impl Library {
                 files: SourceFiles::new(),
                 problems: vec![e.into()],
             })?;
+        let declaration = root.join(crate::declaration::FILE_NAME);
+        if declaration.is_file() {
+            let bytes = std::fs::read(&declaration).map_err(|e| LoadError {
+                files: SourceFiles::new(),
+                problems: vec![
+                    crate::source::DirError::Io {
+                        path: declaration.clone(),
+                        message: e.to_string(),
+                    }
+                    .into(),
+                ],
+            })?;
+            let declaration = RawFile {
+                path: crate::declaration::FILE_NAME.to_string(),
+                bytes,
+            };
+            return Library::load_declared(
+                raw,
+                declaration,
+                Origin::Dir(root.to_path_buf()),
+                options,
+            );
+        }
         Library::load(raw, &escaping, Origin::Dir(root.to_path_buf()), options)
+    }
+
+    /// Builds a library from in-memory modules and a [declaration file](crate::declaration)'s
+    /// text: a naga_oil tree.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::from_declared_sources(
+    ///     "[[shader]]\nname = \"main\"\nentry = \"main.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"RED\"]]\n",
+    ///     [
+    ///         ("color.wgsl", "#define_import_path my::color\nfn tint() -> f32 {\n#ifdef RED\n    return 1.0;\n#else\n    return 0.5;\n#endif\n}\n"),
+    ///         ("main.wgsl", "#import my::color::tint\n@fragment fn fs() -> @location(0) vec4f { return vec4f(tint()); }\n"),
+    ///     ],
+    /// ).unwrap();
+    /// let v = lib.variant("main", "P", &["RED"]).unwrap();
+    /// assert!(lib.naga_module(&v).is_ok());
+    /// assert!(lib.wgsl(&v).contains("return 1f;"));
+    /// ```
+    pub fn from_declared_sources<P: Into<String>, T: Into<String>>(
+        declaration: &str,
+        sources: impl IntoIterator<Item = (P, T)>,
+    ) -> Result<Library, LoadError> {
+        let raw = raw_files(sources);
+        let declaration = RawFile {
+            path: crate::declaration::FILE_NAME.to_string(),
+            bytes: declaration.as_bytes().to_vec(),
+        };
+        Library::load_declared(raw, declaration, Origin::Memory, &LoadOptions::default())
+    }
+
+    fn load_declared(
+        raw: Vec<RawFile>,
+        declaration: RawFile,
+        origin: Origin,
+        options: &LoadOptions,
+    ) -> Result<Library, LoadError> {
+        let l = load::load_declared(raw, declaration, options)?;
+        #[cfg(feature = "naga-oil")]
+        let engine = naga_oil::NagaOilEngine::new(
+            &l.modules,
+            &l.resolved,
+            l.shaders
+                .iter()
+                .flat_map(|s| s.passes.iter().map(|p| p.module)),
+        );
+        Ok(Library {
+            files: l.files,
+            modules: l.modules,
+            paths: l.paths,
+            resolved: l.resolved,
+            shaders: l.shaders,
+            origin,
+            dialect: crate::Dialect::NagaOil,
+            #[cfg(feature = "naga-oil")]
+            naga_oil: Some(engine),
+        })
     }
 
     /// Builds a library from in-memory `(path, text)` pairs; paths are library-relative with
@@ -131,15 +243,7 @@ impl Library {
         sources: impl IntoIterator<Item = (P, T)>,
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
-        let mut raw: Vec<RawFile> = sources
-            .into_iter()
-            .map(|(p, t)| RawFile {
-                path: p.into(),
-                bytes: t.into().into_bytes(),
-            })
-            .collect();
-        raw.sort_by(|a, b| a.path.cmp(&b.path));
-        Library::load(raw, &[], Origin::Memory, options)
+        Library::load(raw_files(sources), &[], Origin::Memory, options)
     }
 
     /// Builds a library from raw bytes (which need not be UTF-8), e.g. read by the caller.
@@ -162,7 +266,15 @@ impl Library {
             resolved: l.resolved,
             shaders: l.shaders,
             origin,
+            dialect: crate::Dialect::WgslVariants,
+            #[cfg(feature = "naga-oil")]
+            naga_oil: None,
         })
+    }
+
+    /// The dialect the library's modules are written in.
+    pub fn dialect(&self) -> crate::Dialect {
+        self.dialect
     }
 
     /// Where the library was loaded from.
@@ -289,6 +401,9 @@ impl Library {
     }
 
     fn compose_with(&self, variant: &Variant<'_>, with_map: bool) -> Composed {
+        if self.dialect == crate::Dialect::NagaOil {
+            return self.compose_naga_oil(variant);
+        }
         let graph = ModuleGraph {
             modules: &self.modules,
             resolved: &self.resolved,
@@ -301,6 +416,31 @@ impl Library {
             variant.choice.defines(variant.pass),
             with_map,
         )
+    }
+
+    /// A naga_oil tree's variant, composed by naga_oil: its program written back as WGSL, or
+    /// the failure (see [`Composed::failure`]).
+    fn compose_naga_oil(&self, variant: &Variant<'_>) -> Composed {
+        #[cfg(feature = "naga-oil")]
+        let result = match &self.naga_oil {
+            Some(engine) => engine.compose(&self.files, &self.modules, variant),
+            None => unreachable_engine(variant),
+        };
+        #[cfg(not(feature = "naga-oil"))]
+        let result = unreachable_engine(variant);
+        match result {
+            Ok(text) => Composed {
+                text,
+                ..Composed::default()
+            },
+            // Variants that fail alike (same message, same places) are one failure with many
+            // keyword sets, as variants with one text are.
+            Err(e) => Composed {
+                text: format!("// {:?} {} {:?}\n", e.stage, e.message, e.labels),
+                failure: Some(Box::new(e)),
+                ..Composed::default()
+            },
+        }
     }
 
     /// The parsed modules with their imports resolved (module ids index

@@ -23,8 +23,13 @@ pub struct ModuleGraph<'a> {
 pub struct Composed {
     /// Final WGSL.
     pub text: String,
-    /// Where each output line came from.
+    /// Where each output line came from (empty for a program composed by naga_oil, which
+    /// writes it anew).
     pub map: LineMap,
+    /// For a tree in another dialect: the composer's error, when it could not compose the
+    /// variant (`text` then describes the error, so different errors hash differently).
+    /// Validating the composition reports it; this crate's own composition never fails.
+    pub failure: Option<Box<crate::validate::VariantError>>,
 }
 
 /// Composes `body` (nodes of module `module`) with `defines` in effect at the start.

@@ -19,5 +19,5 @@ pub(crate) mod tree;
 pub use compose::Composed;
 pub use error::ParseError;
 pub use line_map::LineMap;
-pub use parse::ParseLimits;
-pub(crate) use parse::parse_module;
+pub(crate) use parse::parse_module_in;
+pub use parse::{Dialect, ParseLimits};

@@ -12,6 +12,35 @@ use super::tree::{
     Conditional, ImportRef, Node, ParsedModule, PassDecl, Pragma, SetKind, ShaderDecl,
 };
 
+mod naga_oil;
+
+/// The directive languages a module can be written in.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Dialect {
+    /// This crate's own: `#shader`/`#pass` blocks with Unity's `#pragma` keyword sets,
+    /// `#import path/of/file`, C-like `#if` expressions (README, "Directives").
+    #[default]
+    WgslVariants,
+    /// naga_oil's (Bevy's): `#define_import_path`, `#import a::b::{c}`, `#ifdef`, `#ifndef`,
+    /// `#if DEF op VALUE`, `#else ifdef …`, `#endif`, `#define`; keywords are declared in a
+    /// [declaration file](crate::declaration), and variants are composed by naga_oil itself.
+    NagaOil,
+}
+
+impl Dialect {
+    /// The name used on the command line and in declaration files: `wgsl-variants`,
+    /// `naga-oil`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::WgslVariants => "wgsl-variants",
+            Dialect::NagaOil => "naga-oil",
+        }
+    }
+}
+
 /// Nesting limits applied while parsing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -32,16 +61,30 @@ impl Default for ParseLimits {
 }
 
 /// Parses `text` (the contents of `file`). Returns every error found, not only the first.
+#[cfg(test)]
 pub fn parse_module(
+    file: FileId,
+    text: &str,
+    limits: ParseLimits,
+) -> Result<ParsedModule, Vec<ParseError>> {
+    parse_module_in(Dialect::WgslVariants, file, text, limits)
+}
+
+/// Parses a module written in `dialect`. Returns every error found, not only the first.
+pub fn parse_module_in(
+    dialect: Dialect,
     file: FileId,
     text: &str,
     limits: ParseLimits,
 ) -> Result<ParsedModule, Vec<ParseError>> {
     let scanned = lines::scan(text);
     let mut p = ModuleParser {
+        dialect,
         file,
         text,
         limits,
+        import_name: None,
+        open_import: None,
         errors: Vec::new(),
         frames: Vec::new(),
         root: Vec::new(),
@@ -53,6 +96,7 @@ pub fn parse_module(
     for (index, line) in scanned.iter().enumerate() {
         p.line(index as u32, line);
     }
+    p.finish_open_import();
     p.finish_frames();
     if let Some(pass) = p.pass.take() {
         p.errors.push(ParseError::Unterminated {
@@ -75,6 +119,7 @@ pub fn parse_module(
         body: p.root,
         imports: p.imports,
         shader: p.shader,
+        import_name: p.import_name,
     })
 }
 
@@ -88,6 +133,7 @@ struct Frame {
 }
 
 struct ModuleParser<'a> {
+    dialect: Dialect,
     file: FileId,
     text: &'a str,
     limits: ParseLimits,
@@ -99,6 +145,10 @@ struct ModuleParser<'a> {
     pass: Option<PassDecl>,
     /// Whether a WGSL or module directive line has been seen (a `#shader` must come first).
     seen_code: bool,
+    /// naga_oil: the `#define_import_path` name.
+    import_name: Option<(String, Span)>,
+    /// naga_oil: an `#import` whose `{` … `}` continues on the next lines (text so far, span).
+    open_import: Option<(String, Span)>,
 }
 
 /// The rule for shader and pass names, as the error states it.
@@ -144,9 +194,13 @@ impl<'a> ModuleParser<'a> {
     }
 
     fn line(&mut self, index: u32, line: &Line) {
-        match &line.directive {
-            None => self.text_line(index, line),
-            Some(range) => self.directive(range.clone()),
+        if self.open_import.is_some() {
+            return self.continue_import(line);
+        }
+        match (&line.directive, self.dialect) {
+            (None, _) => self.text_line(index, line),
+            (Some(range), Dialect::WgslVariants) => self.directive(range.clone()),
+            (Some(range), Dialect::NagaOil) => self.naga_oil_directive(range.clone()),
         }
     }
 
@@ -209,7 +263,7 @@ impl<'a> ModuleParser<'a> {
                 if name == "if" {
                     self.open("if", name_span, cond)
                 } else {
-                    self.elif(name_span, cond)
+                    self.elif("elif", name_span, cond)
                 }
                 result.map(|_| ())
             }
@@ -251,17 +305,22 @@ impl<'a> ModuleParser<'a> {
                 .map(|_| self.endpass(name_span)),
             "tag" => self.tag(args, name_span, args_span),
             "pragma" => self.pragma(args, args_start, name_span),
-            _ => Err(ParseError::UnknownDirective {
-                name: name.to_string(),
-                span: if name.is_empty() {
-                    self.span(range.start - 1..range.start)
-                } else {
-                    name_span
-                },
-            }),
+            _ => Err(self.unknown_directive(name, &range, name_span)),
         };
         if let Err(e) = result {
             self.errors.push(e);
+        }
+    }
+
+    /// `#name` is no directive of the dialect (`range`: the text after `#`).
+    fn unknown_directive(&self, name: &str, range: &Range<usize>, name_span: Span) -> ParseError {
+        ParseError::UnknownDirective {
+            name: name.to_string(),
+            span: if name.is_empty() {
+                self.span(range.start - 1..range.start)
+            } else {
+                name_span
+            },
         }
     }
 
@@ -329,16 +388,14 @@ impl<'a> ModuleParser<'a> {
         });
     }
 
-    fn elif(&mut self, span: Span, cond: Expr) {
+    /// `#elif` (or naga_oil's `#else ifdef` …, named `directive` in errors).
+    fn elif(&mut self, directive: &'static str, span: Span, cond: Expr) {
         let Some(frame) = self.frames.last_mut() else {
-            return self.errors.push(ParseError::Unmatched {
-                directive: "elif",
-                span,
-            });
+            return self.errors.push(ParseError::Unmatched { directive, span });
         };
         if let Some(else_span) = frame.else_span {
             return self.errors.push(ParseError::AfterElse {
-                directive: "elif",
+                directive,
                 span,
                 else_span,
             });
@@ -545,6 +602,7 @@ impl<'a> ModuleParser<'a> {
             tags: Vec::new(),
             pragmas: Vec::new(),
             body: Vec::new(),
+            constants: Vec::new(),
         });
         Ok(())
     }

@@ -44,7 +44,8 @@ pub struct Conditional {
 /// One `#import` of a module.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ImportRef {
-    /// Path as written, without extension.
+    /// Path as written, without extension (naga_oil: the item's or module's full `a::b::c`
+    /// path, with `{…}` groups expanded).
     pub path: String,
     /// Where the path is written.
     pub span: Span,
@@ -102,6 +103,8 @@ pub struct PassDecl {
     pub pragmas: Vec<Pragma>,
     /// The body.
     pub body: Vec<Node>,
+    /// Shader defs with a fixed value (declaration files' `constants`).
+    pub constants: Vec<crate::declaration::Constant>,
 }
 
 /// A shader file's `#shader` declaration and passes.
@@ -130,4 +133,7 @@ pub struct ParsedModule {
     pub imports: Vec<ImportRef>,
     /// The shader declared by this file, if it is a shader file.
     pub shader: Option<ShaderDecl>,
+    /// The name other modules import this one by (naga_oil's `#define_import_path`), with
+    /// where it is written; `None`: imported by its path.
+    pub import_name: Option<(String, Span)>,
 }

@@ -87,6 +87,31 @@ pub fn loader(data: &[u8]) {
     }
 }
 
+/// naga_oil's dialect: the input is split into files at `\0` (m0 is the entry, each file may
+/// `#define_import_path`), declared with keywords `A` and `B`. Loading never panics; neither
+/// does composing a variant through naga_oil (its errors become diagnostics).
+pub fn naga_oil(data: &[u8]) {
+    let files: Vec<(String, String)> = data
+        .split(|&b| b == 0)
+        .take(16)
+        .enumerate()
+        .map(|(i, bytes)| {
+            (
+                format!("m{i}.wgsl"),
+                String::from_utf8_lossy(bytes).into_owned(),
+            )
+        })
+        .collect();
+    let declaration = "[[shader]]\nname = \"s\"\nentry = \"m0.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"A\"], [\"_\", \"B\"]]\n";
+    if let Ok(lib) = Library::from_declared_sources(declaration, files)
+        && let Ok(pass) = lib.pass("s", "P")
+    {
+        for choice in Space::full(pass).iter() {
+            let _ = lib.naga_module(&Variant { pass, choice });
+        }
+    }
+}
+
 /// Any text as a module, imported by a pass with keywords `A` and `B`: see
 /// [`lean_matches_emitted`]. Inputs past 16 KiB are skipped to keep naga's share bounded.
 pub fn lean(data: &[u8]) {

@@ -63,6 +63,12 @@ fn write(dir: &Path, rel: &str, text: &str) -> Result<(), Failed> {
 }
 
 pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
+    if ctx.lib.dialect() != wgsl_variants::Dialect::WgslVariants {
+        return Err(Failed(format!(
+            "error: export turns modules of this crate's dialect into other dialects; this is a {} tree already",
+            ctx.lib.dialect().name()
+        )));
+    }
     let keywords: Vec<&str> = args
         .keywords
         .iter()

@@ -299,3 +299,63 @@ fn a_cache_entry_is_a_hit() {
         String::from_utf8_lossy(&with.stderr)
     );
 }
+
+/// A naga_oil tree (found by its `wgsl-variants.toml`) goes through the same commands: the
+/// covering set finds the failing combination, and its smallest failing keyword subset.
+#[test]
+fn a_naga_oil_tree_is_listed_covered_and_emitted() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/fixtures/naga_oil");
+    let out = run(&["--root", root, "list"]);
+    assert!(out.status.success());
+    let listing = String::from_utf8_lossy(&out.stdout);
+    assert!(listing.contains("12 full space"), "{listing}");
+
+    let out = run(&[
+        "--root",
+        root,
+        "--color",
+        "never",
+        "validate",
+        "--cover",
+        "2",
+        "--no-cache",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stdout.contains("lit/Forward: 6 built (12 full space)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("smallest failing keyword subset: {FOG}"),
+        "{stdout}"
+    );
+    assert!(stderr.contains("lit.wgsl:27:16"), "{stderr}");
+    assert!(stderr.contains("`demo::lighting::fog_color`"), "{stderr}");
+
+    let out = run(&[
+        "--root",
+        root,
+        "emit",
+        "lit",
+        "Forward",
+        "--keywords",
+        "FOG,VERTEX_COLORS",
+    ]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("@fragment"));
+    let out = run(&[
+        "--root",
+        root,
+        "emit",
+        "lit",
+        "Forward",
+        "--keywords",
+        "FOG",
+        "--target",
+        "spirv",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+}

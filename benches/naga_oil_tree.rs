@@ -1,0 +1,141 @@
+//! A naga_oil tree validated by this crate against naga_oil alone composing the same variants,
+//! measured in the same run (interleaved; medians of `BENCH_ROUNDS`).
+//!
+//! `cargo bench --bench naga_oil_tree` runs on `tests/fixtures/naga_oil`;
+//! `WGSL_VARIANTS_TREE=target/bevy-0.19.1 cargo bench --bench naga_oil_tree` on Bevy's PBR
+//! shaders (assembled by `scripts/bevy.sh`). Each pass's 2-wise covering set is the work.
+//!
+//! - this crate: `validate_pass` (naga_oil composes each variant and validates it, naga writes
+//!   it back as WGSL, which is parsed and validated again: what is validated is what is
+//!   emitted), on one thread;
+//! - naga_oil alone: one `Composer` with the tree's modules, `make_naga_module` per variant
+//!   with the same defs (naga_oil validates the module), on one thread.
+//!
+//! Both keep their composers across rounds, so naga_oil's per-def-set module cache is warm
+//! for both alike after the first round. Prints the ratio (this crate / naga_oil; lower is
+//! faster) and writes it to `target/bench-summary.json`.
+
+use std::collections::HashMap;
+
+use naga_oil::compose::{
+    ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
+};
+use serde_json::json;
+use test_support as common;
+use wgsl_variants::declaration::DefValue;
+use wgsl_variants::plan::{PlanOptions, variants_to_build};
+use wgsl_variants::validate::validate_pass;
+use wgsl_variants::{Library, Pass, Variant};
+
+/// naga_oil alone: a composer holding every named module of the tree (added once its imports
+/// are), and the entry's text.
+fn naga_oil_alone(lib: &Library) -> Composer {
+    let files = lib.files();
+    let mut pending: Vec<usize> = (0..lib.module_paths().len())
+        .filter(|&f| files.text(f).contains("#define_import_path"))
+        .collect();
+    let mut composer = Composer::default();
+    while !pending.is_empty() {
+        let before = pending.len();
+        pending.retain(|&f| {
+            composer
+                .add_composable_module(ComposableModuleDescriptor {
+                    source: files.text(f),
+                    file_path: files.path(f),
+                    language: ShaderLanguage::Wgsl,
+                    ..Default::default()
+                })
+                .is_err()
+        });
+        if pending.len() == before {
+            // What remains imports something missing: the entries never reach it.
+            break;
+        }
+    }
+    composer
+}
+
+fn defs(pass: &Pass, keywords: &[&str]) -> HashMap<String, ShaderDefValue> {
+    pass.constants
+        .iter()
+        .map(|c| {
+            let v = match c.value {
+                DefValue::Bool(b) => ShaderDefValue::Bool(b),
+                DefValue::Int(i) => ShaderDefValue::Int(i),
+                DefValue::UInt(u) => ShaderDefValue::UInt(u),
+            };
+            (c.name.clone(), v)
+        })
+        .chain(
+            keywords
+                .iter()
+                .map(|k| (k.to_string(), ShaderDefValue::Bool(true))),
+        )
+        .collect()
+}
+
+fn main() {
+    let root = std::env::var("WGSL_VARIANTS_TREE").unwrap_or_else(|_| {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/naga_oil").to_string()
+    });
+    let lib = Library::from_dir(&root).unwrap_or_else(|e| panic!("{root}: {e}"));
+    let rounds = common::rounds();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let mut options = PlanOptions::default();
+    options.cover = Some(2);
+    let mut results = Vec::new();
+    for pass in lib.passes() {
+        let choices = variants_to_build(&lib, pass, &options).expect("covering set");
+        let entry = lib
+            .files()
+            .path(lib.shader(&pass.shader).expect("shader").file);
+        let source = lib
+            .files()
+            .text(lib.shader(&pass.shader).expect("shader").file);
+        let mut composer = naga_oil_alone(&lib);
+        let slices = choices.len().min(8);
+        let per = choices.len().div_ceil(slices);
+        let range = |s: usize| s * per..((s + 1) * per).min(choices.len());
+        let mut ours = |s: usize| {
+            one.install(|| {
+                validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+            })
+        };
+        let mut alone = |s: usize| {
+            for c in &choices[range(s)] {
+                let v = Variant {
+                    pass,
+                    choice: c.clone(),
+                };
+                let _ = composer.make_naga_module(NagaModuleDescriptor {
+                    source,
+                    file_path: entry,
+                    shader_defs: defs(pass, &v.keywords()),
+                    ..Default::default()
+                });
+            }
+        };
+        let times = common::interleaved(rounds, slices, &mut [&mut ours, &mut alone]);
+        let ratio = common::median_ratio(&times[0], &times[1]);
+        let (t_ours, t_alone) = (common::median_of(&times[0]), common::median_of(&times[1]));
+        println!(
+            "{}/{}: {} covering variants: this crate {:.1} ms, naga_oil alone {:.1} ms, ratio {ratio:.2}",
+            pass.shader,
+            pass.name,
+            choices.len(),
+            t_ours.as_secs_f64() * 1e3,
+            t_alone.as_secs_f64() * 1e3,
+        );
+        results.push(json!({
+            "pass": format!("{}/{}", pass.shader, pass.name),
+            "variants": choices.len(),
+            "ours_ms": t_ours.as_secs_f64() * 1e3,
+            "naga_oil_alone_ms": t_alone.as_secs_f64() * 1e3,
+            "ratio_vs_naga_oil_alone": ratio,
+        }));
+    }
+    common::write_summary(json!({ "naga_oil_tree": { "root": root, "passes": results } }));
+}

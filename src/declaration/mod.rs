@@ -1,0 +1,381 @@
+//! The declaration file, `wgsl-variants.toml`: shaders, passes and keyword sets for trees
+//! whose sources do not declare them (naga_oil's dialect, Bevy's trees).
+//!
+//! It says in TOML what a `#shader`/`#pass` block says with `#pragma` lines, with the same
+//! meaning (Unity's `multi_compile` builds every option, `shader_feature` only what materials
+//! use; `_` is the "none" option), and every rule and diagnostic of those pragmas applies:
+//! the file becomes the same pass declarations the `#pass` parser makes, with spans into the TOML, and goes through
+//! the same checks ([`crate::shader::Pass`]).
+//!
+//! ```toml
+//! dialect = "naga-oil"
+//! exclude = ["meshlet/dummy.wgsl"]  # files or folders left out (e.g. one of two alternatives)
+//!
+//! [constants]                      # shader defs every variant gets
+//! MAX_LIGHTS = { uint = 4 }        # naga_oil's ShaderDefValue::UInt
+//! TONEMAP = true                   # Bool; a plain integer is Int
+//!
+//! [[shader]]
+//! name = "pbr"
+//! entry = "render/pbr.wgsl"        # the module composed for each variant
+//!
+//! [[shader.pass]]
+//! name = "Forward"
+//! multi_compile = [["_", "SKINNED"], ["_", "MORPH_TARGETS"]]
+//! shader_feature = [["_", "VERTEX_UVS"]]
+//! require = [["VERTEX_TANGENTS", "VERTEX_UVS"]]   # the first needs the others on
+//! exclude = [["SKINNED", "MORPH_TARGETS"]]        # at most one of them on
+//! skip_variants = []
+//! tags = { LightMode = "Forward" }
+//! constants = { PREPASS = false }  # this pass's own constants (override the tree's)
+//! ```
+//!
+//! Keyword sets are declared in this order: `multi_compile`, `multi_compile_local`,
+//! `shader_feature`, `shader_feature_local`, each in the order written; that order is the
+//! order variants are enumerated in.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::diagnostic::{Diagnostic, FileId, Span};
+use crate::keywords::ConstraintKind;
+use crate::preprocess::tree::{PassDecl, Pragma, SetKind};
+
+/// The declaration file's name, at the root of a tree.
+pub const FILE_NAME: &str = "wgsl-variants.toml";
+
+/// The value of a shader def, as naga_oil types it (`ShaderDefValue`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DefValue {
+    /// `true` / `false`.
+    Bool(bool),
+    /// A signed integer (a plain TOML integer).
+    Int(i32),
+    /// An unsigned integer (`{ uint = N }`).
+    UInt(u32),
+}
+
+impl DefValue {
+    /// The value the preprocessor's static analysis compares: booleans are 0 and 1.
+    pub fn as_i64(self) -> i64 {
+        match self {
+            DefValue::Bool(b) => i64::from(b),
+            DefValue::Int(i) => i64::from(i),
+            DefValue::UInt(u) => i64::from(u),
+        }
+    }
+}
+
+/// A shader def with a fixed value in every variant of a pass.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Constant {
+    /// The def's name.
+    pub name: String,
+    /// Its value.
+    pub value: DefValue,
+}
+
+/// One `[[shader]]` of the file, its passes turned into declarations.
+#[derive(Clone, Debug)]
+pub(crate) struct ShaderSpec {
+    /// The shader's name.
+    pub name: String,
+    /// Where the name is written.
+    pub span: Span,
+    /// The entry module's path (relative to the root, with `.wgsl`) and where it is written.
+    pub entry: (String, Span),
+    /// Its passes, their constants the tree's overridden by the pass's.
+    pub passes: Vec<PassDecl>,
+}
+
+/// A parsed declaration file.
+#[derive(Clone, Debug)]
+pub(crate) struct Declaration {
+    /// Paths (files or folders, relative to the root) left out of the tree.
+    pub exclude: Vec<String>,
+    /// The shaders, in file order.
+    pub shaders: Vec<ShaderSpec>,
+}
+
+/// The declaration file is malformed: TOML syntax or types, an unknown dialect, a constant out
+/// of range.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{message}")]
+pub struct DeclarationError {
+    /// What is wrong (the TOML parser's message for syntax and type errors).
+    pub message: String,
+    /// Where in the file.
+    pub span: Span,
+}
+
+impl DeclarationError {
+    /// A renderable report.
+    pub fn diagnostic(&self) -> Diagnostic {
+        Diagnostic::new(format!("in the declaration file: {}", self.message)).at(self.span, "here")
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileToml {
+    dialect: Option<Spanned<String>>,
+    #[serde(default)]
+    exclude: Vec<String>,
+    #[serde(default)]
+    constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
+    #[serde(default, rename = "shader")]
+    shaders: Vec<ShaderToml>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShaderToml {
+    name: Spanned<String>,
+    entry: Spanned<String>,
+    #[serde(default, rename = "pass")]
+    passes: Vec<PassToml>,
+}
+
+type Names = Spanned<Vec<Spanned<String>>>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PassToml {
+    name: Spanned<String>,
+    #[serde(default)]
+    tags: BTreeMap<String, String>,
+    #[serde(default)]
+    multi_compile: Vec<Names>,
+    #[serde(default)]
+    multi_compile_local: Vec<Names>,
+    #[serde(default)]
+    shader_feature: Vec<Names>,
+    #[serde(default)]
+    shader_feature_local: Vec<Names>,
+    #[serde(default)]
+    require: Vec<Names>,
+    #[serde(default)]
+    exclude: Vec<Names>,
+    #[serde(default)]
+    skip_variants: Vec<Spanned<String>>,
+    #[serde(default)]
+    constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ValueToml {
+    Bool(bool),
+    Int(i64),
+    UInt { uint: i64 },
+}
+
+/// Parses the declaration file `file` (its text `text`).
+///
+/// # Errors
+/// Every problem found: TOML syntax and types (unknown fields included), an unknown dialect,
+/// constants out of range. Keyword rules are checked later, when the passes are built, with
+/// spans into this file.
+pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<DeclarationError>> {
+    let at = |range: std::ops::Range<usize>| Span::new(file, range);
+    let parsed: FileToml = toml::from_str(text).map_err(|e| {
+        vec![DeclarationError {
+            message: e.message().to_string(),
+            span: at(e.span().unwrap_or(0..text.len().min(1))),
+        }]
+    })?;
+    let mut errors = Vec::new();
+    // Only naga_oil trees need a declaration file today; the field names the dialect so that
+    // WESL trees can be added without changing the meaning of existing files.
+    if let Some(d) = &parsed.dialect {
+        match d.get_ref().as_str() {
+            "naga-oil" => {}
+            other => {
+                errors.push(DeclarationError {
+                    message: format!(
+                        "unknown dialect `{other}`: this version reads `naga-oil` trees with a declaration file (trees in this crate's own dialect declare their keywords in their sources)"
+                    ),
+                    span: at(d.span()),
+                });
+            }
+        }
+    }
+    let tree_constants = constants(&parsed.constants, at, &mut errors);
+    let shaders = parsed
+        .shaders
+        .into_iter()
+        .map(|s| ShaderSpec {
+            name: s.name.get_ref().clone(),
+            span: at(s.name.span()),
+            entry: (s.entry.get_ref().clone(), at(s.entry.span())),
+            passes: s
+                .passes
+                .into_iter()
+                .map(|p| {
+                    let mut merged = tree_constants.clone();
+                    for c in constants(&p.constants, at, &mut errors) {
+                        merged.retain(|m| m.name != c.name);
+                        merged.push(c);
+                    }
+                    let mut decl = pass_decl(p, at);
+                    decl.constants = merged;
+                    decl
+                })
+                .collect(),
+        })
+        .collect();
+    if errors.is_empty() {
+        Ok(Declaration {
+            exclude: parsed.exclude,
+            shaders,
+        })
+    } else {
+        Err(errors)
+    }
+}
+
+fn constants(
+    table: &BTreeMap<Spanned<String>, Spanned<ValueToml>>,
+    at: impl Fn(std::ops::Range<usize>) -> Span,
+    errors: &mut Vec<DeclarationError>,
+) -> Vec<Constant> {
+    let mut out = Vec::new();
+    for (name, value) in table {
+        let v = match value.get_ref() {
+            ValueToml::Bool(b) => Some(DefValue::Bool(*b)),
+            ValueToml::Int(i) => i32::try_from(*i).ok().map(DefValue::Int),
+            ValueToml::UInt { uint } => u32::try_from(*uint).ok().map(DefValue::UInt),
+        };
+        match v {
+            Some(value) => out.push(Constant {
+                name: name.get_ref().clone(),
+                value,
+            }),
+            None => errors.push(DeclarationError {
+                message: format!(
+                    "`{}` is out of range: shader defs are i32 (a plain integer) or u32 (`{{ uint = N }}`)",
+                    name.get_ref()
+                ),
+                span: at(value.span()),
+            }),
+        }
+    }
+    out
+}
+
+fn pass_decl(p: PassToml, at: impl Fn(std::ops::Range<usize>) -> Span + Copy) -> PassDecl {
+    let names = |n: &Names| -> Vec<(Box<str>, Span)> {
+        n.get_ref()
+            .iter()
+            .map(|s| (Box::from(s.get_ref().as_str()), at(s.span())))
+            .collect()
+    };
+    let mut pragmas = Vec::new();
+    for (sets, kind, local) in [
+        (&p.multi_compile, SetKind::MultiCompile, false),
+        (&p.multi_compile_local, SetKind::MultiCompile, true),
+        (&p.shader_feature, SetKind::ShaderFeature, false),
+        (&p.shader_feature_local, SetKind::ShaderFeature, true),
+    ] {
+        for set in sets {
+            pragmas.push(Pragma::Keywords {
+                kind,
+                local,
+                names: names(set),
+                span: at(set.span()),
+            });
+        }
+    }
+    for (list, kind) in [
+        (&p.require, ConstraintKind::Require),
+        (&p.exclude, ConstraintKind::Exclude),
+    ] {
+        for c in list {
+            pragmas.push(Pragma::Constraint {
+                kind,
+                names: names(c),
+                span: at(c.span()),
+            });
+        }
+    }
+    if !p.skip_variants.is_empty() {
+        pragmas.push(Pragma::SkipVariants(
+            p.skip_variants
+                .iter()
+                .map(|s| (Box::from(s.get_ref().as_str()), at(s.span())))
+                .collect(),
+        ));
+    }
+    PassDecl {
+        name: p.name.get_ref().clone(),
+        span: at(p.name.span()),
+        tags: p.tags.into_iter().collect(),
+        pragmas,
+        body: Vec::new(),
+        constants: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passes_become_pragmas_with_spans_into_the_file() {
+        let text = r#"
+[constants]
+N = { uint = 4 }
+B = true
+
+[[shader]]
+name = "pbr"
+entry = "pbr.wgsl"
+
+[[shader.pass]]
+name = "Forward"
+multi_compile = [["_", "SKINNED"]]
+shader_feature = [["_", "UVS"]]
+require = [["UVS", "SKINNED"]]
+constants = { B = false }
+"#;
+        let d = parse(0, text).unwrap();
+        let pass = &d.shaders[0].passes[0];
+        let consts = &pass.constants;
+        assert_eq!(pass.pragmas.len(), 3);
+        let Pragma::Keywords { names, .. } = &pass.pragmas[0] else {
+            panic!()
+        };
+        assert_eq!(&text[names[1].1.range()], "\"SKINNED\"");
+        assert_eq!(
+            consts,
+            &[
+                Constant {
+                    name: "N".into(),
+                    value: DefValue::UInt(4)
+                },
+                Constant {
+                    name: "B".into(),
+                    value: DefValue::Bool(false)
+                }
+            ]
+        );
+    }
+
+    #[test]
+    fn errors_are_located() {
+        let e = parse(
+            0,
+            "[[shader]]\nname = \"a\"\nentry = \"a.wgsl\"\ncolour = 1\n",
+        )
+        .unwrap_err();
+        assert!(e[0].message.contains("unknown field `colour`"), "{e:?}");
+        assert_eq!(e[0].span.range().start, 39);
+        let e = parse(0, "dialect = \"glsl\"\n").unwrap_err();
+        assert!(e[0].message.contains("unknown dialect `glsl`"));
+        let e = parse(0, "[constants]\nX = 4294967296\n").unwrap_err();
+        assert!(e[0].message.contains("out of range"));
+    }
+}

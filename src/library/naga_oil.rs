@@ -1,0 +1,325 @@
+//! Composing variants of a naga_oil tree with naga_oil itself (the `naga-oil` cargo feature):
+//! the program Bevy would get for the same shader defs, so what we validate and emit is what
+//! Bevy runs. naga_oil's errors are mapped to the file, line and column of the user's tree.
+//!
+//! Facts about naga_oil 0.23 this relies on (from its sources and README): a module is added
+//! with `Composer::add_composable_module` after every module it imports; `make_naga_module`
+//! composes an entry with a map of shader defs and validates the result; an error carries the
+//! module's path and the *preprocessed* text it points into, which keeps every line of the
+//! original (removed lines become blanks), so a line there is the same line in the file; spans
+//! of the composed module hold the module's index above bit 21 and the byte offset below;
+//! decorated names are `item` + `X_naga_oil_mod_X` + the module path in base32 + `X`.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+use naga_oil::compose::{
+    ComposableModuleDescriptor, Composer, ComposerError, ComposerErrorInner, NagaModuleDescriptor,
+    ShaderDefValue, ShaderLanguage,
+};
+
+use crate::declaration::DefValue;
+use crate::diagnostic::{SourceFiles, Span};
+use crate::preprocess::tree::ParsedModule;
+use crate::validate::{Stage, VariantError};
+
+use super::Variant;
+
+/// naga_oil's span layout: the module's index above this bit, the byte offset below.
+const SPAN_SHIFT: usize = 21;
+
+/// One composer per worker thread, each holding every module of the tree (naga_oil caches
+/// each module per def set, so a composer is reused, never shared).
+pub(crate) struct NagaOilEngine {
+    pool: Mutex<Vec<Composer>>,
+    /// The ids of the modules the entries reach, each after those it imports.
+    order: Vec<usize>,
+}
+
+impl std::fmt::Debug for NagaOilEngine {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NagaOilEngine").finish_non_exhaustive()
+    }
+}
+
+impl NagaOilEngine {
+    /// An engine for the modules of a loaded tree that `roots` (the passes' entry modules)
+    /// reach; the import graph is already checked acyclic.
+    pub(crate) fn new(
+        modules: &[ParsedModule],
+        resolved: &[Vec<usize>],
+        roots: impl IntoIterator<Item = usize>,
+    ) -> NagaOilEngine {
+        let mut order = Vec::with_capacity(modules.len());
+        let mut done = vec![false; modules.len()];
+        fn visit(m: usize, resolved: &[Vec<usize>], done: &mut [bool], order: &mut Vec<usize>) {
+            if done[m] {
+                return;
+            }
+            done[m] = true;
+            for &t in &resolved[m] {
+                visit(t, resolved, done, order);
+            }
+            order.push(m);
+        }
+        for m in roots {
+            visit(m, resolved, &mut done, &mut order);
+        }
+        NagaOilEngine {
+            pool: Mutex::new(Vec::new()),
+            order,
+        }
+    }
+
+    /// A composer with every named module of the tree added.
+    fn composer(
+        &self,
+        files: &SourceFiles,
+        modules: &[ParsedModule],
+    ) -> Result<Composer, Box<ComposerError>> {
+        let mut composer = Composer::default();
+        for &m in &self.order {
+            if modules[m].import_name.is_none() {
+                continue;
+            }
+            let file = modules[m].file;
+            composer
+                .add_composable_module(ComposableModuleDescriptor {
+                    source: files.text(file),
+                    file_path: files.path(file),
+                    language: ShaderLanguage::Wgsl,
+                    ..Default::default()
+                })
+                .map_err(Box::new)?;
+        }
+        Ok(composer)
+    }
+
+    /// The variant's program as naga_oil composes it, written back as WGSL by naga.
+    pub(crate) fn compose(
+        &self,
+        files: &SourceFiles,
+        modules: &[ParsedModule],
+        variant: &Variant<'_>,
+    ) -> Result<String, VariantError> {
+        let taken = self.pool.lock().map(|mut p| p.pop()).unwrap_or(None);
+        let mut composer = match taken {
+            Some(c) => c,
+            None => self
+                .composer(files, modules)
+                .map_err(|e| error(&e, &Composer::default(), files, variant))?,
+        };
+        let mut defs: HashMap<String, ShaderDefValue> = variant
+            .pass
+            .constants
+            .iter()
+            .map(|c| {
+                let v = match c.value {
+                    DefValue::Bool(b) => ShaderDefValue::Bool(b),
+                    DefValue::Int(i) => ShaderDefValue::Int(i),
+                    DefValue::UInt(u) => ShaderDefValue::UInt(u),
+                };
+                (c.name.clone(), v)
+            })
+            .collect();
+        for k in variant.keywords() {
+            defs.insert(k.to_string(), ShaderDefValue::Bool(true));
+        }
+        let entry = modules[variant.pass.module].file;
+        let result = composer
+            .make_naga_module(NagaModuleDescriptor {
+                source: files.text(entry),
+                file_path: files.path(entry),
+                shader_defs: defs,
+                ..Default::default()
+            })
+            .map_err(|e| error(&e, &composer, files, variant))
+            .and_then(|module| {
+                let info = crate::validate::validator()
+                    .validate(&module)
+                    .map_err(|e| plain(variant, Stage::Validate, e.as_inner().to_string()))?;
+                naga::back::wgsl::write_string(
+                    &module,
+                    &info,
+                    naga::back::wgsl::WriterFlags::empty(),
+                )
+                .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}")))
+            });
+        if let Ok(mut pool) = self.pool.lock() {
+            pool.push(composer);
+        }
+        result
+    }
+}
+
+fn plain(variant: &Variant<'_>, stage: Stage, message: String) -> VariantError {
+    VariantError {
+        variant: variant.label(),
+        stage,
+        message,
+        labels: Vec::new(),
+        notes: Vec::new(),
+    }
+}
+
+/// A naga_oil error as a [`VariantError`] located in the original file.
+fn error(
+    e: &ComposerError,
+    composer: &Composer,
+    files: &SourceFiles,
+    variant: &Variant<'_>,
+) -> VariantError {
+    let offset = e.source.offset();
+    let local = |r: std::ops::Range<usize>| {
+        let mask = (1 << SPAN_SHIFT) - 1;
+        (r.start & mask).saturating_sub(offset)..(r.end & mask).saturating_sub(offset)
+    };
+    type Labels = Vec<(std::ops::Range<usize>, String)>;
+    let (stage, raw, mut notes): (Stage, Labels, Vec<String>) = match &e.inner {
+        ComposerErrorInner::WgslParseError(p) => (
+            Stage::Parse,
+            p.labels()
+                .map(|(s, m)| (local(s.to_range().unwrap_or(0..0)), m.to_string()))
+                .collect(),
+            Vec::new(),
+        ),
+        ComposerErrorInner::ShaderValidationError(v)
+        | ComposerErrorInner::HeaderValidationError(v) => (
+            Stage::Validate,
+            v.spans()
+                .map(|(s, m)| (local(s.to_range().unwrap_or(0..0)), m.clone()))
+                .collect(),
+            chain(v.as_inner()),
+        ),
+        ComposerErrorInner::ImportNotFound(_, pos)
+        | ComposerErrorInner::ImportParseError(_, pos)
+        | ComposerErrorInner::NotEnoughEndIfs(pos)
+        | ComposerErrorInner::TooManyEndIfs(pos)
+        | ComposerErrorInner::ElseWithoutCondition(pos)
+        | ComposerErrorInner::UnknownShaderDef { pos, .. }
+        | ComposerErrorInner::UnknownShaderDefOperator { pos, .. }
+        | ComposerErrorInner::InvalidShaderDefComparisonValue { pos, .. }
+        | ComposerErrorInner::OverrideNotVirtual { pos, .. }
+        | ComposerErrorInner::DefineInModule(pos)
+        | ComposerErrorInner::InvalidShaderDefDefinitionValue { pos, .. } => (
+            Stage::Compose,
+            vec![(*pos..*pos, String::new())],
+            Vec::new(),
+        ),
+        _ => (Stage::Compose, Vec::new(), Vec::new()),
+    };
+    let path = e.source.path(composer);
+    let source = e.source.source(composer);
+    let file = (0..files.len()).find(|&f| files.path(f) == path.as_str());
+    let labels = match file {
+        Some(file) => raw
+            .into_iter()
+            .map(|(r, m)| (original_span(files, file, &source, r), undecorate(&m)))
+            .collect(),
+        None => {
+            notes.push(format!("in `{path}`"));
+            Vec::new()
+        }
+    };
+    VariantError {
+        variant: variant.label(),
+        stage,
+        message: format!("naga_oil: {}", undecorate(&e.inner.to_string())),
+        labels,
+        notes: notes.iter().map(|n| undecorate(n)).collect(),
+    }
+}
+
+fn chain(e: &dyn std::error::Error) -> Vec<String> {
+    let mut notes = Vec::new();
+    let mut at = e.source();
+    while let Some(s) = at {
+        notes.push(s.to_string());
+        at = s.source();
+    }
+    notes
+}
+
+/// Bytes `r` of naga_oil's preprocessed `source` of `file`, located in the file itself: the
+/// same line, the same column clipped to the line (substitutions may move a column).
+fn original_span(
+    files: &SourceFiles,
+    file: crate::diagnostic::FileId,
+    source: &str,
+    r: std::ops::Range<usize>,
+) -> Span {
+    let start = r.start.min(source.len());
+    let line = source[..start].matches('\n').count();
+    let col = start - source[..start].rfind('\n').map_or(0, |i| i + 1);
+    let text = files.text(file);
+    let starts = crate::preprocess::lines::line_starts(text);
+    let line_start = starts.get(line).copied().unwrap_or(text.len());
+    let line_end = text[line_start..]
+        .find('\n')
+        .map_or(text.len(), |i| line_start + i);
+    let begin = (line_start + col).min(line_end);
+    let len = r.end.saturating_sub(r.start).max(1);
+    Span::new(
+        file,
+        begin
+            ..(begin + len)
+                .min(line_end.max(begin + 1))
+                .min(text.len().max(begin)),
+    )
+}
+
+/// naga_oil's decorated names (`itemX_naga_oil_mod_X<base32 module>X`) written as
+/// `module::item`, as the user wrote them.
+fn undecorate(text: &str) -> String {
+    const PRE: &str = "X_naga_oil_mod_X";
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(PRE) {
+        let (before, after) = rest.split_at(at);
+        let after = &after[PRE.len()..];
+        // The base32 run ends with the closing `X` (base32 itself has `X` too: the last one
+        // closes).
+        let run = after
+            .find(|c: char| !(c.is_ascii_uppercase() || c.is_ascii_digit()))
+            .unwrap_or(after.len());
+        let end = after[..run].rfind('X').unwrap_or(run);
+        let module = data_encoding::BASE32_NOPAD
+            .decode(&after.as_bytes()[..end])
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok());
+        match (module, after[end..].strip_prefix('X')) {
+            (Some(module), Some(tail)) => {
+                let item_start = before
+                    .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .map_or(0, |i| i + 1);
+                out.push_str(&before[..item_start]);
+                out.push_str(&module);
+                out.push_str("::");
+                out.push_str(&before[item_start..]);
+                rest = tail;
+            }
+            _ => {
+                out.push_str(before);
+                out.push_str(PRE);
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decorated_names_read_as_paths() {
+        let decorated = Composer::decorated_name(Some("my_lib::light"), "shade");
+        assert_eq!(
+            undecorate(&format!("call to {decorated} fails")),
+            "call to my_lib::light::shade fails"
+        );
+        assert_eq!(undecorate("plain"), "plain");
+    }
+}

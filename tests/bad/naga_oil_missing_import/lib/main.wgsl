@@ -1,0 +1,2 @@
+#import demo::nothing::f
+@fragment fn fs() -> @location(0) vec4f { return vec4f(f()); }
