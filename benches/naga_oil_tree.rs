@@ -56,21 +56,16 @@ fn naga_oil_alone(lib: &Library) -> Composer {
 }
 
 fn defs(pass: &Pass, keywords: &[&str]) -> HashMap<String, ShaderDefValue> {
-    pass.constants
-        .iter()
-        .map(|c| {
-            let v = match c.value {
+    pass.defs(keywords.iter().copied())
+        .into_iter()
+        .map(|(name, value)| {
+            let v = match value {
                 DefValue::Bool(b) => ShaderDefValue::Bool(b),
                 DefValue::Int(i) => ShaderDefValue::Int(i),
                 DefValue::UInt(u) => ShaderDefValue::UInt(u),
             };
-            (c.name.clone(), v)
+            (name.to_string(), v)
         })
-        .chain(
-            keywords
-                .iter()
-                .map(|k| (k.to_string(), ShaderDefValue::Bool(true))),
-        )
         .collect()
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Validates Bevy 0.19.1's PBR shaders (a tree no one here wrote) with the declaration file
 # examples/bevy_pbr/wgsl-variants.toml: `bash scripts/bevy.sh [validate options]`
-# (default `--cover 2`; e.g. `bash scripts/bevy.sh --all` for every variant).
+# (default `--cover 2`). `bash scripts/bevy.sh --check` (CI) runs the default and compares its
+# summary lines with examples/bevy_pbr/expected.txt: the figures the README reports.
 #
 # The WGSL is fetched at run time from crates.io's static host (the published crates
 # bevy_pbr, bevy_render and bevy_core_pipeline 0.19.1, checksums pinned below), never
@@ -37,14 +38,29 @@ bevy_core_pipeline 2564f1ba766532e8eeb20059133ff6703e8dd5c3864b92378d0d1c541096e
 CRATES
 cp examples/bevy_pbr/wgsl-variants.toml "$tree/"
 echo "== $(find "$tree" -name '*.wgsl' | wc -l) WGSL files in $tree"
-cargo build --release -q -p wgsl-variants-cli
-bin=target/release/wgsl-variants
+# WGSL_VARIANTS_BIN: a binary already built (CI passes the test build's, see .ci/run).
+bin="${WGSL_VARIANTS_BIN:-}"
+if [ -z "$bin" ]; then
+    cargo build --release -q -p wgsl-variants-cli
+    bin=target/release/wgsl-variants
+fi
 "$bin" --root "$tree" list
+check=false
+if [ "${1:-}" = --check ]; then check=true; shift; fi
 args=("$@")
 if [ ${#args[@]} -eq 0 ]; then args=(--cover 2); fi
-start=$(date +%s.%N)
+start=$(date +%s%N)
 status=0
-"$bin" --root "$tree" validate "${args[@]}" --no-cache || status=$?
-end=$(date +%s.%N)
-echo "== validate ${args[*]}: $(echo "$end - $start" | bc) s (exit $status: 1 means some variants failed)"
+"$bin" --root "$tree" --color never validate "${args[@]}" --no-cache > target/bevy-validate.txt || status=$?
+end=$(date +%s%N)
+cat target/bevy-validate.txt
+echo "== validate ${args[*]}: $(( (end - start) / 1000000 )) ms (exit $status: 1 means some variants failed)"
+if $check; then
+    # The summary lines (built, distinct, valid, invalid per pass and in total) are
+    # deterministic: any change is a change in this tool or in the declaration.
+    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:)' target/bevy-validate.txt > target/bevy-summary.txt
+    diff -u examples/bevy_pbr/expected.txt target/bevy-summary.txt
+    echo "== the figures match examples/bevy_pbr/expected.txt"
+    exit 0
+fi
 exit "$status"

@@ -211,6 +211,20 @@ impl Pass {
         crate::lookup::resolve(self, keywords)
     }
 
+    /// The shader defs of a variant with `keywords` on: the pass's constants, then each
+    /// keyword's def ([`def_of`](crate::declaration::def_of): `true`, or a valued keyword's
+    /// value). Later entries win when collected into a map.
+    pub fn defs<'k>(
+        &'k self,
+        keywords: impl IntoIterator<Item = &'k str>,
+    ) -> Vec<(&'k str, crate::declaration::DefValue)> {
+        self.constants
+            .iter()
+            .map(|c| (c.name.as_str(), c.value))
+            .chain(keywords.into_iter().map(crate::declaration::def_of))
+            .collect()
+    }
+
     /// The value of a tag, e.g. `tag("LightMode")`.
     pub fn tag(&self, key: &str) -> Option<&str> {
         self.tags.iter().find(|t| t.0 == key).map(|t| t.1.as_str())

@@ -37,10 +37,9 @@ impl Choice {
 
     /// The defines a variant starts with: each keyword that is on, with value 1.
     pub fn defines(&self, pass: &Pass) -> HashMap<Box<str>, i64> {
-        pass.constants
-            .iter()
-            .map(|c| (Box::from(c.name.as_str()), c.value.as_i64()))
-            .chain(self.keywords(pass).into_iter().map(|k| (Box::from(k), 1)))
+        pass.defs(self.keywords(pass))
+            .into_iter()
+            .map(|(name, value)| (Box::from(name), value.as_i64()))
             .collect()
     }
 

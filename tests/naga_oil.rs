@@ -150,3 +150,73 @@ fn only_what_the_entries_reach_is_part_of_the_tree() {
         "{err}"
     );
 }
+
+/// A valued set gives a def one value per variant (`N=1u`, `N=4u`): naga_oil gets the typed
+/// value, `#if` comparisons and the audit see it, and a substituted value makes the audit's
+/// count a bound.
+#[test]
+fn valued_sets_give_a_def_one_value_per_variant() {
+    let declaration = "[[shader]]\nname = \"s\"\nentry = \"main.wgsl\"\n[[shader.pass]]\nname = \"P\"\nvalues = { N = { uint = [1, 4] } }\n";
+    let compare = "@fragment\nfn fs() -> @location(0) vec4<f32> {\n#if N > 2\n    return vec4<f32>(1.0);\n#else\n    return vec4<f32>(0.0);\n#endif\n}\n";
+    let lib = Library::from_declared_sources(declaration, [("main.wgsl", compare)]).unwrap();
+    let pass = lib.pass("s", "P").unwrap();
+    assert_eq!(pass.keywords().collect::<Vec<_>>(), ["N=1u", "N=4u"]);
+    let four = lib.variant("s", "P", &["N=4u"]).unwrap();
+    assert!(lib.wgsl(&four).contains("vec4(1f)"), "{}", lib.wgsl(&four));
+    let audit = wgsl_variants::audit::audit_pass(&lib, pass, &Default::default()).unwrap();
+    assert_eq!(audit.distinct_full_space.count, 2u32.into());
+    assert!(audit.distinct_full_space.exact);
+
+    let substitute = "const TAPS: u32 = #{N};\n@fragment\nfn fs() -> @location(0) vec4<f32> {\n    return vec4<f32>(f32(TAPS));\n}\n";
+    let lib = Library::from_declared_sources(declaration, [("main.wgsl", substitute)]).unwrap();
+    let pass = lib.pass("s", "P").unwrap();
+    let one = lib.variant("s", "P", &["N=1u"]).unwrap();
+    assert!(lib.wgsl(&one).contains("1u"), "{}", lib.wgsl(&one));
+    let audit = wgsl_variants::audit::audit_pass(&lib, pass, &Default::default()).unwrap();
+    assert!(!audit.distinct_full_space.exact);
+    assert_eq!(audit.distinct_full_space.count, 2u32.into());
+}
+
+/// `bake` (a build.rs) reads a naga_oil tree like any other: its declaration file is found at
+/// the root, every variant is validated, the outputs are written; a failing variant stops it
+/// with the variant's keyword set and location.
+#[test]
+fn a_naga_oil_tree_bakes() {
+    let tree = tempfile::tempdir().unwrap();
+    let write = |path: &str, text: &str| std::fs::write(tree.path().join(path), text).unwrap();
+    write(
+        "wgsl-variants.toml",
+        "[[shader]]\nname = \"s\"\nentry = \"main.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"HALF\"]]\n",
+    );
+    write(
+        "tint.wgsl",
+        "#define_import_path demo::tint\nfn tint() -> f32 {\n#ifdef HALF\n    return 0.5;\n#else\n    return 1.0;\n#endif\n}\n",
+    );
+    write(
+        "main.wgsl",
+        "#import demo::tint\n@fragment\nfn fs() -> @location(0) vec4<f32> {\n    return vec4<f32>(tint::tint());\n}\n",
+    );
+    let out = tempfile::tempdir().unwrap();
+    let baked = wgsl_variants::bake::Bake::new(tree.path())
+        .write_to(out.path())
+        .unwrap();
+    assert_eq!((baked.variants, baked.outputs), (2, 2));
+    assert!(
+        std::fs::read_to_string(&baked.file)
+            .unwrap()
+            .contains("HALF")
+    );
+
+    write(
+        "tint.wgsl",
+        "#define_import_path demo::tint\nfn tint() -> f32 {\n#ifdef HALF\n    return vec2<f32>(0.5);\n#else\n    return 1.0;\n#endif\n}\n",
+    );
+    let err = wgsl_variants::bake::Bake::new(tree.path())
+        .write_to(out.path())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("tint.wgsl:2:1") && err.contains("{HALF}"),
+        "{err}"
+    );
+}

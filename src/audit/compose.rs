@@ -79,11 +79,14 @@ pub(crate) struct IdText {
 impl IdComposer<'_> {
     /// Composes `pass` with `choice` (one option per set).
     pub fn compose(&self, pass: &Pass, choice: &[u16]) -> IdText {
-        let defines: HashMap<Box<str>, i64> = choice
+        let keywords = choice
             .iter()
             .zip(&pass.sets)
-            .filter_map(|(&o, s)| s.options[o as usize].as_deref())
-            .map(|k| (Box::from(k), 1))
+            .filter_map(|(&o, s)| s.options[o as usize].as_deref());
+        let defines: HashMap<Box<str>, i64> = pass
+            .defs(keywords)
+            .into_iter()
+            .map(|(name, value)| (Box::from(name), value.as_i64()))
             .collect();
         let mut sink = IdSink {
             c: self,

@@ -82,18 +82,26 @@ pub(crate) fn analyze(
     pass: &Pass,
     space: &Space<'_>,
 ) -> Result<Template, TooComplex> {
-    let mut vals = HashMap::new();
+    // Constants (declaration files) are known; a keyword's def is its name (or, for a valued
+    // set's `NAME=VALUE`, NAME), known when the space leaves its set one option.
+    let mut vals: HashMap<Box<str>, Val> = pass
+        .defs([])
+        .into_iter()
+        .map(|(name, value)| (Box::from(name), Val::Known(Some(value.as_i64()))))
+        .collect();
     for (s, set) in pass.sets.iter().enumerate() {
         match space.options(s).as_slice() {
             // The same option in every variant.
             [only] => {
                 if let Some(k) = &set.options[*only as usize] {
-                    vals.insert(Box::from(k.as_str()), Val::Known(Some(1)));
+                    let (name, value) = crate::declaration::def_of(k);
+                    vals.insert(Box::from(name), Val::Known(Some(value.as_i64())));
                 }
             }
             _ => {
                 for k in set.keywords() {
-                    vals.insert(Box::from(k), Val::Unknown(Bits::single(s)));
+                    let (name, _) = crate::declaration::def_of(k);
+                    vals.insert(Box::from(name), Val::Unknown(Bits::single(s)));
                 }
             }
         }

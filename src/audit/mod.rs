@@ -221,7 +221,42 @@ fn audit_with<'p>(
         analyse(build_space)
     };
     let used = options.materials.as_ref().map(|m| used_keywords(pass, m));
+    let (mut full, mut after, mut build) = (full, after, build);
+    if substitutes_valued(lib, pass) {
+        // The static walk tells texts apart by their lines, and a substituted value changes a
+        // line's text, not which lines there are: count every variant as distinct (a bound).
+        for a in [&mut full, &mut after, &mut build] {
+            a.distinct = a.count.clone();
+            a.exact = false;
+            a.method = Method::Bound;
+        }
+    }
     Ok(report::assemble(pass, &full, &after, &build, used))
+}
+
+/// Whether a def of one of `pass`'s valued sets (`NAME=VALUE` keywords) is substituted into
+/// code (naga_oil's `#{NAME}` or `#NAME`) anywhere in the library.
+fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
+    let names: Vec<&str> = pass
+        .keywords()
+        .filter(|k| k.contains('='))
+        .map(|k| crate::declaration::def_of(k).0)
+        .collect();
+    if names.is_empty() {
+        return false;
+    }
+    let files = lib.files();
+    (0..files.len()).any(|f| {
+        let text = files.text(f);
+        names.iter().any(|name| {
+            text.match_indices(name).any(|(at, _)| {
+                let before = text[..at].trim_end_matches(['{', ' ', '\t']);
+                let after = text[at + name.len()..].chars().next();
+                before.ends_with('#')
+                    && !after.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_')
+            })
+        })
+    })
 }
 
 /// Keywords of `pass` that some material of its shader enables.

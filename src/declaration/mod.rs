@@ -30,9 +30,16 @@
 //! constants = { PREPASS = false }  # this pass's own constants (override the tree's)
 //! ```
 //!
-//! Keyword sets are declared in this order: `multi_compile`, `multi_compile_local`,
-//! `shader_feature`, `shader_feature_local`, each in the order written; that order is the
-//! order variants are enumerated in.
+//! Valued sets give a def one of several values, one variant per value:
+//!
+//! ```toml
+//! values = { MAX_CASCADES = { uint = [1, 2, 4] }, BLUR_TAPS = [4, 8, 16, 32] }
+//! ```
+//!
+//! Their keywords are `NAME=VALUE` (`MAX_CASCADES=4u`, `BLUR_TAPS=8`; see [`def_of`]), and
+//! they have no "none" option. Keyword sets are declared in this order: `multi_compile`,
+//! `multi_compile_local`, `values`, `shader_feature`, `shader_feature_local`, each in the order
+//! written (values by name); that order is the order variants are enumerated in.
 
 use std::collections::BTreeMap;
 
@@ -67,6 +74,41 @@ impl DefValue {
             DefValue::UInt(u) => i64::from(u),
         }
     }
+}
+
+impl std::fmt::Display for DefValue {
+    /// As a valued keyword writes it (and naga_oil substitutes it): `true`, `-3`, `4u`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DefValue::Bool(b) => write!(f, "{b}"),
+            DefValue::Int(i) => write!(f, "{i}"),
+            DefValue::UInt(u) => write!(f, "{u}u"),
+        }
+    }
+}
+
+/// The def a keyword sets: a keyword of a valued set, `NAME=VALUE` (`true`, `-3`, `4u`), sets
+/// `NAME` to that value; any other keyword sets itself to `true`.
+///
+/// ```
+/// use wgsl_variants::declaration::{DefValue, def_of};
+/// assert_eq!(def_of("MAX_CASCADES=4u"), ("MAX_CASCADES", DefValue::UInt(4)));
+/// assert_eq!(def_of("TAPS=-8"), ("TAPS", DefValue::Int(-8)));
+/// assert_eq!(def_of("SKINNED"), ("SKINNED", DefValue::Bool(true)));
+/// ```
+pub fn def_of(keyword: &str) -> (&str, DefValue) {
+    let valued = keyword.split_once('=').and_then(|(name, v)| {
+        let value = match v {
+            "true" => DefValue::Bool(true),
+            "false" => DefValue::Bool(false),
+            v => match v.strip_suffix('u') {
+                Some(u) => DefValue::UInt(u.parse().ok()?),
+                None => DefValue::Int(v.parse().ok()?),
+            },
+        };
+        Some((name, value))
+    });
+    valued.unwrap_or((keyword, DefValue::Bool(true)))
 }
 
 /// A shader def with a fixed value in every variant of a pass.
@@ -163,6 +205,16 @@ struct PassToml {
     skip_variants: Vec<Spanned<String>>,
     #[serde(default)]
     constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
+    #[serde(default)]
+    values: BTreeMap<Spanned<String>, Spanned<ValuesToml>>,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ValuesToml {
+    Bools(Vec<bool>),
+    Ints(Vec<i64>),
+    UInts { uint: Vec<i64> },
 }
 
 #[derive(Deserialize)]
@@ -220,7 +272,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
                         merged.retain(|m| m.name != c.name);
                         merged.push(c);
                     }
-                    let mut decl = pass_decl(p, at);
+                    let mut decl = pass_decl(p, at, &mut errors);
                     decl.constants = merged;
                     decl
                 })
@@ -266,7 +318,42 @@ fn constants(
     out
 }
 
-fn pass_decl(p: PassToml, at: impl Fn(std::ops::Range<usize>) -> Span + Copy) -> PassDecl {
+/// Whether `name` can be a keyword: a def name (letters, digits and `_`, not starting with a
+/// digit) or `_`.
+fn is_keyword_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+fn pass_decl(
+    p: PassToml,
+    at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
+    errors: &mut Vec<DeclarationError>,
+) -> PassDecl {
+    for set in [
+        &p.multi_compile,
+        &p.multi_compile_local,
+        &p.shader_feature,
+        &p.shader_feature_local,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        for name in set.get_ref() {
+            if !is_keyword_name(name.get_ref()) {
+                errors.push(DeclarationError {
+                    message: format!(
+                        "`{}` is not a keyword: write a def name (letters, digits and `_`, not starting with a digit) or `_`",
+                        name.get_ref()
+                    ),
+                    span: at(name.span()),
+                });
+            }
+        }
+    }
     let names = |n: &Names| -> Vec<(Box<str>, Span)> {
         n.get_ref()
             .iter()
@@ -274,12 +361,7 @@ fn pass_decl(p: PassToml, at: impl Fn(std::ops::Range<usize>) -> Span + Copy) ->
             .collect()
     };
     let mut pragmas = Vec::new();
-    for (sets, kind, local) in [
-        (&p.multi_compile, SetKind::MultiCompile, false),
-        (&p.multi_compile_local, SetKind::MultiCompile, true),
-        (&p.shader_feature, SetKind::ShaderFeature, false),
-        (&p.shader_feature_local, SetKind::ShaderFeature, true),
-    ] {
+    let keyword_sets = |pragmas: &mut Vec<Pragma>, sets: &[Names], kind, local| {
         for set in sets {
             pragmas.push(Pragma::Keywords {
                 kind,
@@ -288,7 +370,67 @@ fn pass_decl(p: PassToml, at: impl Fn(std::ops::Range<usize>) -> Span + Copy) ->
                 span: at(set.span()),
             });
         }
+    };
+    keyword_sets(&mut pragmas, &p.multi_compile, SetKind::MultiCompile, false);
+    keyword_sets(
+        &mut pragmas,
+        &p.multi_compile_local,
+        SetKind::MultiCompile,
+        true,
+    );
+    // Valued sets: one option per value, `NAME=VALUE` (see `def_of`), no "none" option.
+    for (name, values) in &p.values {
+        let span = at(values.span());
+        let texts: Option<Vec<String>> = match values.get_ref() {
+            ValuesToml::Bools(v) => {
+                Some(v.iter().map(|b| DefValue::Bool(*b).to_string()).collect())
+            }
+            ValuesToml::Ints(v) => v
+                .iter()
+                .map(|i| i32::try_from(*i).ok().map(|i| DefValue::Int(i).to_string()))
+                .collect(),
+            ValuesToml::UInts { uint } => uint
+                .iter()
+                .map(|u| {
+                    u32::try_from(*u)
+                        .ok()
+                        .map(|u| DefValue::UInt(u).to_string())
+                })
+                .collect(),
+        };
+        match texts {
+            Some(texts) if is_keyword_name(name.get_ref()) && !texts.is_empty() => {
+                pragmas.push(Pragma::Keywords {
+                    kind: SetKind::MultiCompile,
+                    local: false,
+                    names: texts
+                        .iter()
+                        .map(|v| (Box::from(format!("{}={v}", name.get_ref())), span))
+                        .collect(),
+                    span,
+                })
+            }
+            _ => errors.push(DeclarationError {
+                message: format!(
+                    "`{}` needs a def name and at least one value, each an i32 (plain integers), a u32 (`{{ uint = [...] }}`) or a boolean",
+                    name.get_ref()
+                ),
+                span: at(name.span()),
+            }),
+        }
     }
+    keyword_sets(
+        &mut pragmas,
+        &p.shader_feature,
+        SetKind::ShaderFeature,
+        false,
+    );
+    keyword_sets(
+        &mut pragmas,
+        &p.shader_feature_local,
+        SetKind::ShaderFeature,
+        true,
+    );
     for (list, kind) in [
         (&p.require, ConstraintKind::Require),
         (&p.exclude, ConstraintKind::Exclude),

@@ -109,22 +109,12 @@ impl NagaOilEngine {
                 .composer(files, modules)
                 .map_err(|e| error(&e, &Composer::default(), files, variant))?,
         };
-        let mut defs: HashMap<String, ShaderDefValue> = variant
+        let defs: HashMap<String, ShaderDefValue> = variant
             .pass
-            .constants
-            .iter()
-            .map(|c| {
-                let v = match c.value {
-                    DefValue::Bool(b) => ShaderDefValue::Bool(b),
-                    DefValue::Int(i) => ShaderDefValue::Int(i),
-                    DefValue::UInt(u) => ShaderDefValue::UInt(u),
-                };
-                (c.name.clone(), v)
-            })
+            .defs(variant.keywords())
+            .into_iter()
+            .map(|(name, value)| (name.to_string(), shader_def(value)))
             .collect();
-        for k in variant.keywords() {
-            defs.insert(k.to_string(), ShaderDefValue::Bool(true));
-        }
         let entry = modules[variant.pass.module].file;
         let result = composer
             .make_naga_module(NagaModuleDescriptor {
@@ -149,6 +139,15 @@ impl NagaOilEngine {
             pool.push(composer);
         }
         result
+    }
+}
+
+/// naga_oil's type for a def value.
+pub(crate) fn shader_def(value: DefValue) -> ShaderDefValue {
+    match value {
+        DefValue::Bool(b) => ShaderDefValue::Bool(b),
+        DefValue::Int(i) => ShaderDefValue::Int(i),
+        DefValue::UInt(u) => ShaderDefValue::UInt(u),
     }
 }
 
