@@ -201,25 +201,33 @@ impl Library {
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
         let l = load::load_declared(raw, declaration, options)?;
+        Ok(Library::from_loaded(l, origin, crate::Dialect::NagaOil))
+    }
+
+    /// The library of a loaded tree in `dialect` (with its naga_oil composer when it is a
+    /// naga_oil tree).
+    fn from_loaded(l: load::Loaded, origin: Origin, dialect: crate::Dialect) -> Library {
         #[cfg(feature = "naga-oil")]
-        let engine = naga_oil::NagaOilEngine::new(
-            &l.modules,
-            &l.resolved,
-            l.shaders
-                .iter()
-                .flat_map(|s| s.passes.iter().map(|p| p.module)),
-        );
-        Ok(Library {
+        let naga_oil = (dialect == crate::Dialect::NagaOil).then(|| {
+            naga_oil::NagaOilEngine::new(
+                &l.modules,
+                &l.resolved,
+                l.shaders
+                    .iter()
+                    .flat_map(|s| s.passes.iter().map(|p| p.module)),
+            )
+        });
+        Library {
             files: l.files,
             modules: l.modules,
             paths: l.paths,
             resolved: l.resolved,
             shaders: l.shaders,
             origin,
-            dialect: crate::Dialect::NagaOil,
+            dialect,
             #[cfg(feature = "naga-oil")]
-            naga_oil: Some(engine),
-        })
+            naga_oil,
+        }
     }
 
     /// Builds a library from in-memory `(path, text)` pairs; paths are library-relative with
@@ -259,17 +267,11 @@ impl Library {
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
         let l = load::load(raw, escaping, options)?;
-        Ok(Library {
-            files: l.files,
-            modules: l.modules,
-            paths: l.paths,
-            resolved: l.resolved,
-            shaders: l.shaders,
+        Ok(Library::from_loaded(
+            l,
             origin,
-            dialect: crate::Dialect::WgslVariants,
-            #[cfg(feature = "naga-oil")]
-            naga_oil: None,
-        })
+            crate::Dialect::WgslVariants,
+        ))
     }
 
     /// The dialect the library's modules are written in.

@@ -14,8 +14,8 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 
 use naga_oil::compose::{
-    ComposableModuleDescriptor, Composer, ComposerError, ComposerErrorInner, NagaModuleDescriptor,
-    ShaderDefValue, ShaderLanguage,
+    ComposableModuleDescriptor, Composer, ComposerError, ComposerErrorInner, ErrSource,
+    NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
 };
 
 use crate::declaration::DefValue;
@@ -116,29 +116,51 @@ impl NagaOilEngine {
             .map(|(name, value)| (name.to_string(), shader_def(value)))
             .collect();
         let entry = modules[variant.pass.module].file;
-        let result = composer
-            .make_naga_module(NagaModuleDescriptor {
-                source: files.text(entry),
-                file_path: files.path(entry),
-                shader_defs: defs,
-                ..Default::default()
-            })
-            .map_err(|e| error(&e, &composer, files, variant))
-            .and_then(|module| {
-                let info = crate::validate::validator()
-                    .validate(&module)
-                    .map_err(|e| plain(variant, Stage::Validate, e.as_inner().to_string()))?;
-                naga::back::wgsl::write_string(
-                    &module,
-                    &info,
-                    naga::back::wgsl::WriterFlags::empty(),
-                )
-                .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}")))
-            });
-        if let Ok(mut pool) = self.pool.lock() {
-            pool.push(composer);
+        // naga_oil may panic on input it does not expect: that is one variant's failure, and
+        // the composer it left behind is dropped rather than reused.
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            composer
+                .make_naga_module(NagaModuleDescriptor {
+                    source: files.text(entry),
+                    file_path: files.path(entry),
+                    shader_defs: defs,
+                    ..Default::default()
+                })
+                .map_err(|e| error(&e, &composer, files, variant))
+                .and_then(|module| {
+                    let info = crate::validate::validator()
+                        .validate(&module)
+                        .map_err(|e| plain(variant, Stage::Validate, e.as_inner().to_string()))?;
+                    naga::back::wgsl::write_string(
+                        &module,
+                        &info,
+                        naga::back::wgsl::WriterFlags::empty(),
+                    )
+                    .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}")))
+                })
+        }));
+        match outcome {
+            Ok(result) => {
+                if let Ok(mut pool) = self.pool.lock() {
+                    pool.push(composer);
+                }
+                result
+            }
+            Err(panic) => {
+                let what = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_default();
+                Err(plain(
+                    variant,
+                    Stage::Compose,
+                    format!(
+                        "naga_oil panicked composing this variant ({what}); a bug to report to naga_oil"
+                    ),
+                ))
+            }
         }
-        result
     }
 }
 
@@ -207,6 +229,22 @@ fn error(
         ),
         _ => (Stage::Compose, Vec::new(), Vec::new()),
     };
+    // naga_oil finds a module's path and text in the composer (and panics if it is not there,
+    // as when the composer itself could not be built).
+    if let ErrSource::Module { name, .. } = &e.source
+        && !composer.module_sets.contains_key(name)
+    {
+        return VariantError {
+            variant: variant.label(),
+            stage,
+            message: format!(
+                "naga_oil: {} (in module `{name}`)",
+                undecorate(&e.inner.to_string())
+            ),
+            labels: Vec::new(),
+            notes,
+        };
+    }
     let path = e.source.path(composer);
     let source = e.source.source(composer);
     let file = (0..files.len()).find(|&f| files.path(f) == path.as_str());

@@ -238,22 +238,35 @@ impl<'a> ModuleParser<'a> {
         nodes.push(Node::Text(index..index + 1));
     }
 
-    fn directive(&mut self, range: Range<usize>) {
+    /// A directive line's parts: its name (which starts at `start`, within `range`, the text
+    /// after `#`), the name's span (from the `#`), its arguments, where they start, and their
+    /// span (the name's when there are none).
+    fn split_directive(
+        &self,
+        range: &Range<usize>,
+        start: usize,
+    ) -> (&'a str, Span, &'a str, usize, Span) {
         let text: &'a str = self.text;
-        let body = &text[range.clone()];
+        let body = &text[start..range.end];
         let name_len = body
             .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .unwrap_or(body.len());
         let name = &body[..name_len];
-        let name_span = self.span(range.start - 1..range.start + name_len);
+        let name_span = self.span(range.start - 1..start + name_len);
         let args_start =
-            range.start + name_len + (body[name_len..].len() - body[name_len..].trim_start().len());
+            start + name_len + (body[name_len..].len() - body[name_len..].trim_start().len());
         let args = text[args_start..range.end].trim_end();
         let args_span = if args.is_empty() {
             name_span
         } else {
             self.span(args_start..args_start + args.len())
         };
+        (name, name_span, args, args_start, args_span)
+    }
+
+    fn directive(&mut self, range: Range<usize>) {
+        let (name, name_span, args, args_start, args_span) =
+            self.split_directive(&range, range.start);
         let result = match name {
             "if" | "elif" => {
                 // A bad expression still opens its branch, so the `#endif` that follows is

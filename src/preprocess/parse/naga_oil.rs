@@ -20,24 +20,10 @@ use super::{ModuleParser, is_name};
 impl ModuleParser<'_> {
     /// One naga_oil directive line; `range` is the text after `#`.
     pub(super) fn naga_oil_directive(&mut self, range: std::ops::Range<usize>) {
-        let text = self.text;
-        let raw = &text[range.clone()];
+        let raw = &self.text[range.clone()];
         // naga_oil allows blanks between `#` and the directive's name.
         let start = range.start + (raw.len() - raw.trim_start().len());
-        let body = &text[start..range.end];
-        let name_len = body
-            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-            .unwrap_or(body.len());
-        let name = &body[..name_len];
-        let name_span = self.span(range.start - 1..start + name_len);
-        let args_start =
-            start + name_len + (body[name_len..].len() - body[name_len..].trim_start().len());
-        let args = text[args_start..range.end].trim_end();
-        let args_span = if args.is_empty() {
-            name_span
-        } else {
-            self.span(args_start..args_start + args.len())
-        };
+        let (name, name_span, args, args_start, args_span) = self.split_directive(&range, start);
         let result = match name {
             "ifdef" | "ifndef" | "if" => {
                 let directive = match name {
