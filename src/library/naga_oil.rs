@@ -77,7 +77,10 @@ impl NagaOilEngine {
         files: &SourceFiles,
         modules: &[ParsedModule],
     ) -> Result<Composer, Box<ComposerError>> {
-        let mut composer = Composer::default();
+        // Not validating: the program is validated here, and composed again by a validating
+        // composer only when it fails, for naga_oil's located error (one validation per
+        // variant on the path that passes, not two).
+        let mut composer = Composer::non_validating();
         for &m in &self.order {
             if modules[m].import_name.is_none() {
                 continue;
@@ -118,26 +121,33 @@ impl NagaOilEngine {
         let entry = modules[variant.pass.module].file;
         // naga_oil may panic on input it does not expect: that is one variant's failure, and
         // the composer it left behind is dropped rather than reused.
+        let descriptor = || NagaModuleDescriptor {
+            source: files.text(entry),
+            file_path: files.path(entry),
+            shader_defs: defs.clone(),
+            ..Default::default()
+        };
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            composer
-                .make_naga_module(NagaModuleDescriptor {
-                    source: files.text(entry),
-                    file_path: files.path(entry),
-                    shader_defs: defs,
-                    ..Default::default()
-                })
-                .map_err(|e| error(&e, &composer, files, variant))
-                .and_then(|module| {
-                    let info = crate::validate::validator()
-                        .validate(&module)
-                        .map_err(|e| plain(variant, Stage::Validate, e.as_inner().to_string()))?;
-                    naga::back::wgsl::write_string(
-                        &module,
-                        &info,
-                        naga::back::wgsl::WriterFlags::empty(),
-                    )
-                    .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}")))
-                })
+            let module = composer
+                .make_naga_module(descriptor())
+                .map_err(|e| error(&e, &composer, files, variant))?;
+            match crate::validate::validator().validate(&module) {
+                Ok(info) => naga::back::wgsl::write_string(
+                    &module,
+                    &info,
+                    naga::back::wgsl::WriterFlags::empty(),
+                )
+                .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}"))),
+                Err(invalid) => {
+                    composer.validate = true;
+                    let located = composer.make_naga_module(descriptor());
+                    composer.validate = false;
+                    Err(match located {
+                        Err(e) => error(&e, &composer, files, variant),
+                        Ok(_) => plain(variant, Stage::Validate, invalid.as_inner().to_string()),
+                    })
+                }
+            }
         }));
         match outcome {
             Ok(result) => {
