@@ -214,9 +214,21 @@ fn char_range(text: &str, range: Range<usize>) -> Range<usize> {
     start..end
 }
 
+/// How serious a [`Diagnostic`] is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Severity {
+    /// The input cannot be used as it is.
+    #[default]
+    Error,
+    /// The input works, but probably not as meant (e.g. a keyword no module reads).
+    Warning,
+}
+
 /// A report ready to render: a message, where it happened, and what else is known.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// Error or warning.
+    pub severity: Severity,
     /// One-line summary.
     pub message: String,
     /// The primary location and its label.
@@ -231,11 +243,18 @@ impl Diagnostic {
     /// A diagnostic with a message only.
     pub fn new(message: impl Into<String>) -> Diagnostic {
         Diagnostic {
+            severity: Severity::Error,
             message: message.into(),
             primary: None,
             secondary: Vec::new(),
             notes: Vec::new(),
         }
+    }
+
+    /// Makes it a warning.
+    pub fn warning(mut self) -> Diagnostic {
+        self.severity = Severity::Warning;
+        self
     }
 
     /// Sets the primary location.
@@ -264,7 +283,11 @@ impl Diagnostic {
     /// Renders like rustc/naga: `error: …`, the location, a snippet of the original source and
     /// the notes. `color` adds ANSI colours.
     pub fn render(&self, files: &SourceFiles, color: bool) -> String {
-        let mut cs = CsDiagnostic::error().with_message(&self.message);
+        let mut cs = match self.severity {
+            Severity::Error => CsDiagnostic::error(),
+            Severity::Warning => CsDiagnostic::warning(),
+        }
+        .with_message(&self.message);
         let mut labels = Vec::new();
         if let Some((span, label)) = &self.primary {
             let range = char_range(files.text(span.file), span.range());
@@ -283,7 +306,11 @@ impl Diagnostic {
         };
         if term::emit_to_write_style(&mut buffer, &config, files, &cs).is_err() {
             // codespan only fails on a span outside its file: fall back to the plain message.
-            return format!("error: {}\n", self.message);
+            let what = match self.severity {
+                Severity::Error => "error",
+                Severity::Warning => "warning",
+            };
+            return format!("{what}: {}\n", self.message);
         }
         String::from_utf8_lossy(buffer.as_slice()).into_owned()
     }

@@ -65,7 +65,7 @@ pub mod source;
 pub mod validate;
 pub mod variants;
 
-pub use diagnostic::{Diagnostic, Location, SourceFiles, Span};
+pub use diagnostic::{Diagnostic, Location, Severity, SourceFiles, Span};
 pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use preprocess::Dialect;

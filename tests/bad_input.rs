@@ -83,6 +83,18 @@ fn check_api(dir: &Path, e: &Expect) -> Result<(), String> {
     }
     let lib = loaded.map_err(|err| format!("unexpected load error:\n{err}"))?;
     match e.stage.as_str() {
+        "warning" => {
+            let found = lib.warnings().iter().any(|w| {
+                w.severity == wgsl_variants::Severity::Warning
+                    && w.message.contains(&e.message)
+                    && w.location(lib.files()).map(|l| l.to_string()) == Some(e.location.clone())
+            });
+            if found {
+                Ok(())
+            } else {
+                Err(format!("warnings: {:?}", lib.warnings()))
+            }
+        }
         "validate" => {
             let mut options = PlanOptions::default();
             options.all = true;

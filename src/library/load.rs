@@ -41,6 +41,8 @@ impl Default for LoadOptions {
 
 /// Everything a library is made of once loaded.
 pub(crate) struct Loaded {
+    /// What loads but is probably not meant (declared keywords no module reads).
+    pub warnings: Vec<crate::diagnostic::Diagnostic>,
     pub files: SourceFiles,
     pub modules: Vec<ParsedModule>,
     pub paths: Vec<String>,
@@ -145,6 +147,11 @@ pub(crate) fn load_declared(
                 .map(Into::into),
         );
     }
+    let warnings = if problems.is_empty() {
+        unread_keywords(&decl, &entries, &modules, &resolved, &files)
+    } else {
+        Vec::new()
+    };
     let decls = decl
         .shaders
         .into_iter()
@@ -166,7 +173,73 @@ pub(crate) fn load_declared(
             (decl, modules[id].file, id)
         })
         .collect();
-    assemble(files, paths, modules, resolved, decls, problems)
+    let mut loaded = assemble(files, paths, modules, resolved, decls, problems)?;
+    loaded.warnings = warnings;
+    Ok(loaded)
+}
+
+/// One warning per pass whose declared keywords include defs that no module its entry reaches
+/// mentions (in a directive or a substitution): they change no variant, so they are probably a
+/// typo or meant for another tree.
+fn unread_keywords(
+    decl: &crate::declaration::Declaration,
+    entries: &[usize],
+    modules: &[ParsedModule],
+    resolved: &[Vec<usize>],
+    files: &SourceFiles,
+) -> Vec<crate::diagnostic::Diagnostic> {
+    let mut warnings = Vec::new();
+    for (shader, &entry) in decl.shaders.iter().zip(entries) {
+        let mut reached = vec![entry];
+        let mut at = 0;
+        while let Some(&m) = reached.get(at) {
+            at += 1;
+            for &t in &resolved[m] {
+                if t != usize::MAX && !reached.contains(&t) {
+                    reached.push(t);
+                }
+            }
+        }
+        let mentions = |name: &str| {
+            reached.iter().any(|&m| {
+                let text = files.text(modules[m].file);
+                text.match_indices(name).any(|(i, _)| {
+                    let before = text[..i].chars().next_back();
+                    let after = text[i + name.len()..].chars().next();
+                    let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+                    !word(before) && !word(after)
+                })
+            })
+        };
+        for pass in &shader.passes {
+            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
+                .pragmas
+                .iter()
+                .filter_map(|p| match p {
+                    crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
+                    _ => None,
+                })
+                .flatten()
+                .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
+                .collect();
+            if let Some((_, first)) = unread.first() {
+                let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
+                warnings.push(
+                    crate::diagnostic::Diagnostic::new(format!(
+                        "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
+                        list.len(),
+                        shader.name,
+                        pass.name,
+                        list.join(", ")
+                    ))
+                    .warning()
+                    .at(*first, "never read")
+                    .note("they change no variant: a typo, or a def of another tree? (the audit lists them as dead)"),
+                );
+            }
+        }
+    }
+    warnings
 }
 
 /// The loaded library: its shaders built from `decls` (each with its file and the module its
@@ -188,6 +261,7 @@ fn assemble(
         return Err(LoadError { files, problems });
     }
     Ok(Loaded {
+        warnings: Vec::new(),
         files,
         modules,
         paths,

@@ -42,6 +42,7 @@ pub struct Library {
     shaders: Vec<Shader>,
     origin: Origin,
     dialect: crate::Dialect,
+    warnings: Vec<crate::Diagnostic>,
     #[cfg(feature = "naga-oil")]
     naga_oil: Option<naga_oil::NagaOilEngine>,
 }
@@ -225,6 +226,7 @@ impl Library {
             shaders: l.shaders,
             origin,
             dialect,
+            warnings: l.warnings,
             #[cfg(feature = "naga-oil")]
             naga_oil,
         }
@@ -272,6 +274,12 @@ impl Library {
             origin,
             crate::Dialect::WgslVariants,
         ))
+    }
+
+    /// What loaded but is probably not meant, to show the user (render with
+    /// [`Library::files`]): declared keywords that no module of their pass reads.
+    pub fn warnings(&self) -> &[crate::Diagnostic] {
+        &self.warnings
     }
 
     /// The dialect the library's modules are written in.

@@ -10,7 +10,8 @@ use serde::Deserialize;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Expect {
-    /// The stage that reports it: `load`, `validate`, `budget`, `lookup` or `cover`.
+    /// The stage that reports it: `load`, `validate`, `budget`, `lookup`, `cover`, or `warning`
+    /// (the library loads; a warning says it).
     pub stage: String,
     /// `file:line:col` of the primary label.
     pub location: String,

@@ -320,6 +320,9 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    for warning in lib.warnings() {
+        eprint!("{}", warning.render(lib.files(), color));
+    }
     let ctx = Context {
         lib,
         json: cli.json,
