@@ -45,7 +45,8 @@ pub struct VariantSource {
     pub wgsl: String,
 }
 
-/// Composes a variant, and validates the text with naga when `validate` is set.
+/// Composes a variant, and validates the text with naga when `validate` is set (a variant
+/// naga_oil could not compose is an error either way: there is no text).
 ///
 /// ```
 /// let lib = wgsl_variants::Library::bundled().unwrap();
@@ -59,7 +60,9 @@ pub fn variant_source(
     validate: bool,
 ) -> Result<VariantSource, VariantError> {
     let composed = lib.compose(variant);
-    if validate {
+    // A variant that could not be composed (naga_oil's error) has no text to give, validated
+    // or not.
+    if validate || composed.failure.is_some() {
         validate_composed(&composed, &variant.label())?;
     }
     Ok(VariantSource {
