@@ -85,11 +85,18 @@ pub fn machine() -> Value {
     json!({ "cpu": cpu, "cores": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1) })
 }
 
-/// `target/bench-summary.json`, next to cargo's target dir.
+/// `bench-summary.json` in cargo's target folder: `CARGO_TARGET_DIR`, else the `target` folder
+/// the running bench was built into (this crate's own folder is not the workspace's).
 fn summary_path() -> PathBuf {
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"));
+        .or_else(|| {
+            let exe = std::env::current_exe().ok()?;
+            exe.ancestors()
+                .find(|p| p.file_name().is_some_and(|n| n == "target"))
+                .map(PathBuf::from)
+        })
+        .unwrap_or_else(|| PathBuf::from("target"));
     target.join("bench-summary.json")
 }
 

@@ -70,6 +70,11 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
         print_json(&report)?;
     } else {
         print!("{}", table(&report.passes));
+        if ctx.lib.dialect() == wgsl_variants::Dialect::NagaOil {
+            println!(
+                "note: a naga_oil tree: \"distinct\" counts preprocessed texts, an upper bound on the programs naga_oil composes (it keeps only the imported items a program uses)"
+            );
+        }
     }
     for v in report.over_budget() {
         eprintln!("error: {}", v.message);

@@ -345,6 +345,13 @@ fn a_naga_oil_tree_is_listed_covered_and_emitted() {
     ]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("@fragment"));
+    let out = run(&["--root", root, "audit"]);
+    assert!(out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stdout)
+            .contains("an upper bound on the programs naga_oil composes")
+    );
+
     // A variant naga_oil cannot compose has no text, validated or not.
     for extra in [&["--target", "spirv"][..], &["--no-validate"][..]] {
         let mut args = vec![
