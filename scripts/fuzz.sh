@@ -4,7 +4,8 @@
 # Targets (fuzz/fuzz_targets/, properties in crates/fuzz-checks): preprocess (directives of any
 # module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
 # imports), lean (naga gives the lean and the emitted text of every variant the same outcome),
-# naga_oil (naga_oil-dialect trees, loaded and composed through naga_oil).
+# naga_oil (naga_oil-dialect trees, loaded and composed through naga_oil), wesl (WESL trees,
+# their `@if` tree read and every variant composed through the wesl crate).
 # Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
 # saved under fuzz/artifacts/<target>/; copy it to fuzz/regressions/<target>/ and fix the bug:
 # `cargo test --test fuzz_regressions` replays every saved input.
@@ -16,7 +17,7 @@ seconds="${1:-60}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 summary=""
-for target in preprocess expr pragmas loader lean naga_oil; do
+for target in preprocess expr pragmas loader lean naga_oil wesl; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
     cp -n fuzz/initial/"$target"/* "$corpus"/ 2>/dev/null || true

@@ -31,6 +31,8 @@ fn kind(problem: &LoadProblem) -> &'static str {
             ParseError::Unterminated { .. } => "parse::unterminated",
             ParseError::Misplaced { .. } => "parse::misplaced",
             ParseError::TooDeep { .. } => "parse::too_deep",
+            ParseError::Syntax { .. } => "parse::syntax",
+            ParseError::Attribute { .. } => "parse::attribute",
         },
         LoadProblem::Link(e) => match e {
             LinkError::MissingImport { .. } => "link::missing_import",

@@ -31,13 +31,14 @@ type Target = (&'static str, fn(&[u8]));
 
 #[test]
 fn fuzz_seeds_and_regressions_replay_cleanly() {
-    let targets: [Target; 6] = [
+    let targets: [Target; 7] = [
         ("preprocess", checks::preprocess),
         ("expr", checks::expr),
         ("pragmas", checks::pragmas),
         ("loader", checks::loader),
         ("lean", checks::lean),
         ("naga_oil", checks::naga_oil),
+        ("wesl", checks::wesl),
     ];
     let mut total = 0;
     for (name, check) in targets {

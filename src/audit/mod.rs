@@ -234,8 +234,10 @@ fn audit_with<'p>(
     Ok(report::assemble(pass, &full, &after, &build, used))
 }
 
-/// Whether a def of one of `pass`'s valued sets (`NAME=VALUE` keywords) is substituted into
-/// code (naga_oil's `#{NAME}` or `#NAME`) anywhere in the library.
+/// Whether a def of one of `pass`'s valued sets (`NAME=VALUE` keywords) reaches code in a
+/// module the pass composes: substituted by naga_oil (`#{NAME}` or `#NAME`), or, in a WESL
+/// tree, read from the `constants` package (WESL conditions are boolean, so any mention of the
+/// name is a use of its value).
 fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
     let names: Vec<&str> = pass
         .keywords()
@@ -245,15 +247,18 @@ fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
     if names.is_empty() {
         return false;
     }
-    let files = lib.files();
-    (0..files.len()).any(|f| {
-        let text = files.text(f);
+    let graph = lib.module_graph();
+    let wesl = lib.dialect() == crate::Dialect::Wesl;
+    graph.reach(pass.module).into_iter().any(|m| {
+        let text = graph.files.text(graph.modules[m].file);
         names.iter().any(|name| {
             text.match_indices(name).any(|(at, _)| {
                 let before = text[..at].trim_end_matches(['{', ' ', '\t']);
+                let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
                 let after = text[at + name.len()..].chars().next();
-                before.ends_with('#')
-                    && !after.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_')
+                let whole =
+                    !after.is_some_and(ident) && !text[..at].chars().next_back().is_some_and(ident);
+                whole && (wesl || before.ends_with('#'))
             })
         })
     })

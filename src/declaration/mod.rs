@@ -1,5 +1,7 @@
 //! The declaration file, `wgsl-variants.toml`: shaders, passes and keyword sets for trees
-//! whose sources do not declare them (naga_oil's dialect, Bevy's trees).
+//! whose sources do not declare them: naga_oil's dialect (Bevy 0.19's trees) and WESL's
+//! (Bevy's main branch). `dialect` is `"naga-oil"` or `"wesl"`; without it, a tree whose
+//! entries are `.wesl` files is WESL and any other naga_oil.
 //!
 //! It says in TOML what a `#shader`/`#pass` block says with `#pragma` lines, with the same
 //! meaning (Unity's `multi_compile` builds every option, `shader_feature` only what materials
@@ -136,6 +138,8 @@ pub(crate) struct ShaderSpec {
 /// A parsed declaration file.
 #[derive(Clone, Debug)]
 pub(crate) struct Declaration {
+    /// The dialect of the tree's modules.
+    pub dialect: crate::Dialect,
     /// Paths (files or folders, relative to the root) left out of the tree.
     pub exclude: Vec<String>,
     /// The shaders, in file order.
@@ -240,21 +244,27 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         }]
     })?;
     let mut errors = Vec::new();
-    // Only naga_oil trees need a declaration file today; the field names the dialect so that
-    // WESL trees can be added without changing the meaning of existing files.
-    if let Some(d) = &parsed.dialect {
-        match d.get_ref().as_str() {
-            "naga-oil" => {}
+    let wesl_entries = parsed
+        .shaders
+        .iter()
+        .any(|s| s.entry.get_ref().ends_with(".wesl"));
+    let dialect = match &parsed.dialect {
+        None if wesl_entries => crate::Dialect::Wesl,
+        None => crate::Dialect::NagaOil,
+        Some(d) => match d.get_ref().as_str() {
+            "naga-oil" => crate::Dialect::NagaOil,
+            "wesl" => crate::Dialect::Wesl,
             other => {
                 errors.push(DeclarationError {
                     message: format!(
-                        "unknown dialect `{other}`: this version reads `naga-oil` trees with a declaration file (trees in this crate's own dialect declare their keywords in their sources)"
+                        "unknown dialect `{other}`: a declaration file declares a `naga-oil` or a `wesl` tree (trees in this crate's own dialect declare their keywords in their sources)"
                     ),
                     span: at(d.span()),
                 });
+                crate::Dialect::NagaOil
             }
-        }
-    }
+        },
+    };
     let tree_constants = constants(&parsed.constants, at, &mut errors);
     let shaders = parsed
         .shaders
@@ -281,6 +291,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         .collect();
     if errors.is_empty() {
         Ok(Declaration {
+            dialect,
             exclude: parsed.exclude,
             shaders,
         })

@@ -102,7 +102,9 @@ impl LinkError {
         let d = Diagnostic::new(self.to_string());
         match self {
             LinkError::MissingImport { span, path, .. } => d.at(*span, "imported here").note(
-                if path.contains("::") {
+                if path.starts_with("package::") {
+                    "WESL imports name a module by its path in the package (`package::a::b` is the file `a/b.wesl`), then optionally its items"
+                } else if path.contains("::") {
                     "naga_oil imports name a module's `#define_import_path`, then optionally its items"
                 } else {
                     "paths are relative to the library root, `/`-separated, without `.wgsl`"

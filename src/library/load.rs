@@ -41,6 +41,8 @@ impl Default for LoadOptions {
 
 /// Everything a library is made of once loaded.
 pub(crate) struct Loaded {
+    /// The dialect the modules are written in.
+    pub dialect: Dialect,
     /// What loads but is probably not meant (declared keywords no module reads).
     pub warnings: Vec<crate::diagnostic::Diagnostic>,
     pub files: SourceFiles,
@@ -55,6 +57,11 @@ pub(crate) fn load(
     escaping: &[String],
     options: &LoadOptions,
 ) -> Result<Loaded, LoadError> {
+    // `.wesl` files are modules of WESL trees only.
+    let raw = raw
+        .into_iter()
+        .filter(|f| !f.path.ends_with(".wesl"))
+        .collect();
     let (files, paths, mut modules) = parse_all(raw, Dialect::WgslVariants, options)?;
     let mut problems = Vec::new();
     let resolved = resolve_paths(&modules, &paths, escaping, &mut problems);
@@ -84,18 +91,39 @@ pub(crate) fn load_declared(
     // The declaration's file id comes after the modules'; its `exclude` list decides how many
     // modules there are, so it is parsed once for the list and again with its final id.
     let text = String::from_utf8_lossy(&declaration.bytes).into_owned();
-    let exclude = crate::declaration::parse(raw.len(), &text)
-        .map(|d| d.exclude)
-        .unwrap_or_default();
-    let raw: Vec<RawFile> = raw
-        .into_iter()
-        .filter(|f| {
-            !exclude.iter().any(|e| {
-                f.path == *e || f.path.starts_with(&format!("{}/", e.trim_end_matches('/')))
-            })
+    let (exclude, dialect) = crate::declaration::parse(raw.len(), &text)
+        .map(|d| (d.exclude, d.dialect))
+        .unwrap_or((Vec::new(), Dialect::NagaOil));
+    let wesl_stems: Vec<&str> = raw
+        .iter()
+        .filter_map(|f| f.path.strip_suffix(".wesl"))
+        .collect();
+    // WESL reads `x.wesl` before `x.wgsl`; other dialects have no `.wesl` modules.
+    let keep: Vec<bool> = raw
+        .iter()
+        .map(|f| match dialect {
+            Dialect::Wesl => f
+                .path
+                .strip_suffix(".wgsl")
+                .is_none_or(|stem| !wesl_stems.contains(&stem)),
+            _ => !f.path.ends_with(".wesl"),
         })
         .collect();
-    let (mut files, paths, mut modules) = parse_all(raw, Dialect::NagaOil, options)?;
+    let raw: Vec<RawFile> = raw
+        .into_iter()
+        .zip(keep)
+        .filter(|(f, keep)| {
+            *keep
+                && !exclude.iter().any(|e| {
+                    f.path == *e || f.path.starts_with(&format!("{}/", e.trim_end_matches('/')))
+                })
+        })
+        .map(|(f, _)| f)
+        .collect();
+    let (mut files, paths, mut modules) = parse_all(raw, dialect, options)?;
+    if dialect == Dialect::Wesl {
+        wesl_module_paths(&mut modules, &paths);
+    }
     let (ids, errors) = source::decode(vec![declaration], &mut files);
     if let Some(e) = errors.into_iter().next() {
         return Err(LoadError {
@@ -116,12 +144,15 @@ pub(crate) fn load_declared(
     let mut entries = Vec::new();
     for shader in &decl.shaders {
         let (entry, span) = &shader.entry;
-        let stem = entry.strip_suffix(".wgsl").unwrap_or(entry);
+        let stem = entry
+            .strip_suffix(".wgsl")
+            .or_else(|| entry.strip_suffix(".wesl"))
+            .unwrap_or(entry);
         match paths.iter().position(|p| p == stem) {
             Some(id) => entries.push(id),
             None => {
                 let hint = suggest(stem, paths.iter().map(String::as_str))
-                    .map(|s| format!("; did you mean `{s}.wgsl`?"))
+                    .map(|s| format!("; did you mean `{s}.{}`?", extension(dialect)))
                     .unwrap_or_default();
                 problems.push(
                     LinkError::UnknownEntry {
@@ -139,7 +170,7 @@ pub(crate) fn load_declared(
     for module in &mut modules {
         inline_imports(module, files.text(module.file), &names);
     }
-    let resolved = resolve_names(&modules, &names, &entries, &mut problems);
+    let resolved = resolve_names(&modules, &names, &entries, dialect, &mut problems);
     if problems.is_empty() {
         problems.extend(
             check_graph(&modules, &paths, &resolved, options.max_import_depth)
@@ -175,6 +206,7 @@ pub(crate) fn load_declared(
         .collect();
     let mut loaded = assemble(files, paths, modules, resolved, decls, problems)?;
     loaded.warnings = warnings;
+    loaded.dialect = dialect;
     Ok(loaded)
 }
 
@@ -190,16 +222,7 @@ fn unread_keywords(
 ) -> Vec<crate::diagnostic::Diagnostic> {
     let mut warnings = Vec::new();
     for (shader, &entry) in decl.shaders.iter().zip(entries) {
-        let mut reached = vec![entry];
-        let mut at = 0;
-        while let Some(&m) = reached.get(at) {
-            at += 1;
-            for &t in &resolved[m] {
-                if t != usize::MAX && !reached.contains(&t) {
-                    reached.push(t);
-                }
-            }
-        }
+        let reached = crate::preprocess::compose::reach(resolved, entry);
         let mentions = |name: &str| {
             reached.iter().any(|&m| {
                 let text = files.text(modules[m].file);
@@ -261,6 +284,7 @@ fn assemble(
         return Err(LoadError { files, problems });
     }
     Ok(Loaded {
+        dialect: Dialect::WgslVariants,
         warnings: Vec::new(),
         files,
         modules,
@@ -287,7 +311,13 @@ fn parse_all(
     }
     let paths: Vec<String> = raw
         .iter()
-        .map(|f| f.path.strip_suffix(".wgsl").unwrap_or(&f.path).to_string())
+        .map(|f| {
+            f.path
+                .strip_suffix(".wgsl")
+                .or_else(|| f.path.strip_suffix(".wesl"))
+                .unwrap_or(&f.path)
+                .to_string()
+        })
         .collect();
     let (ids, decode_errors) = source::decode(raw, &mut files);
     let mut problems: Vec<LoadProblem> = decode_errors.into_iter().map(Into::into).collect();
@@ -362,6 +392,41 @@ fn resolve_paths(
     resolved
 }
 
+/// The extension of a dialect's module files.
+fn extension(dialect: Dialect) -> &'static str {
+    if dialect == Dialect::Wesl {
+        "wesl"
+    } else {
+        "wgsl"
+    }
+}
+
+/// WESL: a module's name is its path in the package (`a/b.wesl` is `package::a::b`), and
+/// `self::` / `super::` in its imports are relative to that name (each `super` drops one
+/// component, as `wesl` joins relative paths).
+fn wesl_module_paths(modules: &mut [ParsedModule], paths: &[String]) {
+    for (m, path) in modules.iter_mut().zip(paths) {
+        let name = format!("package::{}", path.replace('/', "::"));
+        for import in &mut m.imports {
+            let mut rest = import.path.as_str();
+            let mut base: Vec<&str> = name.split("::").collect();
+            let relative = rest.starts_with("super::") || rest.starts_with("self::");
+            rest = rest.strip_prefix("self::").unwrap_or(rest);
+            while let Some(r) = rest.strip_prefix("super::") {
+                // `package` itself has no parent: such a path names nothing.
+                if base.len() > 1 {
+                    base.pop();
+                }
+                rest = r;
+            }
+            if relative {
+                import.path = format!("{}::{rest}", base.join("::"));
+            }
+        }
+        m.import_name = Some((name, crate::diagnostic::Span::new(m.file, 0..0)));
+    }
+}
+
 /// naga_oil: the modules each `#define_import_path` name belongs to (more than one is an
 /// error once a composed module imports the name).
 fn import_names(modules: &[ParsedModule]) -> HashMap<String, Vec<usize>> {
@@ -393,6 +458,7 @@ fn resolve_names(
     modules: &[ParsedModule],
     names: &HashMap<String, Vec<usize>>,
     entries: &[usize],
+    dialect: Dialect,
     problems: &mut Vec<LoadProblem>,
 ) -> Vec<Vec<usize>> {
     let mut resolved: Vec<Option<Vec<usize>>> = vec![None; modules.len()];
@@ -431,12 +497,21 @@ fn resolve_names(
                     let hint = suggest(&import.path, names.keys().map(String::as_str))
                         .map(|s| format!("; did you mean `{s}`?"))
                         .unwrap_or_default();
+                    let reason = match dialect {
+                        Dialect::Wesl if import.path.starts_with("package::") => format!(
+                            "no module of the tree is this path or a prefix of it (`package::a::b` is the file `a/b.wesl` or `a/b.wgsl`){hint}"
+                        ),
+                        Dialect::Wesl => format!(
+                            "only `package::` and `super::` paths name modules of the tree (other packages are not read){hint}"
+                        ),
+                        _ => format!(
+                            "no module of the tree has this `#define_import_path` or a prefix of it{hint}"
+                        ),
+                    };
                     problems.push(
                         LinkError::MissingImport {
                             path: import.path.clone(),
-                            reason: format!(
-                                "no module of the tree has this `#define_import_path` or a prefix of it{hint}"
-                            ),
+                            reason,
                             span: import.span,
                         }
                         .into(),

@@ -4,6 +4,8 @@ mod error;
 mod load;
 #[cfg(feature = "naga-oil")]
 mod naga_oil;
+#[cfg(feature = "wesl")]
+mod wesl;
 
 use std::path::Path;
 
@@ -45,6 +47,8 @@ pub struct Library {
     warnings: Vec<crate::Diagnostic>,
     #[cfg(feature = "naga-oil")]
     naga_oil: Option<naga_oil::NagaOilEngine>,
+    #[cfg(feature = "wesl")]
+    wesl: Option<wesl::WeslEngine>,
 }
 
 impl std::fmt::Debug for Library {
@@ -103,11 +107,18 @@ fn raw_files<P: Into<String>, T: Into<String>>(
 
 /// The failure of a naga_oil variant when this build has no naga_oil (the `naga-oil` cargo
 /// feature off).
-fn unreachable_engine(variant: &Variant<'_>) -> Result<String, VariantError> {
+fn unreachable_engine(
+    variant: &Variant<'_>,
+    dialect: crate::Dialect,
+) -> Result<String, VariantError> {
     Err(VariantError {
         variant: variant.label(),
         stage: crate::validate::Stage::Compose,
-        message: "this build of wgsl-variants has no naga_oil (cargo feature `naga-oil`): naga_oil trees load and audit, but cannot compose".into(),
+        message: format!(
+            "this build of wgsl-variants cannot compose `{}` trees (cargo feature `{}` off): they load and audit, but cannot compose",
+            dialect.name(),
+            dialect.name()
+        ),
         labels: Vec::new(),
         notes: Vec::new(),
     })
@@ -202,12 +213,13 @@ impl Library {
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
         let l = load::load_declared(raw, declaration, options)?;
-        Ok(Library::from_loaded(l, origin, crate::Dialect::NagaOil))
+        Ok(Library::from_loaded(l, origin))
     }
 
-    /// The library of a loaded tree in `dialect` (with its naga_oil composer when it is a
-    /// naga_oil tree).
-    fn from_loaded(l: load::Loaded, origin: Origin, dialect: crate::Dialect) -> Library {
+    /// The library of a loaded tree (with the engine that composes it when it is a naga_oil
+    /// or WESL tree).
+    fn from_loaded(l: load::Loaded, origin: Origin) -> Library {
+        let dialect = l.dialect;
         #[cfg(feature = "naga-oil")]
         let naga_oil = (dialect == crate::Dialect::NagaOil).then(|| {
             naga_oil::NagaOilEngine::new(
@@ -218,6 +230,8 @@ impl Library {
                     .flat_map(|s| s.passes.iter().map(|p| p.module)),
             )
         });
+        #[cfg(feature = "wesl")]
+        let wesl = (dialect == crate::Dialect::Wesl).then(|| wesl::WeslEngine::new(&l.modules));
         Library {
             files: l.files,
             modules: l.modules,
@@ -229,6 +243,8 @@ impl Library {
             warnings: l.warnings,
             #[cfg(feature = "naga-oil")]
             naga_oil,
+            #[cfg(feature = "wesl")]
+            wesl,
         }
     }
 
@@ -269,11 +285,7 @@ impl Library {
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
         let l = load::load(raw, escaping, options)?;
-        Ok(Library::from_loaded(
-            l,
-            origin,
-            crate::Dialect::WgslVariants,
-        ))
+        Ok(Library::from_loaded(l, origin))
     }
 
     /// What loaded but is probably not meant, to show the user (render with
@@ -411,8 +423,8 @@ impl Library {
     }
 
     fn compose_with(&self, variant: &Variant<'_>, with_map: bool) -> Composed {
-        if self.dialect == crate::Dialect::NagaOil {
-            return self.compose_naga_oil(variant);
+        if self.dialect != crate::Dialect::WgslVariants {
+            return self.compose_by_engine(variant);
         }
         let graph = ModuleGraph {
             modules: &self.modules,
@@ -428,16 +440,22 @@ impl Library {
         )
     }
 
-    /// A naga_oil tree's variant, composed by naga_oil: its program written back as WGSL, or
-    /// the failure (see [`Composed::failure`]).
-    fn compose_naga_oil(&self, variant: &Variant<'_>) -> Composed {
-        #[cfg(feature = "naga-oil")]
-        let result = match &self.naga_oil {
-            Some(engine) => engine.compose(&self.files, &self.modules, variant),
-            None => unreachable_engine(variant),
+    /// A naga_oil or WESL tree's variant, composed by naga_oil or the `wesl` crate: its
+    /// program as WGSL, or the failure (see [`Composed::failure`]).
+    fn compose_by_engine(&self, variant: &Variant<'_>) -> Composed {
+        let result = match self.dialect {
+            #[cfg(feature = "naga-oil")]
+            crate::Dialect::NagaOil => match &self.naga_oil {
+                Some(engine) => engine.compose(&self.files, &self.modules, variant),
+                None => unreachable_engine(variant, self.dialect),
+            },
+            #[cfg(feature = "wesl")]
+            crate::Dialect::Wesl => match &self.wesl {
+                Some(engine) => engine.compose(&self.files, &self.modules, variant),
+                None => unreachable_engine(variant, self.dialect),
+            },
+            _ => unreachable_engine(variant, self.dialect),
         };
-        #[cfg(not(feature = "naga-oil"))]
-        let result = unreachable_engine(variant);
         match result {
             Ok(text) => Composed {
                 text,

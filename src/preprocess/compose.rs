@@ -18,6 +18,29 @@ pub struct ModuleGraph<'a> {
     pub files: &'a SourceFiles,
 }
 
+impl ModuleGraph<'_> {
+    /// The modules `root` reaches through its imports under any conditions, `root` first
+    /// (unresolved imports skipped).
+    pub fn reach(&self, root: usize) -> Vec<usize> {
+        reach(self.resolved, root)
+    }
+}
+
+/// The modules `root` reaches in an import graph, `root` first.
+pub(crate) fn reach(resolved: &[Vec<usize>], root: usize) -> Vec<usize> {
+    let mut reached = vec![root];
+    let mut at = 0;
+    while let Some(&m) = reached.get(at) {
+        at += 1;
+        for &t in resolved.get(m).map_or(&[][..], Vec::as_slice) {
+            if t != usize::MAX && !reached.contains(&t) {
+                reached.push(t);
+            }
+        }
+    }
+    reached
+}
+
 /// The WGSL text of one variant and the map back to its sources.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Composed {

@@ -67,6 +67,24 @@ pub enum ParseError {
         /// Where.
         span: Span,
     },
+    /// A WESL module that does not parse as WESL (reported by `wgsl-parse`).
+    #[error("WESL syntax error: {message}")]
+    Syntax {
+        /// What is wrong.
+        message: String,
+        /// Where.
+        span: Span,
+    },
+    /// A malformed WESL `@if` / `@elif` / `@else` attribute.
+    #[error("malformed `@{attribute}`: {message}")]
+    Attribute {
+        /// `if`, `elif` or `else`.
+        attribute: &'static str,
+        /// What is wrong.
+        message: String,
+        /// Where.
+        span: Span,
+    },
     /// `#if` nesting or expression nesting beyond the configured limit.
     #[error("{what} nested deeper than the limit of {limit}")]
     TooDeep {
@@ -90,7 +108,9 @@ impl ParseError {
             | ParseError::AfterElse { span, .. }
             | ParseError::Unterminated { span, .. }
             | ParseError::Misplaced { span, .. }
-            | ParseError::TooDeep { span, .. } => *span,
+            | ParseError::TooDeep { span, .. }
+            | ParseError::Syntax { span, .. }
+            | ParseError::Attribute { span, .. } => *span,
         }
     }
 

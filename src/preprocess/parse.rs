@@ -13,6 +13,8 @@ use super::tree::{
 };
 
 mod naga_oil;
+#[cfg(feature = "wesl")]
+mod wesl;
 
 /// The directive languages a module can be written in.
 #[derive(
@@ -28,6 +30,11 @@ pub enum Dialect {
     /// `#if DEF op VALUE`, `#else ifdef …`, `#endif`, `#define`; keywords are declared in a
     /// [declaration file](crate::declaration), and variants are composed by naga_oil itself.
     NagaOil,
+    /// WESL's (Bevy's main branch): `.wesl` modules with `import package::a::{b}` and
+    /// `@if` / `@elif` / `@else` attributes on declarations, members and statements; keywords
+    /// are WESL features declared in a [declaration file](crate::declaration), and variants
+    /// are composed by the `wesl` crate itself.
+    Wesl,
 }
 
 impl Dialect {
@@ -37,6 +44,7 @@ impl Dialect {
         match self {
             Dialect::WgslVariants => "wgsl-variants",
             Dialect::NagaOil => "naga-oil",
+            Dialect::Wesl => "wesl",
         }
     }
 }
@@ -77,6 +85,16 @@ pub fn parse_module_in(
     text: &str,
     limits: ParseLimits,
 ) -> Result<ParsedModule, Vec<ParseError>> {
+    if dialect == Dialect::Wesl {
+        #[cfg(feature = "wesl")]
+        return wesl::parse(file, text, limits);
+        #[cfg(not(feature = "wesl"))]
+        return Err(vec![ParseError::Syntax {
+            message: "this build of wgsl-variants has no WESL support (cargo feature `wesl`)"
+                .into(),
+            span: Span::new(file, 0..0),
+        }]);
+    }
     let scanned = lines::scan(text);
     let mut p = ModuleParser {
         dialect,
@@ -201,6 +219,8 @@ impl<'a> ModuleParser<'a> {
             (None, _) => self.text_line(index, line),
             (Some(range), Dialect::WgslVariants) => self.directive(range.clone()),
             (Some(range), Dialect::NagaOil) => self.naga_oil_directive(range.clone()),
+            // WESL modules are parsed whole (`parse_module_in`), never line by line.
+            (Some(_), Dialect::Wesl) => self.text_line(index, line),
         }
     }
 

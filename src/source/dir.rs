@@ -67,7 +67,7 @@ pub fn read_dir_tree(
             if resolved.is_dir() {
                 stack.push(resolved);
                 rel_stack.push(rel_path);
-            } else if name.ends_with(".wgsl") {
+            } else if name.ends_with(".wgsl") || name.ends_with(".wesl") {
                 let bytes = fs::read(&resolved).map_err(|e| io(&path, e))?;
                 files.push(RawFile {
                     path: rel_path,

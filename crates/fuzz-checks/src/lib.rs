@@ -67,18 +67,7 @@ pub fn pragmas(data: &[u8]) {
 /// Several modules with imports between them (cycles, diamonds, missing and escaping paths):
 /// the input is split into files at `\0`, named m0..mN. Loading never panics or hangs.
 pub fn loader(data: &[u8]) {
-    let files: Vec<(String, String)> = data
-        .split(|&b| b == 0)
-        .take(64)
-        .enumerate()
-        .map(|(i, bytes)| {
-            (
-                format!("m{i}.wgsl"),
-                String::from_utf8_lossy(bytes).into_owned(),
-            )
-        })
-        .collect();
-    if let Ok(lib) = Library::from_sources(files) {
+    if let Ok(lib) = Library::from_sources(split_files(data, 64, "wgsl")) {
         for pass in lib.passes() {
             if let Ok(v) = lib.variant(&pass.shader, &pass.name, &[] as &[&str]) {
                 let _ = lib.wgsl(&v);
@@ -91,24 +80,44 @@ pub fn loader(data: &[u8]) {
 /// `#define_import_path`), declared with keywords `A` and `B`. Loading never panics; neither
 /// does composing a variant through naga_oil (its errors become diagnostics).
 pub fn naga_oil(data: &[u8]) {
-    let files: Vec<(String, String)> = data
-        .split(|&b| b == 0)
-        .take(16)
+    declared_tree(split_files(data, 16, "wgsl"), "m0.wgsl");
+}
+
+/// WESL's dialect: the input is split into files at `\0` (m0.wesl is the entry; `@if`
+/// attributes, `import package::m1::f;`), declared with keywords `A` and `B`. Loading (the
+/// `@if` tree read from wgsl-parse's syntax tree) never panics; neither does composing a
+/// variant through the `wesl` crate (its errors become diagnostics), nor the audit.
+pub fn wesl(data: &[u8]) {
+    declared_tree(split_files(data, 16, "wesl"), "m0.wesl");
+}
+
+/// The input split into files at `\0`, at most `max`, named `m0.EXT`, `m1.EXT`…
+fn split_files(data: &[u8], max: usize, ext: &str) -> Vec<(String, String)> {
+    data.split(|&b| b == 0)
+        .take(max)
         .enumerate()
         .map(|(i, bytes)| {
             (
-                format!("m{i}.wgsl"),
+                format!("m{i}.{ext}"),
                 String::from_utf8_lossy(bytes).into_owned(),
             )
         })
-        .collect();
-    let declaration = "[[shader]]\nname = \"s\"\nentry = \"m0.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"A\"], [\"_\", \"B\"]]\n";
-    if let Ok(lib) = Library::from_declared_sources(declaration, files)
+        .collect()
+}
+
+/// A tree of `files` declared with one pass (keywords `A` and `B`) composing `entry`: every
+/// variant composes and validates or fails with a diagnostic; the audit runs.
+fn declared_tree(files: Vec<(String, String)>, entry: &str) {
+    let declaration = format!(
+        "[[shader]]\nname = \"s\"\nentry = \"{entry}\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"A\"], [\"_\", \"B\"]]\n"
+    );
+    if let Ok(lib) = Library::from_declared_sources(&declaration, files)
         && let Ok(pass) = lib.pass("s", "P")
     {
         for choice in Space::full(pass).iter() {
             let _ = lib.naga_module(&Variant { pass, choice });
         }
+        let _ = wgsl_variants::audit::audit_pass(&lib, pass, &Default::default());
     }
 }
 

@@ -70,10 +70,14 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
         print_json(&report)?;
     } else {
         print!("{}", table(&report.passes));
-        if ctx.lib.dialect() == wgsl_variants::Dialect::NagaOil {
-            println!(
+        match ctx.lib.dialect() {
+            wgsl_variants::Dialect::NagaOil => println!(
                 "note: a naga_oil tree: \"distinct\" counts preprocessed texts, an upper bound on the programs naga_oil composes (it keeps only the imported items a program uses)"
-            );
+            ),
+            wgsl_variants::Dialect::Wesl => println!(
+                "note: a WESL tree: \"distinct\" counts the texts left by the `@if` conditions, an upper bound on the programs the wesl crate composes (it keeps only the declarations the entry points reach)"
+            ),
+            _ => {}
         }
     }
     for v in report.over_budget() {

@@ -29,7 +29,7 @@ use wgsl_variants::{Library, LoadOptions};
 #[command(name = "wgsl-variants", version, about, long_about = None)]
 pub struct Cli {
     /// Library root (a folder of .wgsl modules; with a wgsl-variants.toml at its root, a
-    /// naga_oil tree it declares). Default: the bundled library.
+    /// naga_oil or WESL tree it declares). Default: the bundled library.
     #[arg(long, global = true, value_name = "DIR")]
     root: Option<PathBuf>,
     /// Print one JSON object on stdout instead of text.
