@@ -23,6 +23,7 @@
 //!
 //! [[shader.pass]]
 //! name = "Forward"
+//! # entry = "render/pbr_forward.wgsl"   # a pass may compose its own entry module
 //! multi_compile = [["_", "SKINNED"], ["_", "MORPH_TARGETS"]]
 //! shader_feature = [["_", "VERTEX_UVS"]]
 //! require = [["VERTEX_TANGENTS", "VERTEX_UVS"]]   # the first needs the others on
@@ -191,6 +192,7 @@ type Names = Spanned<Vec<Spanned<String>>>;
 #[serde(deny_unknown_fields)]
 struct PassToml {
     name: Spanned<String>,
+    entry: Option<Spanned<String>>,
     #[serde(default)]
     tags: BTreeMap<String, String>,
     #[serde(default)]
@@ -469,6 +471,8 @@ fn pass_decl(
         pragmas,
         body: Vec::new(),
         constants: Vec::new(),
+        entry: p.entry.map(|e| (e.get_ref().clone(), at(e.span()))),
+        module: None,
     }
 }
 

@@ -41,6 +41,8 @@ use crate::preprocess::tree::Node;
 use super::export::{ExportError, dependency_order, import_closure, library_order, module_index};
 use super::naga_oil::import_path;
 use super::scan::{Scan, comment_step, scan_library, scan_nodes};
+use crate::keywords::ConstraintKind;
+use crate::preprocess::tree::SetKind;
 use crate::shader::Pass;
 
 /// One module in WESL's dialect (serialized as `module`, `module_path` and `source`).
@@ -940,4 +942,132 @@ const a: f32 = 1.0; /* trailing · */
             "{err}"
         );
     }
+}
+
+/// The whole library as a WESL tree, as files (`(relative path, text)`): every module
+/// ([`export_all`]), each pass's root module that is not one of them ([`export_pass`]), and
+/// the [`declaration`] file, so `wgsl-variants --root DIR` reads it back as a WESL tree.
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let files = wgsl_variants::emit::wesl::export_tree(&lib).unwrap();
+/// assert!(files.iter().any(|(p, _)| p == "deferred/ldr.wesl"));
+/// assert_eq!(files.last().unwrap().0, "wgsl-variants.toml");
+/// ```
+pub fn export_tree(lib: &Library) -> Result<Vec<(String, String)>, ExportError> {
+    let mut modules = export_all(lib)?;
+    for pass in lib.passes() {
+        let root = export_pass(lib, pass)?.root;
+        if !modules.iter().any(|m| m.path == root.path) {
+            modules.push(root);
+        }
+    }
+    let mut files: Vec<(String, String)> = modules
+        .into_iter()
+        .map(|m| (format!("{}.wesl", m.path), m.source))
+        .collect();
+    files.push((crate::declaration::FILE_NAME.to_string(), declaration(lib)?));
+    Ok(files)
+}
+
+/// The declaration file (`wgsl-variants.toml`) of the WESL export of every pass: the passes'
+/// keyword sets, constraints, `skip_variants` and tags as they are, each pass composing its
+/// root module ([`export_pass`]) with its `#define`s as `Bool` constants (features). Written
+/// next to the modules, it makes the export a WESL tree this crate loads again, with the same
+/// variants (`tests/export.rs` validates it).
+///
+/// ```
+/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let toml = wgsl_variants::emit::wesl::declaration(&lib).unwrap();
+/// assert!(toml.starts_with("# The keywords of"));
+/// assert!(toml.contains("entry = \"standard/my_lighting.wesl\""));
+/// assert!(toml.contains("constants = { DEFERRED_PASS = true }"));
+/// ```
+pub fn declaration(lib: &Library) -> Result<String, ExportError> {
+    use std::fmt::Write;
+    let quote = |s: &str| toml::Value::String(s.to_string()).to_string();
+    let names = |names: &[Option<String>]| -> String {
+        let items: Vec<String> = names
+            .iter()
+            .map(|n| quote(n.as_deref().unwrap_or("_")))
+            .collect();
+        format!("[{}]", items.join(", "))
+    };
+    let mut out = String::from(
+        "# The keywords of this WESL tree, exported from wgsl-variants' library: each pass composes\n# its root module with its keywords as WESL features (`wgsl-variants --root DIR validate`).\ndialect = \"wesl\"\n",
+    );
+    for shader in lib.shaders() {
+        let mut passes = Vec::new();
+        for pass in &shader.passes {
+            passes.push((pass, export_pass(lib, pass)?));
+        }
+        let Some((_, first)) = passes.first() else {
+            continue;
+        };
+        let _ = write!(
+            out,
+            "\n[[shader]]\nname = {}\nentry = {}\n",
+            quote(&shader.name),
+            quote(&format!("{}.wesl", first.root.path))
+        );
+        for (pass, exported) in &passes {
+            let _ = write!(
+                out,
+                "\n[[shader.pass]]\nname = {}\nentry = {}\n",
+                quote(&pass.name),
+                quote(&format!("{}.wesl", exported.root.path))
+            );
+            if !pass.tags.is_empty() {
+                let tags: Vec<String> = pass
+                    .tags
+                    .iter()
+                    .map(|(k, v)| format!("{} = {}", quote(k), quote(v)))
+                    .collect();
+                let _ = writeln!(out, "tags = {{ {} }}", tags.join(", "));
+            }
+            for (kind, local, key) in [
+                (SetKind::MultiCompile, false, "multi_compile"),
+                (SetKind::MultiCompile, true, "multi_compile_local"),
+                (SetKind::ShaderFeature, false, "shader_feature"),
+                (SetKind::ShaderFeature, true, "shader_feature_local"),
+            ] {
+                let sets: Vec<String> = pass
+                    .sets
+                    .iter()
+                    .filter(|s| s.kind == kind && s.local == local)
+                    .map(|s| names(&s.options))
+                    .collect();
+                if !sets.is_empty() {
+                    let _ = writeln!(out, "{key} = [{}]", sets.join(", "));
+                }
+            }
+            for (kind, key) in [
+                (ConstraintKind::Require, "require"),
+                (ConstraintKind::Exclude, "exclude"),
+            ] {
+                let pairs: Vec<String> = pass
+                    .constraints
+                    .iter()
+                    .filter(|c| c.kind == kind)
+                    .map(|c| names(&[Some(c.keywords[0].clone()), Some(c.keywords[1].clone())]))
+                    .collect();
+                if !pairs.is_empty() {
+                    let _ = writeln!(out, "{key} = [{}]", pairs.join(", "));
+                }
+            }
+            if !pass.skip_variants.is_empty() {
+                let skips: Vec<String> = pass.skip_variants.iter().map(|k| quote(k)).collect();
+                let _ = writeln!(out, "skip_variants = [{}]", skips.join(", "));
+            }
+            if !exported.features.is_empty() {
+                let features: Vec<String> = exported
+                    .features
+                    .iter()
+                    .map(|f| format!("{f} = true"))
+                    .collect();
+                let _ = writeln!(out, "constants = {{ {} }}", features.join(", "));
+            }
+        }
+    }
+    Ok(out)
 }

@@ -141,36 +141,53 @@ pub(crate) fn load_declared(
         }
     };
     let mut problems = Vec::new();
+    // Each shader's entry module, and each pass's own where it names one.
+    let mut decl = decl;
     let mut entries = Vec::new();
-    for shader in &decl.shaders {
-        let (entry, span) = &shader.entry;
+    let mut find = |shader: &str, (entry, span): &(String, crate::diagnostic::Span)| {
         let stem = entry
             .strip_suffix(".wgsl")
             .or_else(|| entry.strip_suffix(".wesl"))
             .unwrap_or(entry);
-        match paths.iter().position(|p| p == stem) {
-            Some(id) => entries.push(id),
-            None => {
-                let hint = suggest(stem, paths.iter().map(String::as_str))
-                    .map(|s| format!("; did you mean `{s}.{}`?", extension(dialect)))
-                    .unwrap_or_default();
-                problems.push(
-                    LinkError::UnknownEntry {
-                        shader: shader.name.clone(),
-                        path: entry.clone(),
-                        hint,
-                        span: *span,
-                    }
-                    .into(),
-                );
-            }
+        let found = paths.iter().position(|p| p == stem);
+        if found.is_none() {
+            let hint = suggest(stem, paths.iter().map(String::as_str))
+                .map(|s| format!("; did you mean `{s}.{}`?", extension(dialect)))
+                .unwrap_or_default();
+            problems.push(
+                LinkError::UnknownEntry {
+                    shader: shader.to_string(),
+                    path: entry.clone(),
+                    hint,
+                    span: *span,
+                }
+                .into(),
+            );
         }
+        found
+    };
+    for shader in &mut decl.shaders {
+        let id = find(&shader.name, &shader.entry);
+        for pass in &mut shader.passes {
+            pass.module = match &pass.entry {
+                Some(entry) => find(&shader.name, entry),
+                None => id,
+            };
+        }
+        entries.push(id);
     }
+    let roots: Vec<usize> = decl
+        .shaders
+        .iter()
+        .zip(&entries)
+        .flat_map(|(s, id)| s.passes.iter().map(|p| p.module).chain([*id]))
+        .flatten()
+        .collect();
     let names = import_names(&modules);
     for module in &mut modules {
         inline_imports(module, files.text(module.file), &names);
     }
-    let resolved = resolve_names(&modules, &names, &entries, dialect, &mut problems);
+    let resolved = resolve_names(&modules, &names, &roots, dialect, &mut problems);
     if problems.is_empty() {
         problems.extend(
             check_graph(&modules, &paths, &resolved, options.max_import_depth)
@@ -178,21 +195,22 @@ pub(crate) fn load_declared(
                 .map(Into::into),
         );
     }
-    let warnings = if problems.is_empty() {
-        unread_keywords(&decl, &entries, &modules, &resolved, &files)
-    } else {
-        Vec::new()
-    };
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
+    }
+    let warnings = unread_keywords(&decl, &modules, &resolved, &files);
     let decls = decl
         .shaders
         .into_iter()
         .zip(entries)
         .map(|(shader, id)| {
+            // Every entry was found (no problem so far).
+            let id = id.unwrap_or_default();
             let passes = shader
                 .passes
                 .into_iter()
                 .map(|mut p| {
-                    p.body = modules[id].body.clone();
+                    p.body = modules[p.module.unwrap_or(id)].body.clone();
                     p
                 })
                 .collect();
@@ -215,39 +233,41 @@ pub(crate) fn load_declared(
 /// typo or meant for another tree.
 fn unread_keywords(
     decl: &crate::declaration::Declaration,
-    entries: &[usize],
     modules: &[ParsedModule],
     resolved: &[Vec<usize>],
     files: &SourceFiles,
 ) -> Vec<crate::diagnostic::Diagnostic> {
     let mut warnings = Vec::new();
-    for (shader, &entry) in decl.shaders.iter().zip(entries) {
-        let reached = crate::preprocess::compose::reach(resolved, entry);
-        let mentions = |name: &str| {
-            reached.iter().any(|&m| {
-                let text = files.text(modules[m].file);
-                text.match_indices(name).any(|(i, _)| {
-                    let before = text[..i].chars().next_back();
-                    let after = text[i + name.len()..].chars().next();
-                    let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
-                    !word(before) && !word(after)
-                })
-            })
-        };
+    for shader in &decl.shaders {
         for pass in &shader.passes {
-            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
-                .pragmas
-                .iter()
-                .filter_map(|p| match p {
-                    crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
-                    _ => None,
+            let Some(entry) = pass.module else { continue };
+            let reached = crate::preprocess::compose::reach(resolved, entry);
+            let mentions = |name: &str| {
+                reached.iter().any(|&m| {
+                    let text = files.text(modules[m].file);
+                    text.match_indices(name).any(|(i, _)| {
+                        let before = text[..i].chars().next_back();
+                        let after = text[i + name.len()..].chars().next();
+                        let word =
+                            |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+                        !word(before) && !word(after)
+                    })
                 })
-                .flatten()
-                .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
-                .collect();
-            if let Some((_, first)) = unread.first() {
-                let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
-                warnings.push(
+            };
+            {
+                let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
+                    .pragmas
+                    .iter()
+                    .filter_map(|p| match p {
+                        crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
+                        _ => None,
+                    })
+                    .flatten()
+                    .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
+                    .collect();
+                if let Some((_, first)) = unread.first() {
+                    let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
+                    warnings.push(
                     crate::diagnostic::Diagnostic::new(format!(
                         "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
                         list.len(),
@@ -259,6 +279,7 @@ fn unread_keywords(
                     .at(*first, "never read")
                     .note("they change no variant: a typo, or a def of another tree? (the audit lists them as dead)"),
                 );
+                }
             }
         }
     }
@@ -753,7 +774,7 @@ fn build_shaders(
                 continue;
             }
             pass_spans.insert(pass.name.clone(), pass.span);
-            match Pass::new(&decl.name, id, pass) {
+            match Pass::new(&decl.name, pass.module.unwrap_or(id), pass) {
                 Ok(p) => passes.push(p),
                 Err(errs) => problems.extend(errs.into_iter().map(Into::into)),
             }

@@ -636,6 +636,8 @@ impl<'a> ModuleParser<'a> {
             pragmas: Vec::new(),
             body: Vec::new(),
             constants: Vec::new(),
+            entry: None,
+            module: None,
         });
         Ok(())
     }

@@ -105,6 +105,11 @@ pub struct PassDecl {
     pub body: Vec<Node>,
     /// Shader defs with a fixed value (declaration files' `constants`).
     pub constants: Vec<crate::declaration::Constant>,
+    /// The pass's own entry module, where a declaration file names one (its path as written
+    /// and where); otherwise the pass composes its shader's.
+    pub entry: Option<(String, Span)>,
+    /// The module id of `entry`, once the loader has found it.
+    pub module: Option<usize>,
 }
 
 /// A shader file's `#shader` declaration and passes.

@@ -128,14 +128,30 @@ pub fn run(ctx: &Context, args: &ExportArgs) -> Result<ExitCode, Failed> {
                 }
             }
             if let Some(dir) = &args.out {
-                for m in &modules {
-                    write(dir, &format!("{}.wesl", m.path), &m.source)?;
+                // With --all, the keywords too: the folder is a WESL tree `--root` reads back.
+                let files = if args.all {
+                    wesl::export_tree(&ctx.lib).map_err(|e| fail(ctx, e))?
+                } else {
+                    modules
+                        .iter()
+                        .map(|m| (format!("{}.wesl", m.path), m.source.clone()))
+                        .collect()
+                };
+                for (path, text) in &files {
+                    write(dir, path, text)?;
                 }
                 println!(
                     "wrote {} WESL module(s) to {}",
                     modules.len(),
                     dir.display()
                 );
+                if args.all {
+                    println!(
+                        "wrote {} (check the export: wgsl-variants --root {} validate --all)",
+                        wgsl_variants::declaration::FILE_NAME,
+                        dir.display()
+                    );
+                }
                 for r in &roots {
                     println!("{r}");
                 }
