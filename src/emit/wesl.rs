@@ -837,113 +837,6 @@ fn split_body(node: &[Piece]) -> Option<(String, Vec<Piece>, String)> {
     (phase == 2).then_some((header, body, footer))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn export_text(files: &[(&str, &str)], module: &str) -> String {
-        let raw = files
-            .iter()
-            .map(|(p, t)| crate::source::RawFile {
-                path: p.to_string(),
-                bytes: t.as_bytes().to_vec(),
-            })
-            .collect();
-        let lib = Library::from_raw(raw, &Default::default()).unwrap();
-        export(&lib, module).unwrap().pop().unwrap().source
-    }
-
-    #[test]
-    fn declarations_members_and_statements() {
-        let src = "\
-struct S {
-    a: f32,
-#if defined(B)
-    b: array<f32, 4>,
-#endif
-}
-#if defined(B) && !defined(C)
-fn g() -> f32 { return 1.0; }
-#else
-fn g() -> f32 { return 2.0; }
-#endif
-fn f() -> f32 {
-    var x = 1.0;
-#if defined(C)
-    x = 2.0;
-    if x > 1.0 {
-        x = 3.0;
-    } else {
-        x = 4.0;
-    }
-#endif
-    return x;
-}
-";
-        let out = export_text(&[("m.wgsl", src)], "m");
-        assert!(out.contains("@if(B) b: array<f32, 4>,"), "{out}");
-        assert!(out.contains("@if(B && !C) fn g()"), "{out}");
-        assert!(out.contains("@if(!(B && !C)) fn g()"), "{out}");
-        assert!(out.contains("@if(C) x = 2.0;"), "{out}");
-        assert!(out.contains("@if(C) if x > 1.0 {"), "{out}");
-        assert!(out.contains("} else {"), "{out}");
-    }
-
-    #[test]
-    fn a_header_that_differs_is_written_once_per_branch() {
-        let src = "\
-@fragment
-#if defined(A)
-fn fs() -> @location(0) vec4f {
-#else
-fn fs() -> @location(0) vec2f {
-#endif
-#if defined(B)
-    let y = 1.0;
-#endif
-    return vec4f(1.0);
-}
-";
-        let out = export_text(&[("m.wgsl", src)], "m");
-        assert!(
-            out.contains("@if(A) @fragment\nfn fs() -> @location(0) vec4f {"),
-            "{out}"
-        );
-        assert!(
-            out.contains("@if(!A) @fragment\nfn fs() -> @location(0) vec2f {"),
-            "{out}"
-        );
-        assert_eq!(out.matches("@if(B) let y = 1.0;").count(), 2, "{out}");
-    }
-
-    #[test]
-    fn comments_with_any_characters_are_skipped() {
-        let src = "\
-/* a block comment · with − non-ASCII { and a brace */
-#if defined(A)
-// a line comment · {
-const a: f32 = 1.0; /* trailing · */
-#endif
-";
-        let out = export_text(&[("m.wgsl", src)], "m");
-        assert!(out.contains("@if(A) const a: f32 = 1.0;"), "{out}");
-    }
-
-    #[test]
-    fn comparisons_are_inexpressible() {
-        let raw = vec![crate::source::RawFile {
-            path: "m.wgsl".into(),
-            bytes: b"#if N > 2\nconst a = 1;\n#endif\n".to_vec(),
-        }];
-        let lib = Library::from_raw(raw, &Default::default()).unwrap();
-        let err = export(&lib, "m").unwrap_err();
-        assert!(
-            err.to_string().contains("WESL features are booleans"),
-            "{err}"
-        );
-    }
-}
-
 /// The whole library as a WESL tree, as files (`(relative path, text)`): every module
 /// ([`export_all`]), each pass's root module that is not one of them ([`export_pass`]), and
 /// the [`declaration`] file, so `wgsl-variants --root DIR` reads it back as a WESL tree.
@@ -1070,4 +963,111 @@ pub fn declaration(lib: &Library) -> Result<String, ExportError> {
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn export_text(files: &[(&str, &str)], module: &str) -> String {
+        let raw = files
+            .iter()
+            .map(|(p, t)| crate::source::RawFile {
+                path: p.to_string(),
+                bytes: t.as_bytes().to_vec(),
+            })
+            .collect();
+        let lib = Library::from_raw(raw, &Default::default()).unwrap();
+        export(&lib, module).unwrap().pop().unwrap().source
+    }
+
+    #[test]
+    fn declarations_members_and_statements() {
+        let src = "\
+struct S {
+    a: f32,
+#if defined(B)
+    b: array<f32, 4>,
+#endif
+}
+#if defined(B) && !defined(C)
+fn g() -> f32 { return 1.0; }
+#else
+fn g() -> f32 { return 2.0; }
+#endif
+fn f() -> f32 {
+    var x = 1.0;
+#if defined(C)
+    x = 2.0;
+    if x > 1.0 {
+        x = 3.0;
+    } else {
+        x = 4.0;
+    }
+#endif
+    return x;
+}
+";
+        let out = export_text(&[("m.wgsl", src)], "m");
+        assert!(out.contains("@if(B) b: array<f32, 4>,"), "{out}");
+        assert!(out.contains("@if(B && !C) fn g()"), "{out}");
+        assert!(out.contains("@if(!(B && !C)) fn g()"), "{out}");
+        assert!(out.contains("@if(C) x = 2.0;"), "{out}");
+        assert!(out.contains("@if(C) if x > 1.0 {"), "{out}");
+        assert!(out.contains("} else {"), "{out}");
+    }
+
+    #[test]
+    fn a_header_that_differs_is_written_once_per_branch() {
+        let src = "\
+@fragment
+#if defined(A)
+fn fs() -> @location(0) vec4f {
+#else
+fn fs() -> @location(0) vec2f {
+#endif
+#if defined(B)
+    let y = 1.0;
+#endif
+    return vec4f(1.0);
+}
+";
+        let out = export_text(&[("m.wgsl", src)], "m");
+        assert!(
+            out.contains("@if(A) @fragment\nfn fs() -> @location(0) vec4f {"),
+            "{out}"
+        );
+        assert!(
+            out.contains("@if(!A) @fragment\nfn fs() -> @location(0) vec2f {"),
+            "{out}"
+        );
+        assert_eq!(out.matches("@if(B) let y = 1.0;").count(), 2, "{out}");
+    }
+
+    #[test]
+    fn comments_with_any_characters_are_skipped() {
+        let src = "\
+/* a block comment · with − non-ASCII { and a brace */
+#if defined(A)
+// a line comment · {
+const a: f32 = 1.0; /* trailing · */
+#endif
+";
+        let out = export_text(&[("m.wgsl", src)], "m");
+        assert!(out.contains("@if(A) const a: f32 = 1.0;"), "{out}");
+    }
+
+    #[test]
+    fn comparisons_are_inexpressible() {
+        let raw = vec![crate::source::RawFile {
+            path: "m.wgsl".into(),
+            bytes: b"#if N > 2\nconst a = 1;\n#endif\n".to_vec(),
+        }];
+        let lib = Library::from_raw(raw, &Default::default()).unwrap();
+        let err = export(&lib, "m").unwrap_err();
+        assert!(
+            err.to_string().contains("WESL features are booleans"),
+            "{err}"
+        );
+    }
 }

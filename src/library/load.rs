@@ -254,20 +254,19 @@ fn unread_keywords(
                     })
                 })
             };
-            {
-                let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
-                    .pragmas
-                    .iter()
-                    .filter_map(|p| match p {
-                        crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
-                        _ => None,
-                    })
-                    .flatten()
-                    .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
-                    .collect();
-                if let Some((_, first)) = unread.first() {
-                    let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
-                    warnings.push(
+            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
+                .pragmas
+                .iter()
+                .filter_map(|p| match p {
+                    crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
+                    _ => None,
+                })
+                .flatten()
+                .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
+                .collect();
+            if let Some((_, first)) = unread.first() {
+                let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
+                warnings.push(
                     crate::diagnostic::Diagnostic::new(format!(
                         "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
                         list.len(),
@@ -279,7 +278,6 @@ fn unread_keywords(
                     .at(*first, "never read")
                     .note("they change no variant: a typo, or a def of another tree? (the audit lists them as dead)"),
                 );
-                }
             }
         }
     }
