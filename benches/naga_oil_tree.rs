@@ -22,7 +22,6 @@ use naga_oil::compose::{
 };
 use serde_json::json;
 use test_support as common;
-use wgsl_variants::declaration::DefValue;
 use wgsl_variants::plan::{PlanOptions, variants_to_build};
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Pass, Variant};
@@ -58,14 +57,7 @@ fn naga_oil_alone(lib: &Library) -> Composer {
 fn defs(pass: &Pass, keywords: &[&str]) -> HashMap<String, ShaderDefValue> {
     pass.defs(keywords.iter().copied())
         .into_iter()
-        .map(|(name, value)| {
-            let v = match value {
-                DefValue::Bool(b) => ShaderDefValue::Bool(b),
-                DefValue::Int(i) => ShaderDefValue::Int(i),
-                DefValue::UInt(u) => ShaderDefValue::UInt(u),
-            };
-            (name.to_string(), v)
-        })
+        .map(|(name, value)| (name.to_string(), value.to_naga_oil()))
         .collect()
 }
 

@@ -90,6 +90,24 @@ impl std::fmt::Display for DefValue {
     }
 }
 
+#[cfg(feature = "naga-oil")]
+impl DefValue {
+    /// naga_oil's type for the value (`ShaderDefValue`), as naga_oil receives a variant's defs.
+    ///
+    /// ```
+    /// use wgsl_variants::declaration::DefValue;
+    /// assert_eq!(DefValue::UInt(4).to_naga_oil(), naga_oil::compose::ShaderDefValue::UInt(4));
+    /// ```
+    pub fn to_naga_oil(self) -> naga_oil::compose::ShaderDefValue {
+        use naga_oil::compose::ShaderDefValue;
+        match self {
+            DefValue::Bool(b) => ShaderDefValue::Bool(b),
+            DefValue::Int(i) => ShaderDefValue::Int(i),
+            DefValue::UInt(u) => ShaderDefValue::UInt(u),
+        }
+    }
+}
+
 /// The def a keyword sets: a keyword of a valued set, `NAME=VALUE` (`true`, `-3`, `4u`), sets
 /// `NAME` to that value; any other keyword sets itself to `true`.
 ///

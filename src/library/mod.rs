@@ -105,23 +105,58 @@ fn raw_files<P: Into<String>, T: Into<String>>(
     raw
 }
 
-/// The failure of a naga_oil variant when this build has no naga_oil (the `naga-oil` cargo
-/// feature off).
+/// The failure of a variant of a naga_oil or WESL tree when this build cannot compose its
+/// dialect (its cargo feature off).
 fn unreachable_engine(
     variant: &Variant<'_>,
     dialect: crate::Dialect,
 ) -> Result<String, VariantError> {
-    Err(VariantError {
-        variant: variant.label(),
-        stage: crate::validate::Stage::Compose,
-        message: format!(
+    Err(unlocated(
+        variant,
+        crate::validate::Stage::Compose,
+        format!(
             "this build of wgsl-variants cannot compose `{}` trees (cargo feature `{}` off): they load and audit, but cannot compose",
             dialect.name(),
             dialect.name()
         ),
+    ))
+}
+
+/// A variant's failure that has no place in the sources.
+fn unlocated(
+    variant: &Variant<'_>,
+    stage: crate::validate::Stage,
+    message: String,
+) -> VariantError {
+    VariantError {
+        variant: variant.label(),
+        stage,
+        message,
         labels: Vec::new(),
         notes: Vec::new(),
-    })
+    }
+}
+
+/// The failure of a variant whose composer (naga_oil, wesl) panicked: the variant fails, the
+/// tool goes on.
+#[cfg(any(feature = "naga-oil", feature = "wesl"))]
+fn composer_panicked(
+    variant: &Variant<'_>,
+    composer: &str,
+    payload: Box<dyn std::any::Any + Send>,
+) -> VariantError {
+    let what = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    unlocated(
+        variant,
+        crate::validate::Stage::Compose,
+        format!(
+            "{composer} panicked composing this variant ({what}); a bug to report to {composer}"
+        ),
+    )
 }
 
 impl Library {

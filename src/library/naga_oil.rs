@@ -18,7 +18,6 @@ use naga_oil::compose::{
     NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
 };
 
-use crate::declaration::DefValue;
 use crate::diagnostic::{SourceFiles, Span};
 use crate::preprocess::tree::ParsedModule;
 use crate::validate::{Stage, VariantError};
@@ -116,7 +115,7 @@ impl NagaOilEngine {
             .pass
             .defs(variant.keywords())
             .into_iter()
-            .map(|(name, value)| (name.to_string(), shader_def(value)))
+            .map(|(name, value)| (name.to_string(), value.to_naga_oil()))
             .collect();
         let entry = modules[variant.pass.module].file;
         // naga_oil may panic on input it does not expect: that is one variant's failure, and
@@ -137,14 +136,20 @@ impl NagaOilEngine {
                     &info,
                     naga::back::wgsl::WriterFlags::empty(),
                 )
-                .map_err(|e| plain(variant, Stage::Compose, format!("naga's WGSL writer: {e}"))),
+                .map_err(|e| {
+                    super::unlocated(variant, Stage::Compose, format!("naga's WGSL writer: {e}"))
+                }),
                 Err(invalid) => {
                     composer.validate = true;
                     let located = composer.make_naga_module(descriptor());
                     composer.validate = false;
                     Err(match located {
                         Err(e) => error(&e, &composer, files, variant),
-                        Ok(_) => plain(variant, Stage::Validate, invalid.as_inner().to_string()),
+                        Ok(_) => super::unlocated(
+                            variant,
+                            Stage::Validate,
+                            invalid.as_inner().to_string(),
+                        ),
                     })
                 }
             }
@@ -156,40 +161,8 @@ impl NagaOilEngine {
                 }
                 result
             }
-            Err(panic) => {
-                let what = panic
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| panic.downcast_ref::<String>().cloned())
-                    .unwrap_or_default();
-                Err(plain(
-                    variant,
-                    Stage::Compose,
-                    format!(
-                        "naga_oil panicked composing this variant ({what}); a bug to report to naga_oil"
-                    ),
-                ))
-            }
+            Err(panic) => Err(super::composer_panicked(variant, "naga_oil", panic)),
         }
-    }
-}
-
-/// naga_oil's type for a def value.
-pub(crate) fn shader_def(value: DefValue) -> ShaderDefValue {
-    match value {
-        DefValue::Bool(b) => ShaderDefValue::Bool(b),
-        DefValue::Int(i) => ShaderDefValue::Int(i),
-        DefValue::UInt(u) => ShaderDefValue::UInt(u),
-    }
-}
-
-fn plain(variant: &Variant<'_>, stage: Stage, message: String) -> VariantError {
-    VariantError {
-        variant: variant.label(),
-        stage,
-        message,
-        labels: Vec::new(),
-        notes: Vec::new(),
     }
 }
 

@@ -135,26 +135,14 @@ impl WeslEngine {
             .import_name
             .as_ref()
             .map_or("package", |n| n.0.as_str());
-        let root: ModulePath = root_name
-            .parse()
-            .map_err(|e| plain(variant, Stage::Compose, format!("module path: {e:?}")))?;
+        let root: ModulePath = root_name.parse().map_err(|e| {
+            super::unlocated(variant, Stage::Compose, format!("module path: {e:?}"))
+        })?;
         // The compiler may panic on input it does not expect: one variant's failure.
-        let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            compiler.compile(&root)
-        }))
-        .map_err(|panic| {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
-            plain(
-                variant,
-                Stage::Compose,
-                format!("the wesl crate panicked composing this variant ({what}); a bug to report to wesl-rs"),
-            )
-        })?
-        .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
+        let compiled =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| compiler.compile(&root)))
+                .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?
+                .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
         let compiled = canonical(compiled, &root);
         let text = compiled.to_string();
         let module = naga::front::wgsl::parse_str(&text).map_err(|e| {
@@ -402,14 +390,4 @@ fn unmangle(text: &str, map: &wesl::BasicSourceMap) -> String {
     }
     flush(&mut word, &mut out);
     out
-}
-
-fn plain(variant: &Variant<'_>, stage: Stage, message: String) -> VariantError {
-    VariantError {
-        variant: variant.label(),
-        stage,
-        message,
-        labels: Vec::new(),
-        notes: Vec::new(),
-    }
 }
