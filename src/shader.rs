@@ -225,6 +225,19 @@ impl Pass {
             .collect()
     }
 
+    /// The module the pass composes, as an index into
+    /// [`Library::module_paths`](crate::Library::module_paths): its shader file, or the entry
+    /// module a declaration file names.
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// assert_eq!(lib.module_paths()[pass.module()], "standard/standard");
+    /// ```
+    pub fn module(&self) -> usize {
+        self.module
+    }
+
     /// The value of a tag, e.g. `tag("LightMode")`.
     pub fn tag(&self, key: &str) -> Option<&str> {
         self.tags.iter().find(|t| t.0 == key).map(|t| t.1.as_str())

@@ -1,0 +1,112 @@
+//! A WESL tree validated by this crate against the `wesl` crate alone compiling the same
+//! variants and naga validating its output, measured in the same run (interleaved; medians of
+//! `BENCH_ROUNDS`).
+//!
+//! `cargo bench --bench wesl_tree` runs on `tests/fixtures/wesl`; `WGSL_VARIANTS_TREE=DIR cargo
+//! bench --bench wesl_tree` on any WESL tree, e.g. the bundled library exported with
+//! `wgsl-variants export --dialect wesl --all --out DIR`. Each pass's 2-wise covering set is
+//! the work.
+//!
+//! - this crate: `validate_pass` (wesl compiles each variant from the loaded tree, its
+//!   declarations are put in a fixed order, naga parses and validates it; then the validation
+//!   stage parses and validates that text: what is validated is what is emitted), one thread;
+//! - wesl alone: `Wesl::new(root)` reading the files itself, the same features and constants,
+//!   `compile`, then naga's parse and validation of the output, one thread.
+//!
+//! Prints the ratio (this crate / wesl alone; lower is faster) and writes it to
+//! `target/bench-summary.json`.
+
+use serde_json::json;
+use test_support as common;
+use wgsl_types::inst::LiteralInstance;
+use wgsl_variants::declaration::{DefValue, def_of};
+use wgsl_variants::plan::{PlanOptions, variants_to_build};
+use wgsl_variants::validate::validate_pass;
+use wgsl_variants::{Library, Variant};
+
+/// The `wesl` crate's value for a def.
+fn literal(value: DefValue) -> LiteralInstance {
+    match value {
+        DefValue::Bool(b) => LiteralInstance::Bool(b),
+        DefValue::Int(i) => LiteralInstance::AbstractInt(i.into()),
+        DefValue::UInt(u) => LiteralInstance::U32(u as u32),
+    }
+}
+
+fn main() {
+    let root = std::env::var("WGSL_VARIANTS_TREE").unwrap_or_else(|_| {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/wesl").to_string()
+    });
+    let lib = Library::from_dir(&root).unwrap_or_else(|e| panic!("{root}: {e}"));
+    assert_eq!(
+        lib.dialect(),
+        wgsl_variants::Dialect::Wesl,
+        "{root}: not a WESL tree"
+    );
+    let rounds = common::rounds();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let mut options = PlanOptions::default();
+    options.cover = Some(2);
+    let mut results = Vec::new();
+    for pass in lib.passes() {
+        let choices = variants_to_build(&lib, pass, &options).expect("covering set");
+        let entry = &lib.module_paths()[pass.module()];
+        let module_path: wesl::ModulePath = format!("package::{}", entry.replace('/', "::"))
+            .parse()
+            .expect("module path");
+        let slices = choices.len().min(8);
+        let per = choices.len().div_ceil(slices);
+        // The last slices may be short or empty (12 variants in 8 slices of 2).
+        let range = |s: usize| (s * per).min(choices.len())..((s + 1) * per).min(choices.len());
+        let mut ours = |s: usize| {
+            one.install(|| {
+                validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+            })
+        };
+        let mut alone = |s: usize| {
+            for c in &choices[range(s)] {
+                let v = Variant {
+                    pass,
+                    choice: c.clone(),
+                };
+                let mut compiler = wesl::Wesl::new(&root);
+                for k in pass.keywords() {
+                    compiler.set_feature(def_of(k).0, false);
+                }
+                for (name, value) in pass.defs(v.keywords()) {
+                    if let DefValue::Bool(on) = value {
+                        compiler.set_feature(name, on);
+                    }
+                    compiler.add_constant(name, literal(value));
+                }
+                if let Ok(out) = compiler.compile(&module_path)
+                    && let Ok(module) = naga::front::wgsl::parse_str(&out.to_string())
+                {
+                    let _ = wgsl_variants::validate::validator().validate(&module);
+                }
+            }
+        };
+        let times = common::interleaved(rounds, slices, &mut [&mut ours, &mut alone]);
+        let ratio = common::median_ratio(&times[0], &times[1]);
+        let (t_ours, t_alone) = (common::median_of(&times[0]), common::median_of(&times[1]));
+        println!(
+            "{}/{}: {} covering variants: this crate {:.1} ms, wesl alone {:.1} ms, ratio {ratio:.2}",
+            pass.shader,
+            pass.name,
+            choices.len(),
+            t_ours.as_secs_f64() * 1e3,
+            t_alone.as_secs_f64() * 1e3,
+        );
+        results.push(json!({
+            "pass": format!("{}/{}", pass.shader, pass.name),
+            "variants": choices.len(),
+            "ours_ms": t_ours.as_secs_f64() * 1e3,
+            "wesl_alone_ms": t_alone.as_secs_f64() * 1e3,
+            "ratio_vs_wesl_alone": ratio,
+        }));
+    }
+    common::write_summary(json!({ "wesl_tree": { "root": root, "passes": results } }));
+}
