@@ -29,7 +29,7 @@ fn literal(value: DefValue) -> LiteralInstance {
     match value {
         DefValue::Bool(b) => LiteralInstance::Bool(b),
         DefValue::Int(i) => LiteralInstance::AbstractInt(i.into()),
-        DefValue::UInt(u) => LiteralInstance::U32(u as u32),
+        DefValue::UInt(u) => LiteralInstance::U32(u),
     }
 }
 
