@@ -232,7 +232,7 @@ impl Pass {
     /// ```
     /// let lib = wgsl_variants::Library::bundled().unwrap();
     /// let pass = lib.pass("standard", "Deferred").unwrap();
-    /// assert_eq!(lib.module_paths()[pass.module()], "standard/standard");
+    /// assert_eq!(lib.module_paths()[pass.module()], "standard");
     /// ```
     pub fn module(&self) -> usize {
         self.module
