@@ -134,7 +134,7 @@ enum Command {
     Emit(emit::EmitArgs),
     /// The bind groups and bindings a variant uses: kind, size, stage visibility.
     Reflect(reflect::ReflectArgs),
-    /// One module with its imports on its own: prefixed self-contained WGSL, or naga_oil's dialect.
+    /// One module with its imports on its own: prefixed self-contained WGSL, naga_oil's dialect or WESL's (--all --dialect wesl --out DIR: a WESL tree with its declaration file).
     Export(export::ExportArgs),
     /// Every variant of every pass's full space with a content hash of its canonical WGSL
     /// (the list that the `manifest` snapshot summarizes).
