@@ -256,3 +256,20 @@ fn valued_sets_reach_the_program_as_constants() {
     assert!(!audit.distinct_full_space.exact);
     assert_eq!(audit.distinct_full_space.count, 2u32.into());
 }
+
+/// `.wesl` files in a tree without a declaration file are not read as this crate's dialect:
+/// they are left out, with a warning that says what a WESL tree needs.
+#[test]
+fn wesl_files_without_a_declaration_file_are_left_out_with_a_warning() {
+    let lib = Library::from_sources([
+        (
+            "main.wgsl",
+            "#shader s\n#pass P\n#pragma multi_compile _ A\n#endpass\n",
+        ),
+        ("lib.wesl", "@if(A) fn f() {}\n"),
+    ])
+    .unwrap();
+    assert_eq!(lib.module_paths(), ["main"]);
+    assert_eq!(lib.warnings().len(), 1);
+    assert!(lib.warnings()[0].message.contains("dialect = \"wesl\""));
+}

@@ -57,11 +57,9 @@ pub(crate) fn load(
     escaping: &[String],
     options: &LoadOptions,
 ) -> Result<Loaded, LoadError> {
-    // `.wesl` files are modules of WESL trees only.
-    let raw = raw
-        .into_iter()
-        .filter(|f| !f.path.ends_with(".wesl"))
-        .collect();
+    // `.wesl` files are modules of WESL trees only (which have a declaration file).
+    let (wesl, raw): (Vec<RawFile>, Vec<RawFile>) =
+        raw.into_iter().partition(|f| f.path.ends_with(".wesl"));
     let (files, paths, mut modules) = parse_all(raw, Dialect::WgslVariants, options)?;
     let mut problems = Vec::new();
     let resolved = resolve_paths(&modules, &paths, escaping, &mut problems);
@@ -77,7 +75,19 @@ pub(crate) fn load(
         .enumerate()
         .filter_map(|(id, m)| m.shader.take().map(|d| (d, m.file, id)))
         .collect();
-    assemble(files, paths, modules, resolved, decls, problems)
+    let mut loaded = assemble(files, paths, modules, resolved, decls, problems)?;
+    if let Some(first) = wesl.first() {
+        loaded.warnings.push(
+            crate::diagnostic::Diagnostic::new(format!(
+                "{} `.wesl` file(s) left out (`{}`…): a WESL tree is read with a declaration file, `{}` with `dialect = \"wesl\"`, at its root",
+                wesl.len(),
+                first.path,
+                crate::declaration::FILE_NAME
+            ))
+            .warning(),
+        );
+    }
+    Ok(loaded)
 }
 
 /// Loads a tree whose keywords a declaration file declares (`declaration`: its path and
