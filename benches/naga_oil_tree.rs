@@ -24,7 +24,7 @@ use serde_json::json;
 use test_support as common;
 use wgsl_variants::plan::{PlanOptions, variants_to_build};
 use wgsl_variants::validate::validate_pass;
-use wgsl_variants::{Library, Pass, Variant};
+use wgsl_variants::{Choice, Library, Pass, Variant};
 
 /// naga_oil alone: a composer holding every named module of the tree (added once its imports
 /// are), and the entry's text.
@@ -66,7 +66,6 @@ fn main() {
         concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/naga_oil").to_string()
     });
     let lib = Library::from_dir(&root).unwrap_or_else(|e| panic!("{root}: {e}"));
-    let rounds = common::rounds();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -76,24 +75,17 @@ fn main() {
     let mut results = Vec::new();
     for pass in lib.passes() {
         let choices = variants_to_build(&lib, pass, &options).expect("covering set");
-        let entry = lib
-            .files()
-            .path(lib.shader(&pass.shader).expect("shader").file);
-        let source = lib
-            .files()
-            .text(lib.shader(&pass.shader).expect("shader").file);
+        // Module ids are file ids: the module the pass composes.
+        let entry = lib.files().path(pass.module());
+        let source = lib.files().text(pass.module());
         let mut composer = naga_oil_alone(&lib);
-        let slices = choices.len().min(8);
-        let per = choices.len().div_ceil(slices);
-        // The last slices may be short or empty (12 variants in 8 slices of 2).
-        let range = |s: usize| (s * per).min(choices.len())..((s + 1) * per).min(choices.len());
-        let mut ours = |s: usize| {
+        let mut ours = |slice: &[Choice]| {
             one.install(|| {
-                validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+                validate_pass(&lib, pass, slice, &|_| {});
             })
         };
-        let mut alone = |s: usize| {
-            for c in &choices[range(s)] {
+        let mut alone = |slice: &[Choice]| {
+            for c in slice {
                 let v = Variant {
                     pass,
                     choice: c.clone(),
@@ -106,24 +98,13 @@ fn main() {
                 });
             }
         };
-        let times = common::interleaved(rounds, slices, &mut [&mut ours, &mut alone]);
-        let ratio = common::median_ratio(&times[0], &times[1]);
-        let (t_ours, t_alone) = (common::median_of(&times[0]), common::median_of(&times[1]));
-        println!(
-            "{}/{}: {} covering variants: this crate {:.1} ms, naga_oil alone {:.1} ms, ratio {ratio:.2}",
-            pass.shader,
-            pass.name,
-            choices.len(),
-            t_ours.as_secs_f64() * 1e3,
-            t_alone.as_secs_f64() * 1e3,
-        );
-        results.push(json!({
-            "pass": format!("{}/{}", pass.shader, pass.name),
-            "variants": choices.len(),
-            "ours_ms": t_ours.as_secs_f64() * 1e3,
-            "naga_oil_alone_ms": t_alone.as_secs_f64() * 1e3,
-            "ratio_vs_naga_oil_alone": ratio,
-        }));
+        results.push(common::versus(
+            &format!("{}/{}", pass.shader, pass.name),
+            ("naga_oil", "naga_oil_alone"),
+            &choices,
+            &mut ours,
+            &mut alone,
+        ));
     }
     common::write_summary(json!({ "naga_oil_tree": { "root": root, "passes": results } }));
 }

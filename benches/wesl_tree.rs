@@ -22,7 +22,7 @@ use wgsl_types::inst::LiteralInstance;
 use wgsl_variants::declaration::{DefValue, def_of};
 use wgsl_variants::plan::{PlanOptions, variants_to_build};
 use wgsl_variants::validate::validate_pass;
-use wgsl_variants::{Library, Variant};
+use wgsl_variants::{Choice, Library, Variant};
 
 /// The `wesl` crate's value for a def.
 fn literal(value: DefValue) -> LiteralInstance {
@@ -43,7 +43,6 @@ fn main() {
         wgsl_variants::Dialect::Wesl,
         "{root}: not a WESL tree"
     );
-    let rounds = common::rounds();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -57,17 +56,13 @@ fn main() {
         let module_path: wesl::ModulePath = format!("package::{}", entry.replace('/', "::"))
             .parse()
             .expect("module path");
-        let slices = choices.len().min(8);
-        let per = choices.len().div_ceil(slices);
-        // The last slices may be short or empty (12 variants in 8 slices of 2).
-        let range = |s: usize| (s * per).min(choices.len())..((s + 1) * per).min(choices.len());
-        let mut ours = |s: usize| {
+        let mut ours = |slice: &[Choice]| {
             one.install(|| {
-                validate_pass(&lib, pass, &choices[range(s)], &|_| {});
+                validate_pass(&lib, pass, slice, &|_| {});
             })
         };
-        let mut alone = |s: usize| {
-            for c in &choices[range(s)] {
+        let mut alone = |slice: &[Choice]| {
+            for c in slice {
                 let v = Variant {
                     pass,
                     choice: c.clone(),
@@ -89,24 +84,13 @@ fn main() {
                 }
             }
         };
-        let times = common::interleaved(rounds, slices, &mut [&mut ours, &mut alone]);
-        let ratio = common::median_ratio(&times[0], &times[1]);
-        let (t_ours, t_alone) = (common::median_of(&times[0]), common::median_of(&times[1]));
-        println!(
-            "{}/{}: {} covering variants: this crate {:.1} ms, wesl alone {:.1} ms, ratio {ratio:.2}",
-            pass.shader,
-            pass.name,
-            choices.len(),
-            t_ours.as_secs_f64() * 1e3,
-            t_alone.as_secs_f64() * 1e3,
-        );
-        results.push(json!({
-            "pass": format!("{}/{}", pass.shader, pass.name),
-            "variants": choices.len(),
-            "ours_ms": t_ours.as_secs_f64() * 1e3,
-            "wesl_alone_ms": t_alone.as_secs_f64() * 1e3,
-            "ratio_vs_wesl_alone": ratio,
-        }));
+        results.push(common::versus(
+            &format!("{}/{}", pass.shader, pass.name),
+            ("wesl", "wesl_alone"),
+            &choices,
+            &mut ours,
+            &mut alone,
+        ));
     }
     common::write_summary(json!({ "wesl_tree": { "root": root, "passes": results } }));
 }

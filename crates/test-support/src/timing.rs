@@ -72,6 +72,42 @@ pub fn interleaved(
     totals
 }
 
+/// One pass's variants (`choices`, labelled `label`) timed two ways, interleaved over up to
+/// 8 slices: `ours` and `alone` (the same variants by another engine, named `alone_name` in the
+/// printed line and `alone_key` in the JSON). Prints one line and returns the figures
+/// (`ours_ms`, `{alone_key}_ms`, `ratio_vs_{alone_key}`: ours / alone, lower is faster).
+pub fn versus<C>(
+    label: &str,
+    (alone_name, alone_key): (&str, &str),
+    choices: &[C],
+    ours: &mut dyn FnMut(&[C]),
+    alone: &mut dyn FnMut(&[C]),
+) -> Value {
+    let slices = choices.len().clamp(1, 8);
+    let per = choices.len().div_ceil(slices).max(1);
+    // The last slices may be short or empty (12 variants in 8 slices of 2).
+    let slice =
+        |s: usize| &choices[(s * per).min(choices.len())..((s + 1) * per).min(choices.len())];
+    let mut a = |s: usize| ours(slice(s));
+    let mut b = |s: usize| alone(slice(s));
+    let times = interleaved(rounds(), slices, &mut [&mut a, &mut b]);
+    let ratio = median_ratio(&times[0], &times[1]);
+    let (t_ours, t_alone) = (median_of(&times[0]), median_of(&times[1]));
+    println!(
+        "{label}: {} covering variants: this crate {:.1} ms, {alone_name} alone {:.1} ms, ratio {ratio:.2}",
+        choices.len(),
+        t_ours.as_secs_f64() * 1e3,
+        t_alone.as_secs_f64() * 1e3,
+    );
+    json!({
+        "pass": label,
+        "variants": choices.len(),
+        "ours_ms": t_ours.as_secs_f64() * 1e3,
+        format!("{alone_key}_ms"): t_alone.as_secs_f64() * 1e3,
+        format!("ratio_vs_{alone_key}"): ratio,
+    })
+}
+
 /// What the numbers were measured on.
 pub fn machine() -> Value {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
