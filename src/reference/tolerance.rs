@@ -14,6 +14,7 @@
 //! | `R32Uint` (rendering layers) | exact | an integer copied from a uniform |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
+//! | the frame (docs/shading.md §12): forward and deferred against the reference and each other | per pixel and channel: [`f16_store_error`] of each partial sum (HDR) or [`unorm_store_error`] per draw (forward LDR) or [`ldr_chain_range`] (deferred LDR), plus [`gbuffer_light_bound`] of every deferred light, plus the reference's [`window_spread`] over [`SUBPIXEL_WINDOW`] | every draw rounds the target once; the rasterizer evaluates a pixel's attributes on vertices snapped to its sub-pixel grid, i.e. at a point up to [`SUBPIXEL_WINDOW`] from the centre; pixels whose window sees two objects (silhouettes) are left out and counted |
 //!
 //! ```
 //! use wgsl_variants::reference::tolerance::{unorm_within, f16_within, f32_within};
@@ -487,6 +488,99 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
         UrpTexel::F32(x) => f32_within(f32::from_bits(word), x),
         UrpTexel::U32(x) => word == x,
     }
+}
+
+/// How far from a pixel's centre (in pixels, along x and along y) the rasterizer may evaluate
+/// the attributes it interpolates for that pixel.
+///
+/// Vulkan snaps vertex positions to a grid of `2^-subPixelPrecisionBits` pixels, with at least
+/// 4 bits (lavapipe has 8); an affine attribute evaluated at the centre of the snapped
+/// triangle equals the original triangle's value at a point moved by no more than the
+/// vertices moved, half a grid step per axis: 1/32 pixel at 4 bits. The window is twice that.
+/// The frame's comparisons allow, per pixel, the largest change of the reference over the
+/// window ([`window_spread`]); a pixel whose window reaches another object is an edge pixel
+/// and is left out (counted).
+pub const SUBPIXEL_WINDOW: f32 = 1.0 / 16.0;
+
+/// The largest change, per channel, between the reference at a pixel's centre and at the
+/// points of its [`SUBPIXEL_WINDOW`].
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants::reference::tolerance::window_spread;
+/// let s = window_spread(Vec3::splat(1.0), &[Vec3::new(1.1, 1.0, 0.8), Vec3::new(0.95, 1.0, 1.0)]);
+/// assert!((s - Vec3::new(0.1, 0.0, 0.2)).abs().max_element() < 1e-6);
+/// ```
+pub fn window_spread(centre: Vec3, samples: &[Vec3]) -> Vec3 {
+    samples
+        .iter()
+        .fold(Vec3::ZERO, |m, s| m.max((*s - centre).abs()))
+}
+
+/// The spacing of half floats around `x`: `2^(e − 10)` for `2^e ≤ |x| < 2^(e+1)`, and the
+/// subnormal spacing `2^-24` below `2^-14`.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f16_step;
+/// assert_eq!(f16_step(1.5), 2f32.powi(-10));
+/// assert_eq!(f16_step(2.0), 2f32.powi(-9));
+/// assert_eq!(f16_step(0.0), 2f32.powi(-24));
+/// ```
+pub fn f16_step(x: f32) -> f32 {
+    let e = x.abs().max(f32::MIN_POSITIVE).log2().floor().max(-14.0);
+    (e - 10.0).exp2()
+}
+
+/// The most a value `x` stored in an `Rgba16Float` target may be off: half a step of
+/// rounding plus [`F16_ULP`] steps of freedom (as [`f16_within`]).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::f16_store_error;
+/// assert_eq!(f16_store_error(1.0), 1.5 / 1024.0);
+/// ```
+pub fn f16_store_error(x: f32) -> f32 {
+    (F16_ULP as f32 + 0.5) * f16_step(x)
+}
+
+/// The most a value stored in a unorm channel of `bits` bits may be off, in value units: half
+/// a step of rounding plus [`UNORM_LSB`] steps (as [`unorm_within`]).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::{GBUFFER_8BIT_STEP, unorm_store_error};
+/// assert_eq!(unorm_store_error(8), GBUFFER_8BIT_STEP);
+/// assert_eq!(unorm_store_error(10), 1.5 / 1023.0);
+/// ```
+pub fn unorm_store_error(bits: u32) -> f32 {
+    (UNORM_LSB as f32 + 0.5) / unorm_max(bits) as f32
+}
+
+/// The range the deferred LDR path's decoded light `−log2(s)` may take after `stores`
+/// roundings of the 10-bit `exp2(−c)` chain (docs/shading.md §12), when the exact light lies
+/// in `[c_lo, c_hi]`.
+///
+/// RT3 starts as the G-buffer pass's `s₀ = exp2(−c₀)` and each light multiplies it by
+/// `exp2(−lᵢ)` (blend DstColor / Zero); every store rounds by at most
+/// `e = `[`unorm_store_error`]`(10)`, and a multiplication by a factor ≤ 1 does not grow an
+/// earlier error, so the stored `s` is within `stores · e` of `exp2(−c)`. Decoding is
+/// monotonic, so the decoded value lies between `−log2` of the ends of that interval (+∞ when
+/// it reaches 0: the final pass then writes 1).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::ldr_chain_range;
+/// let (lo, hi) = ldr_chain_range(1.0, 1.0, 3);
+/// assert!(lo < 1.0 && hi > 1.0 && hi - lo < 0.03);
+/// assert_eq!(ldr_chain_range(0.0, 12.0, 3).1, f32::INFINITY);
+/// ```
+pub fn ldr_chain_range(c_lo: f32, c_hi: f32, stores: u32) -> (f32, f32) {
+    let e = stores as f32 * unorm_store_error(10);
+    let s_hi = ((-c_lo.max(0.0)).exp2() + e).min(1.0);
+    let s_lo = (-c_hi.max(0.0)).exp2() - e;
+    let hi = if s_lo > 0.0 {
+        -s_lo.log2()
+    } else {
+        f32::INFINITY
+    };
+    (-s_hi.log2(), hi)
 }
 
 #[cfg(test)]

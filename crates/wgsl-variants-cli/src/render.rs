@@ -1,10 +1,12 @@
 //! `wgsl-variants render`: the GPU check's test scene as PNG pictures (G-buffer contents, the
-//! light in RT3, the final frame).
+//! light in RT3, the final frame), or with `--frame` the whole built-in frame forward,
+//! deferred and as the CPU reference, with the differences.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use wgsl_variants_gpu::GpuContext;
+use wgsl_variants_gpu::check::frame::FrameScene;
 use wgsl_variants_gpu::check::{TestScene, pictures};
 
 use super::output::print_json;
@@ -14,14 +16,23 @@ use super::{Context, Failed};
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
     /// Shader name (default: standard).
-    #[arg(requires = "pass")]
+    #[arg(requires = "pass", conflicts_with = "frame")]
     shader: Option<String>,
     /// Pass name: Deferred or ForwardBase (default: Deferred).
     pass: Option<String>,
     /// Keywords that are on, comma-separated (default for standard/Deferred: every map and
     /// UNITY_ENABLE_REFLECTION_BUFFERS).
-    #[arg(long, value_delimiter = ',', value_name = "A,B")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "A,B",
+        conflicts_with = "frame"
+    )]
     keywords: Option<Vec<String>>,
+    /// Render the whole frame (five objects, four lights) forward and deferred, HDR and LDR,
+    /// and the CPU reference, with the forward − deferred differences (docs/shading.md §12).
+    #[arg(long)]
+    frame: bool,
     /// Folder to write the PNG files into (created if missing).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -34,6 +45,16 @@ pub struct RenderArgs {
 }
 
 pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
+    if args.frame {
+        let gpu = GpuContext::new(args.adapter.as_deref())?;
+        let pictures = pictures::frame_pictures(&gpu, &ctx.lib, &FrameScene::new())?;
+        return write(
+            ctx,
+            args,
+            &pictures,
+            &format!("the frame on {}", gpu.adapter_name()),
+        );
+    }
     let shader = args.shader.as_deref().unwrap_or("standard");
     let pass = args.pass.as_deref().unwrap_or("Deferred");
     let keywords: Vec<&str> = match &args.keywords {
@@ -48,18 +69,29 @@ pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
     let gpu = GpuContext::new(args.adapter.as_deref())?;
     let scene = TestScene::default();
     let pictures = pictures::render_pictures(&gpu, &ctx.lib, &scene, shader, pass, &keywords)?;
+    let what = format!(
+        "{shader}/{pass} {{{}}} on {}",
+        keywords.join(", "),
+        gpu.adapter_name()
+    );
+    write(ctx, args, &pictures, &what)
+}
+
+/// Writes the pictures as PNG files into `--out` and lists them.
+fn write(
+    ctx: &Context,
+    args: &RenderArgs,
+    pictures: &[pictures::Picture],
+    what: &str,
+) -> Result<ExitCode, Failed> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| Failed(format!("error: cannot create {}: {e}", args.out.display())))?;
-    let written = pictures::write_pngs(&pictures, &args.out, args.scale)
+    let written = pictures::write_pngs(pictures, &args.out, args.scale)
         .map_err(|e| Failed(format!("error: {e}")))?;
     if ctx.json {
         print_json(&written)?;
     } else {
-        println!(
-            "{shader}/{pass} {{{}}} on {}:",
-            keywords.join(", "),
-            gpu.adapter_name()
-        );
+        println!("{what}:");
         for w in &written {
             println!("  {}  {}", w.path, w.description);
         }

@@ -190,3 +190,46 @@ fn check_gpu_universal_gbuffer_default_cover_and_full() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// `render --frame` writes the reference, forward, deferred and difference pictures of the
+/// whole frame in HDR and LDR; a shader or keywords next to `--frame` is a usage error.
+#[test]
+fn render_frame_writes_the_seven_pictures() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["render", "--frame", "--json", "--scale", "1", "--out"])
+        .arg(tmp.path())
+        .output()
+        .expect("run render");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let written: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = written
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "frame_reference",
+            "frame_forward_ldr",
+            "frame_deferred_ldr",
+            "frame_difference_ldr",
+            "frame_forward_hdr",
+            "frame_deferred_hdr",
+            "frame_difference_hdr"
+        ]
+    );
+    for name in names {
+        let image = image::open(tmp.path().join(format!("{name}.png"))).unwrap();
+        assert_eq!((image.width(), image.height()), (64, 48), "{name}");
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["render", "--frame", "standard", "Deferred", "--out"])
+        .arg(tmp.path())
+        .output()
+        .expect("run render");
+    assert_eq!(out.status.code(), Some(2));
+}

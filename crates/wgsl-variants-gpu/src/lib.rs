@@ -13,6 +13,8 @@
 //! - [`run_compute`] dispatches a compute shader over one input and one output storage buffer.
 //! - [`render`] / [`render_with`] draw a [`RenderJob`] into up to eight colour targets and
 //!   return their bytes; [`TargetFormat`] decodes them.
+//! - [`render_pass`] records many [`Draw`]s (each its own variant, mesh and resources) into
+//!   one pass over shared targets and a depth buffer: a frame.
 //! - [`check`] is the GPU proof of the bundled library built on these: every variant of the
 //!   standard passes, the deferred reflection and final passes, and compute kernels, compared
 //!   with [`wgsl_variants::reference`] (the `check-gpu` and `render` commands).
@@ -31,6 +33,7 @@ mod context;
 mod error;
 mod format;
 mod layout;
+mod pass;
 mod readback;
 mod render;
 mod resources;
@@ -49,6 +52,7 @@ pub use layout::{
     create_bind_group_layouts, create_pipeline_layout, layout_entries, layout_entry, stage_flags,
     storage_format, view_dimension,
 };
+pub use pass::{DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, render_pass};
 pub use readback::{
     PendingReadback, encode_texture_readback, finish_readbacks, map_buffers, read_texture,
 };

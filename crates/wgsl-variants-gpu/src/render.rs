@@ -6,10 +6,10 @@
 use std::collections::BTreeSet;
 
 use super::bindings::{Slot, used_bindings};
-use super::compile::{compile_scoped, wgsl_module};
 use super::context::GpuContext;
 use super::error::GpuError;
 use super::format::TargetFormat;
+use super::pass::{PipelineDesc, bind, create_pipeline};
 use super::readback::{encode_texture_readback, finish_readbacks};
 use super::resources::{BoundResource, GpuResources};
 
@@ -189,64 +189,9 @@ pub fn render_with(
     resources: &GpuResources,
 ) -> Result<Vec<Vec<u8>>, GpuError> {
     let label = job.label.as_str();
-    let invalid = |message: String| GpuError::Validation {
-        label: label.to_owned(),
-        message,
-    };
-    let limits = ctx.device.limits();
-    let max = limits.max_texture_dimension_2d;
-    if job.width == 0 || job.height == 0 || job.width > max || job.height > max {
-        return Err(invalid(format!(
-            "render size {}x{} is outside 1..={max}",
-            job.width, job.height
-        )));
-    }
-    if job.targets.is_empty() || job.targets.len() > limits.max_color_attachments as usize {
-        return Err(invalid(format!(
-            "{} colour targets; 1..={} are supported",
-            job.targets.len(),
-            limits.max_color_attachments
-        )));
-    }
-
-    let pixels = u64::from(job.width) * u64::from(job.height);
-    for (i, t) in job.targets.iter().enumerate() {
-        if let Some(initial) = &t.initial {
-            let needed = pixels * t.format.bytes_per_pixel() as u64;
-            if initial.len() as u64 != needed {
-                return Err(invalid(format!(
-                    "initial contents of target {i} ({}x{} {:?}) need {needed} bytes, got {}",
-                    job.width,
-                    job.height,
-                    t.format,
-                    initial.len()
-                )));
-            }
-        }
-    }
-    for (i, vb) in job.vertex_buffers.iter().enumerate() {
-        let needed = vb.stride * u64::from(job.vertex_count);
-        if vb.stride == 0 || (vb.data.len() as u64) < needed {
-            return Err(invalid(format!(
-                "vertex buffer {i} (stride {}) holds {} bytes; {} vertices need {needed}",
-                vb.stride,
-                vb.data.len(),
-                job.vertex_count
-            )));
-        }
-    }
-    let vertex_layouts: Vec<Option<wgpu::VertexBufferLayout<'_>>> = job
-        .vertex_buffers
-        .iter()
-        .map(|vb| {
-            Some(wgpu::VertexBufferLayout {
-                array_stride: vb.stride,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &vb.attributes,
-            })
-        })
-        .collect();
-
+    check_targets(ctx, label, job.width, job.height, &job.targets)?;
+    check_vertex_buffers(label, &job.vertex_buffers, job.vertex_count)?;
+    let vertex_layouts = vertex_layouts(&job.vertex_buffers);
     let color_states: Vec<Option<wgpu::ColorTargetState>> = job
         .targets
         .iter()
@@ -258,122 +203,31 @@ pub fn render_with(
             })
         })
         .collect();
-    let pipeline = compile_scoped(ctx, label, || {
-        let module = wgsl_module(ctx, label, &job.wgsl);
-        ctx.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(&job.vertex_entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: &vertex_layouts,
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(&job.fragment_entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    targets: &color_states,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-    })?;
+    let pipeline = create_pipeline(
+        ctx,
+        &PipelineDesc {
+            label,
+            wgsl: &job.wgsl,
+            vertex: &job.vertex_entry,
+            fragment: Some(&job.fragment_entry),
+            vertex_buffers: &vertex_layouts,
+            cull: None,
+            depth_stencil: None,
+            targets: &color_states,
+        },
+    )?;
     let used = used_bindings(
         label,
         &job.wgsl,
         &[job.vertex_entry.as_str(), job.fragment_entry.as_str()],
     )?;
-    if let Some((group, binding)) = used.iter().find(|&&slot| !resources.contains(slot)) {
-        return Err(invalid(format!(
-            "shader uses @group({group}) @binding({binding}) but no resource was given for it"
-        )));
-    }
+    let bind_groups = bind(ctx, label, &pipeline, &used, resources)?;
 
     let pending = ctx.scoped(label, || {
-        let bind_groups = create_bind_groups(ctx, label, &pipeline, &used, resources);
-        let targets: Vec<wgpu::Texture> = job
-            .targets
-            .iter()
-            .map(|t| {
-                ctx.device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width: job.width,
-                        height: job.height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: t.format.wgpu_format(),
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                        | wgpu::TextureUsages::COPY_SRC
-                        | wgpu::TextureUsages::COPY_DST,
-                    view_formats: &[],
-                })
-            })
-            .collect();
-        for (texture, t) in targets.iter().zip(&job.targets) {
-            if let Some(initial) = &t.initial {
-                let bytes_per_row = job.width * t.format.bytes_per_pixel() as u32;
-                ctx.queue.write_texture(
-                    texture.as_image_copy(),
-                    initial,
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(bytes_per_row),
-                        rows_per_image: Some(job.height),
-                    },
-                    texture.size(),
-                );
-            }
-        }
-        let vertex_buffers: Vec<wgpu::Buffer> = job
-            .vertex_buffers
-            .iter()
-            .map(|vb| {
-                let size = super::readback::align_up(vb.data.len() as u64, 4).max(4);
-                let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size,
-                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                let mut padded = vb.data.clone();
-                padded.resize(size as usize, 0);
-                ctx.queue.write_buffer(&buffer, 0, &padded);
-                buffer
-            })
-            .collect();
-        let views: Vec<wgpu::TextureView> = targets
-            .iter()
-            .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()))
-            .collect();
-        let attachments: Vec<Option<wgpu::RenderPassColorAttachment<'_>>> = views
-            .iter()
-            .zip(&job.targets)
-            .map(|(view, t)| {
-                let [r, g, b, a] = t.clear;
-                let load = match t.initial {
-                    Some(_) => wgpu::LoadOp::Load,
-                    None => wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
-                };
-                Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            })
-            .collect();
+        let targets = create_targets(ctx, label, job.width, job.height, &job.targets);
+        let vertex_buffers = upload_vertex_buffers(ctx, label, &job.vertex_buffers);
+        let views = views(&targets);
+        let attachments = color_attachments(&views, &job.targets);
 
         let mut encoder = ctx
             .device
@@ -406,6 +260,190 @@ pub fn render_with(
         pending
     })??;
     finish_readbacks(ctx, label, pending)
+}
+
+/// Checks a pass's size against the device limits and each target's initial contents.
+pub(crate) fn check_targets(
+    ctx: &GpuContext,
+    label: &str,
+    width: u32,
+    height: u32,
+    targets: &[ColorTarget],
+) -> Result<(), GpuError> {
+    let invalid = |message: String| GpuError::Validation {
+        label: label.to_owned(),
+        message,
+    };
+    let limits = ctx.device.limits();
+    let max = limits.max_texture_dimension_2d;
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(invalid(format!(
+            "render size {width}x{height} is outside 1..={max}"
+        )));
+    }
+    if targets.is_empty() || targets.len() > limits.max_color_attachments as usize {
+        return Err(invalid(format!(
+            "{} colour targets; 1..={} are supported",
+            targets.len(),
+            limits.max_color_attachments
+        )));
+    }
+    let pixels = u64::from(width) * u64::from(height);
+    for (i, t) in targets.iter().enumerate() {
+        if let Some(initial) = &t.initial {
+            let needed = pixels * t.format.bytes_per_pixel() as u64;
+            if initial.len() as u64 != needed {
+                return Err(invalid(format!(
+                    "initial contents of target {i} ({width}x{height} {:?}) need {needed} bytes, got {}",
+                    t.format,
+                    initial.len()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that every vertex buffer holds `vertex_count` vertices.
+pub(crate) fn check_vertex_buffers(
+    label: &str,
+    buffers: &[VertexBuffer],
+    vertex_count: u32,
+) -> Result<(), GpuError> {
+    for (i, vb) in buffers.iter().enumerate() {
+        let needed = vb.stride * u64::from(vertex_count);
+        if vb.stride == 0 || (vb.data.len() as u64) < needed {
+            return Err(GpuError::Validation {
+                label: label.to_owned(),
+                message: format!(
+                    "vertex buffer {i} (stride {}) holds {} bytes; {vertex_count} vertices need {needed}",
+                    vb.stride,
+                    vb.data.len(),
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The pipeline's vertex-buffer layouts for `buffers`, slot `i` for buffer `i`.
+pub(crate) fn vertex_layouts(
+    buffers: &[VertexBuffer],
+) -> Vec<Option<wgpu::VertexBufferLayout<'_>>> {
+    buffers
+        .iter()
+        .map(|vb| {
+            Some(wgpu::VertexBufferLayout {
+                array_stride: vb.stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &vb.attributes,
+            })
+        })
+        .collect()
+}
+
+/// Creates the colour targets (readable and writable by copies) and uploads their initial
+/// contents.
+pub(crate) fn create_targets(
+    ctx: &GpuContext,
+    label: &str,
+    width: u32,
+    height: u32,
+    targets: &[ColorTarget],
+) -> Vec<wgpu::Texture> {
+    targets
+        .iter()
+        .map(|t| {
+            let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: t.format.wgpu_format(),
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            });
+            if let Some(initial) = &t.initial {
+                ctx.queue.write_texture(
+                    texture.as_image_copy(),
+                    initial,
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(width * t.format.bytes_per_pixel() as u32),
+                        rows_per_image: Some(height),
+                    },
+                    texture.size(),
+                );
+            }
+            texture
+        })
+        .collect()
+}
+
+/// Uploads vertex buffers (padded to 4 bytes).
+pub(crate) fn upload_vertex_buffers(
+    ctx: &GpuContext,
+    label: &str,
+    buffers: &[VertexBuffer],
+) -> Vec<wgpu::Buffer> {
+    buffers
+        .iter()
+        .map(|vb| {
+            let size = super::readback::align_up(vb.data.len() as u64, 4).max(4);
+            let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut padded = vb.data.clone();
+            padded.resize(size as usize, 0);
+            ctx.queue.write_buffer(&buffer, 0, &padded);
+            buffer
+        })
+        .collect()
+}
+
+/// Default views of `textures`.
+pub(crate) fn views(textures: &[wgpu::Texture]) -> Vec<wgpu::TextureView> {
+    textures
+        .iter()
+        .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()))
+        .collect()
+}
+
+/// Colour attachments: loaded where the target has initial contents, cleared otherwise.
+pub(crate) fn color_attachments<'a>(
+    views: &'a [wgpu::TextureView],
+    targets: &[ColorTarget],
+) -> Vec<Option<wgpu::RenderPassColorAttachment<'a>>> {
+    views
+        .iter()
+        .zip(targets)
+        .map(|(view, t)| {
+            let [r, g, b, a] = t.clear;
+            let load = match t.initial {
+                Some(_) => wgpu::LoadOp::Load,
+                None => wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+            };
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect()
 }
 
 /// Creates one bind group per group index that has used slots, from the pipeline's

@@ -251,7 +251,8 @@ fn run_reflections(
             BoundResource::new(0, 6, Resource::Sampler { nearest: true }),
             BoundResource::new(0, 7, Resource::Uniform(probe_uniform(probe))),
         ];
-        job.resources.extend(depth_camera_resources(scene, &camera));
+        job.resources
+            .extend(depth_camera_resources((scene.width, scene.height), &camera));
         let out = render(ctx, &job)?.remove(0);
         if let Some(report) = report.as_deref_mut() {
             report.draws += 1;

@@ -21,7 +21,7 @@ use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
 use wgsl_variants::reference::light::{Cookies, LightType};
 use wgsl_variants::reference::quantize::f16_bits_to_f32;
 use wgsl_variants::reference::surface::{Keywords, surface};
-use wgsl_variants::reference::tolerance::gbuffer_light_bound;
+use wgsl_variants::reference::tolerance::{f16_step, gbuffer_light_bound};
 
 /// One pixel of the comparison.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,12 +41,6 @@ impl LightPair {
     pub fn agrees(&self) -> bool {
         ((self.forward - self.deferred).abs() - self.allowed).max_element() <= 0.0
     }
-}
-
-/// The size of one f16 step at `x` (the spacing of half floats around it).
-fn f16_step(x: f32) -> f32 {
-    let e = x.abs().max(f32::MIN_POSITIVE).log2().floor().max(-14.0);
-    (e - 10.0).exp2()
 }
 
 /// Lights the scene's surface with keywords `kw` (opaque; the light keyword is added) by the
@@ -166,17 +160,4 @@ pub fn forward_vs_deferred(
             }
         })
         .collect())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::f16_step;
-
-    #[test]
-    fn f16_steps() {
-        assert_eq!(f16_step(1.0), 2f32.powi(-10));
-        assert_eq!(f16_step(1.5), 2f32.powi(-10));
-        assert_eq!(f16_step(2.0), 2f32.powi(-9));
-        assert_eq!(f16_step(0.0), 2f32.powi(-24));
-    }
 }

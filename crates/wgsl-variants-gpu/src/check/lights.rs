@@ -434,7 +434,7 @@ pub(crate) fn lighting_resources(
             texture(TargetFormat::Rgb10a2Unorm, w, h, &gbuffer.targets[2]),
         ),
     ];
-    resources.extend(depth_camera_resources(scene, camera));
+    resources.extend(depth_camera_resources((scene.width, scene.height), camera));
     resources.extend(rig.resources_for(light));
     resources
 }
@@ -443,7 +443,7 @@ pub(crate) fn lighting_resources(
 /// `R32Float` and the `DeferredCamera` uniform (inverse view-projection, position,
 /// view-projection).
 pub(crate) fn depth_camera_resources(
-    scene: &TestScene,
+    (width, height): (u32, u32),
     camera: &LightingCamera<'_>,
 ) -> Vec<BoundResource> {
     let depth: Vec<u8> = camera.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
@@ -457,8 +457,8 @@ pub(crate) fn depth_camera_resources(
             3,
             Resource::Texture2d {
                 format: wgpu::TextureFormat::R32Float,
-                width: scene.width,
-                height: scene.height,
+                width,
+                height,
                 data: depth,
             },
         ),

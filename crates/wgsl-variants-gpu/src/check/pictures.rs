@@ -7,6 +7,7 @@ use glam::Vec3;
 
 use super::compare::pixel;
 use super::deferred::{final_pass, render_chain, render_gbuffer};
+use super::frame::{FrameScene, reference_rgb, render_deferred, render_forward};
 use super::lights::LightRig;
 use super::passes::standard_job;
 use super::scene::TestScene;
@@ -84,6 +85,66 @@ impl Picture {
         image.save_with_format(&path, image::ImageFormat::Png)?;
         Ok(path)
     }
+}
+
+/// The frame of [`super::frame`] as pictures: the CPU reference, forward and deferred in LDR,
+/// their difference (×16), and the HDR renders (clamped to 1) with their difference (×16).
+pub fn frame_pictures(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &FrameScene,
+) -> Result<Vec<Picture>, GpuError> {
+    let (w, h) = (frame.width, frame.height);
+    let reference: Vec<Vec3> = frame
+        .pixels()
+        .map(|(x, y)| reference_rgb(frame, x, y).unwrap_or(Vec3::ZERO))
+        .collect();
+    let mut pictures = vec![Picture::from_fn(
+        "frame_reference",
+        "the CPU reference: each pixel's ray, lit by the forward formulas",
+        w,
+        h,
+        |i| rgb(reference[i].extend(1.0).to_array()),
+    )];
+    for hdr in [false, true] {
+        let forward = render_forward(ctx, lib, frame, hdr)?;
+        let deferred = render_deferred(ctx, lib, frame, hdr)?;
+        let mode = if hdr { "hdr" } else { "ldr" };
+        let clamp = if hdr { " (clamped to 1)" } else { "" };
+        pictures.push(Picture::from_fn(
+            &format!("frame_forward_{mode}"),
+            &format!(
+                "forward: ForwardBase + ForwardAdd per light, {} draws{clamp}",
+                forward.draws
+            ),
+            w,
+            h,
+            |i| rgb(forward.rgb(i).extend(1.0).to_array()),
+        ));
+        pictures.push(Picture::from_fn(
+            &format!("frame_deferred_{mode}"),
+            &format!(
+                "deferred: G-buffer + Lighting per light{}, {} draws{clamp}",
+                if hdr { "" } else { " + final" },
+                deferred.draws
+            ),
+            w,
+            h,
+            |i| rgb(deferred.rgb(i).extend(1.0).to_array()),
+        ));
+        pictures.push(Picture::from_fn(
+            &format!("frame_difference_{mode}"),
+            "|forward − deferred| × 16",
+            w,
+            h,
+            |i| {
+                rgb(((forward.rgb(i) - deferred.rgb(i)).abs() * 16.0)
+                    .extend(1.0)
+                    .to_array())
+            },
+        ));
+    }
+    Ok(pictures)
 }
 
 /// A picture written as a PNG file (one entry of what `render --json` prints).

@@ -105,7 +105,8 @@ pub struct MapTexture {
 }
 
 impl MapTexture {
-    fn new(width: u32, height: u32, mut texel: impl FnMut(u32, u32) -> [u8; 4]) -> MapTexture {
+    /// A `width × height` texture whose texel `(x, y)` is `texel(x, y)`.
+    pub fn new(width: u32, height: u32, mut texel: impl FnMut(u32, u32) -> [u8; 4]) -> MapTexture {
         let texels = (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))
             .map(|(x, y)| texel(x, y))
@@ -194,12 +195,12 @@ pub struct TestScene {
 }
 
 /// A cube of six colours from 8-bit codes, RGBM alpha in the last component.
-fn cube(colours: [[u8; 4]; 6]) -> CubeFaces {
+pub(crate) fn cube(colours: [[u8; 4]; 6]) -> CubeFaces {
     CubeFaces(colours.map(|c| Vec4::from_array(c.map(|x| unorm_to_f32(u32::from(x), 8)))))
 }
 
 /// A probe.
-fn probe(
+pub(crate) fn probe(
     position: Vec3,
     box_min: Vec3,
     box_max: Vec3,
@@ -643,8 +644,63 @@ impl TestScene {
     /// Every resource of the standard shader's passes (bindings of `wgsl/standard/bindings.wgsl`);
     /// a pass binds only those its variant uses.
     pub fn standard_resources(&self) -> Vec<BoundResource> {
-        let s = &self.scene;
-        let m = &self.material;
+        StandardBindings {
+            view_proj: self.view_proj,
+            scene: &self.scene,
+            material: &self.material,
+            detail_st: self.detail_st,
+            maps: &self.maps,
+            model: self.model,
+            normal_matrix: self.normal_matrix,
+        }
+        .resources()
+    }
+
+    /// The depth buffer of the scene's camera: each pixel's clip-space `z / w` (the quad
+    /// covers every pixel), one `f32` per pixel, row by row — what the deferred reflection pass
+    /// rebuilds world positions from.
+    pub fn depth_buffer(&self) -> Vec<f32> {
+        self.pixels()
+            .map(|(x, y)| {
+                let clip = self.view_proj * self.world_position(x, y).extend(1.0);
+                clip.z / clip.w
+            })
+            .collect()
+    }
+}
+
+impl Default for TestScene {
+    fn default() -> TestScene {
+        TestScene::new(DEFAULT_SEED)
+    }
+}
+
+/// What one draw of the standard shader binds (`wgsl/standard/bindings.wgsl`): the camera, the
+/// per-frame lighting and probes of `scene`, the material with its maps, and the object.
+#[derive(Clone, Copy, Debug)]
+pub struct StandardBindings<'a> {
+    /// World-to-clip transform.
+    pub view_proj: Mat4,
+    /// Camera position, ambient light, main light, the two probes and their cubes.
+    pub scene: &'a Scene,
+    /// The material's uniforms.
+    pub material: &'a Material,
+    /// Detail tiling (xy) and offset (zw).
+    pub detail_st: Vec4,
+    /// The material's textures.
+    pub maps: &'a Maps,
+    /// Object-to-world transform.
+    pub model: Mat4,
+    /// Inverse transpose of `model` (for normals).
+    pub normal_matrix: Mat4,
+}
+
+impl StandardBindings<'_> {
+    /// Every resource of the standard shader's passes; a pass binds only those its variant
+    /// uses.
+    pub fn resources(&self) -> Vec<BoundResource> {
+        let s = self.scene;
+        let m = self.material;
         let mut camera = Vec::new();
         push_mat4(&mut camera, self.view_proj);
         push_vec4(&mut camera, s.camera_position.extend(1.0));
@@ -675,7 +731,7 @@ impl TestScene {
         let mut object = Vec::new();
         push_mat4(&mut object, self.model);
         push_mat4(&mut object, self.normal_matrix);
-        let maps = &self.maps;
+        let maps = self.maps;
         vec![
             BoundResource::new(0, 0, Resource::Uniform(camera)),
             BoundResource::new(0, 1, Resource::Uniform(lighting)),
@@ -702,24 +758,6 @@ impl TestScene {
             BoundResource::new(1, 9, maps.detail_normal.resource()),
             BoundResource::new(2, 0, Resource::Uniform(object)),
         ]
-    }
-
-    /// The depth buffer of the scene's camera: each pixel's clip-space `z / w` (the quad
-    /// covers every pixel), one `f32` per pixel, row by row — what the deferred reflection pass
-    /// rebuilds world positions from.
-    pub fn depth_buffer(&self) -> Vec<f32> {
-        self.pixels()
-            .map(|(x, y)| {
-                let clip = self.view_proj * self.world_position(x, y).extend(1.0);
-                clip.z / clip.w
-            })
-            .collect()
-    }
-}
-
-impl Default for TestScene {
-    fn default() -> TestScene {
-        TestScene::new(DEFAULT_SEED)
     }
 }
 

@@ -173,7 +173,7 @@ fn collect_resources(
     map: &[u16],
 ) -> Vec<BoundResource> {
     let camera = rig.camera(scene);
-    let mut out = depth_camera_resources(scene, &camera);
+    let mut out = depth_camera_resources((scene.width, scene.height), &camera);
     out.extend(shadow_map_resources(params, map));
     out
 }

@@ -517,7 +517,7 @@ fn resources(
             texture(TargetFormat::R32Uint, w, h, layers),
         ));
     }
-    out.extend(depth_camera_resources(scene, camera));
+    out.extend(depth_camera_resources((scene.width, scene.height), camera));
     out
 }
 

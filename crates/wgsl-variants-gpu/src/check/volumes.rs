@@ -24,11 +24,10 @@ use super::deferred::{GBufferImage, rt3_blend};
 use super::lights::{LightRig, lighting_resources, render_lighting};
 use super::scene::{TestScene, push_mat4};
 use crate::light_volume::{LightDraw, LightVolume};
-use crate::render::create_bind_groups;
+use crate::pass::pipeline;
 use crate::{
-    BoundResource, CheckError, GpuContext, GpuError, GpuResources, Resource, VertexBuffer,
-    compile_scoped, encode_texture_readback, finish_readbacks, map_buffers, used_bindings,
-    wgsl_module,
+    BoundResource, CheckError, GpuContext, GpuError, Resource, VertexBuffer,
+    encode_texture_readback, finish_readbacks, map_buffers,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::light::{Light, LightType};
@@ -230,63 +229,6 @@ pub(crate) struct LightPipelineInput<'a> {
     pub(crate) format: wgpu::TextureFormat,
     pub(crate) blend: wgpu::BlendState,
     pub(crate) rt3: Vec<u8>,
-}
-
-/// A render pipeline over `wgsl`'s `vertex` / `fragment` entry points (no fragment stage:
-/// depth and stencil only), its bind groups from `resources`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn pipeline(
-    ctx: &GpuContext,
-    label: &str,
-    wgsl: &str,
-    (vertex, fragment): (&str, Option<&str>),
-    vertex_buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
-    cull_mode: Option<wgpu::Face>,
-    depth_stencil: wgpu::DepthStencilState,
-    targets: &[Option<wgpu::ColorTargetState>],
-    resources: &[BoundResource],
-) -> Result<(wgpu::RenderPipeline, Vec<(u32, wgpu::BindGroup)>), GpuError> {
-    let pipeline = compile_scoped(ctx, label, || {
-        let module = wgsl_module(ctx, label, wgsl);
-        ctx.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(vertex),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: vertex_buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    cull_mode,
-                    ..wgpu::PrimitiveState::default()
-                },
-                depth_stencil: Some(depth_stencil),
-                multisample: wgpu::MultisampleState::default(),
-                fragment: fragment.map(|entry| wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-    })?;
-    let entries: Vec<&str> = std::iter::once(vertex).chain(fragment).collect();
-    let used = used_bindings(label, wgsl, &entries)?;
-    let uploaded = GpuResources::upload(ctx, label, resources)?;
-    if let Some((group, binding)) = used.iter().find(|&&slot| !uploaded.contains(slot)) {
-        return Err(GpuError::Validation {
-            label: label.to_owned(),
-            message: format!("shader uses @group({group}) @binding({binding}) without a resource"),
-        });
-    }
-    let groups = ctx.scoped(label, || {
-        create_bind_groups(ctx, label, &pipeline, &used, &uploaded)
-    })?;
-    Ok((pipeline, groups))
 }
 
 /// Stencil state that replaces the value where `compare` passes (and the depth test too),

@@ -1,0 +1,712 @@
+//! A whole frame of the built-in path, end to end (docs/shading.md §12): the objects of
+//! [`FrameScene`] rendered
+//!
+//! - **forward**: `standard/ForwardBase` per object (ambient, probes, emission and the main
+//!   directional light), then `standard/ForwardAdd` per object and per-pixel light, blended
+//!   One / One with `ZTest LEqual` and no depth writes;
+//! - **deferred**: `standard/Deferred` per object into RT0–RT3 and the depth buffer, then
+//!   `deferred_shading/Lighting` once per light (the main light first, `DIRECTIONAL`) from the
+//!   G-buffer and the depth, blended onto RT3, then (LDR) `deferred_final/Final`;
+//!
+//! in HDR (`Rgba16Float`, `UNITY_HDR_ON`) and LDR (`Rgba8Unorm` forward, the 10-bit `exp2(−c)`
+//! RT3 and the final pass deferred), and compares every pixel of both with a CPU reference
+//! computed from the formulas ([`wgsl_variants::reference`]) and with each other: the
+//! documents' claim that the shader "produces the same results in both forward and deferred
+//! mode". The tolerances are those of [`wgsl_variants::reference::tolerance`] (the frame's
+//! row): the rounding of every draw, the G-buffer's quantization of each deferred light, and
+//! the reference's change over the rasterizer's sub-pixel window. Pixels whose window sees two
+//! objects (silhouettes) are left out and counted; the background is compared (nothing drawn).
+//!
+//! ```no_run
+//! use wgsl_variants_gpu::GpuContext;
+//! use wgsl_variants_gpu::check::frame::{FrameScene, check_frame};
+//! let ctx = GpuContext::new(None).unwrap();
+//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let report = check_frame(&ctx, &lib, &FrameScene::new(), true).unwrap();
+//! assert!(report.passed(), "{report}");
+//! ```
+
+pub mod scene;
+
+use std::fmt;
+use std::sync::Arc;
+
+use glam::Vec3;
+
+pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
+
+use super::compare::pixel;
+use super::deferred::{final_pass, rt3_blend, texture};
+use crate::{
+    BoundResource, CheckError, ColorTarget, DepthTest, Draw, DrawPass, GpuContext, GpuError,
+    Resource, TargetFormat, render_pass,
+};
+use wgsl_variants::Library;
+use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
+use wgsl_variants::reference::light::{LightParams, LightType};
+use wgsl_variants::reference::surface::{
+    Geometry, Keywords, shade_deferred, shade_forward, shade_forward_add, surface,
+    view_and_reflection,
+};
+use wgsl_variants::reference::tolerance::{
+    SUBPIXEL_WINDOW, f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error,
+    window_spread,
+};
+
+/// The rendered frame of one path: its final colour (`Rgba16Float` in HDR, `Rgba8Unorm` in
+/// LDR) and how many draws made it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathImage {
+    /// Tightly packed pixels of [`PathImage::format`].
+    pub bytes: Vec<u8>,
+    /// `Rgba16Float` (HDR) or `Rgba8Unorm` (LDR).
+    pub format: TargetFormat,
+    /// Draw calls, full-screen passes included.
+    pub draws: usize,
+}
+
+impl PathImage {
+    /// Pixel `i`'s rgb as values (f16 decoded, or unorm `code / 255`).
+    pub fn rgb(&self, i: usize) -> Vec3 {
+        let v = pixel(self.format, &self.bytes, i).1;
+        Vec3::new(v[0], v[1], v[2])
+    }
+}
+
+/// The keyword names of `object`'s variant of `pass` (`ForwardBase`, `ForwardAdd` with
+/// `light`, or `Deferred`, with `UNITY_HDR_ON` when `hdr`).
+fn object_keywords(
+    object: &FrameObject,
+    pass: &str,
+    light: Option<LightType>,
+    hdr: bool,
+) -> Vec<&'static str> {
+    let deferred = pass == "Deferred";
+    let mut names = Keywords {
+        hdr: deferred && hdr,
+        reflection_buffers: false,
+        occlusion_map: object.keywords.occlusion_map && pass != "ForwardAdd",
+        emission_map: object.keywords.emission_map && pass != "ForwardAdd",
+        ..object.keywords
+    }
+    .names();
+    names.extend(light.map(LightType::keyword));
+    names
+}
+
+/// A variant's label and composed text, shared by every draw of it.
+fn variant_text(
+    lib: &Library,
+    shader: &str,
+    pass: &str,
+    names: &[&str],
+) -> Result<(String, Arc<str>), GpuError> {
+    let variant = lib
+        .variant(shader, pass, names)
+        .map_err(|e| CheckError::lookup(format!("{shader}/{pass} {names:?}"), e))?;
+    Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
+}
+
+/// One object's draw of a `standard` pass.
+fn object_draw(
+    lib: &Library,
+    frame: &FrameScene,
+    object: &FrameObject,
+    pass: &str,
+    light: Option<&FrameLight>,
+    hdr: bool,
+) -> Result<Draw, GpuError> {
+    let names = object_keywords(object, pass, light.map(|l| l.light_type), hdr);
+    let (label, wgsl) = variant_text(lib, "standard", pass, &names)?;
+    let mut resources = frame.object_resources(object);
+    if let Some(light) = light {
+        resources.extend(FrameScene::light_resources(&light.params));
+    }
+    Ok(Draw::fullscreen(
+        &format!("{} {label}", object.name),
+        &wgsl,
+        "vs_main",
+        "fs_main",
+    )
+    .with_mesh(object.mesh())
+    .with_resources(resources))
+}
+
+/// One-One additive blending (ForwardAdd on opaque and cutout surfaces).
+const ADD: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
+/// Renders the forward path: ForwardBase per object, then ForwardAdd per light and object.
+pub fn render_forward(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &FrameScene,
+    hdr: bool,
+) -> Result<PathImage, GpuError> {
+    let format = if hdr {
+        TargetFormat::Rgba16Float
+    } else {
+        TargetFormat::Rgba8Unorm
+    };
+    let mut pass = DrawPass::new(
+        "frame: forward",
+        frame.width,
+        frame.height,
+        vec![ColorTarget::new(format)],
+    );
+    pass.depth = true;
+    for object in &frame.objects {
+        pass.draws.push(
+            object_draw(lib, frame, object, "ForwardBase", None, hdr)?
+                .with_depth(DepthTest::OPAQUE),
+        );
+    }
+    for light in &frame.lights {
+        for object in &frame.objects {
+            pass.draws.push(
+                object_draw(lib, frame, object, "ForwardAdd", Some(light), hdr)?
+                    .with_blend(ADD)
+                    .with_depth(DepthTest::SAME_SURFACE),
+            );
+        }
+    }
+    let draws = pass.draws.len();
+    let bytes = render_pass(ctx, &pass)?.targets.remove(0);
+    Ok(PathImage {
+        bytes,
+        format,
+        draws,
+    })
+}
+
+/// What the deferred path leaves before the final pass: RT0–RT3 and the depth buffer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GBufferFrame {
+    /// RT0 (`Rgba8Unorm`), RT1 (`Rgba8Unorm`), RT2 (`Rgb10a2Unorm`), RT3.
+    pub targets: Vec<Vec<u8>>,
+    /// The depth buffer, one `f32` per pixel.
+    pub depth: Vec<f32>,
+}
+
+/// Renders the deferred path: the G-buffer pass over every object, one full-screen Lighting
+/// draw per light (the main light first), and in LDR the final pass.
+pub fn render_deferred(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &FrameScene,
+    hdr: bool,
+) -> Result<PathImage, GpuError> {
+    let (w, h) = (frame.width, frame.height);
+    let rt3_format = if hdr {
+        TargetFormat::Rgba16Float
+    } else {
+        TargetFormat::Rgb10a2Unorm
+    };
+    // Empty RT3: no light, 0 in HDR and exp2(−0) = 1 in LDR.
+    let empty = if hdr { 0.0 } else { 1.0 };
+    let mut gbuffer = DrawPass::new(
+        "frame: G-buffer",
+        w,
+        h,
+        vec![
+            ColorTarget::new(TargetFormat::Rgba8Unorm),
+            ColorTarget::new(TargetFormat::Rgba8Unorm),
+            ColorTarget::new(TargetFormat::Rgb10a2Unorm),
+            ColorTarget::new(rt3_format).with_clear([empty, empty, empty, 1.0]),
+        ],
+    );
+    gbuffer.depth = true;
+    for object in &frame.objects {
+        gbuffer.draws.push(
+            object_draw(lib, frame, object, "Deferred", None, hdr)?.with_depth(DepthTest::OPAQUE),
+        );
+    }
+    let out = render_pass(ctx, &gbuffer)?;
+    let g = GBufferFrame {
+        depth: out.depth.unwrap_or_default(),
+        targets: out.targets,
+    };
+
+    let mut lighting = DrawPass::new(
+        "frame: lighting",
+        w,
+        h,
+        vec![
+            ColorTarget::new(rt3_format)
+                .with_blend(rt3_blend(hdr))
+                .with_initial(g.targets[3].clone()),
+        ],
+    );
+    let depth: Vec<u8> = g.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+    let shared = vec![
+        BoundResource::new(0, 0, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[0])),
+        BoundResource::new(0, 1, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[1])),
+        BoundResource::new(
+            0,
+            2,
+            texture(TargetFormat::Rgb10a2Unorm, w, h, &g.targets[2]),
+        ),
+        BoundResource::new(
+            0,
+            3,
+            Resource::Texture2d {
+                format: wgpu::TextureFormat::R32Float,
+                width: w,
+                height: h,
+                data: depth,
+            },
+        ),
+        BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
+    ];
+    let main = FrameLight {
+        name: "main",
+        light_type: LightType::Directional,
+        params: frame.main_light,
+    };
+    for light in std::iter::once(&main).chain(&frame.lights) {
+        let mut names = vec![light.light_type.keyword()];
+        if hdr {
+            names.push("UNITY_HDR_ON");
+        }
+        let (label, wgsl) = variant_text(lib, "deferred_shading", "Lighting", &names)?;
+        let mut resources = shared.clone();
+        resources.extend(FrameScene::light_resources(&light.params));
+        lighting.draws.push(
+            Draw::fullscreen(
+                &format!("{} {label}", light.name),
+                &wgsl,
+                "vs_main",
+                "fs_main",
+            )
+            .with_resources(resources),
+        );
+    }
+    let mut draws = gbuffer.draws.len() + lighting.draws.len();
+    let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
+    if hdr {
+        return Ok(PathImage {
+            bytes: rt3,
+            format: rt3_format,
+            draws,
+        });
+    }
+    draws += 1;
+    Ok(PathImage {
+        bytes: final_pass(ctx, lib, &rt3, w, h)?,
+        format: TargetFormat::Rgba8Unorm,
+        draws,
+    })
+}
+
+/// The reference at one point of a surface: the forward terms and what the deferred path's
+/// tolerance needs.
+#[derive(Clone, Debug)]
+struct Terms {
+    /// ForwardBase's rgb: ambient, probes, emission and the main light.
+    base: Vec3,
+    /// The light each ForwardAdd draw adds.
+    adds: Vec<Vec3>,
+    /// What the G-buffer pass writes to RT3 (ambient, probes, emission).
+    c0: Vec3,
+    /// The main light's direct term.
+    main: Vec3,
+    /// [`gbuffer_light_bound`] of the main light and each per-pixel light.
+    bounds: Vec<Vec3>,
+}
+
+impl Terms {
+    fn total(&self) -> Vec3 {
+        self.base + self.adds.iter().copied().sum::<Vec3>()
+    }
+}
+
+/// The reference terms of `object` at `geo`.
+fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
+    let kw = Keywords {
+        hdr: false,
+        reflection_buffers: false,
+        ..object.keywords
+    };
+    let tex = object.reference_texels();
+    let mat = &object.material;
+    let camera = frame.scene.camera_position;
+    // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
+    let base =
+        shade_forward(&kw, mat, &tex, geo, &frame.scene).map_or(Vec3::ZERO, |c| c.truncate());
+    let adds = frame
+        .lights
+        .iter()
+        .map(|l| {
+            shade_forward_add(&kw, mat, &tex, geo, camera, &l.params, l.light_type, None)
+                .map_or(Vec3::ZERO, |c| c.truncate())
+        })
+        .collect();
+    let hdr_kw = Keywords { hdr: true, ..kw };
+    let c0 = shade_deferred(&hdr_kw, mat, &tex, geo, &frame.scene)
+        .map_or(Vec3::ZERO, |g| g.rt3.truncate());
+    let s = surface(&kw, mat, &tex, geo);
+    let (diffuse, spec, _) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
+    let p = geo.world_position;
+    let (v, _) = view_and_reflection(camera, p, s.normal);
+    let bound = |params: &LightParams, t: LightType| {
+        let (l, attenuation) = params.sample(t, p, None);
+        let h = (l + v).normalize_or_zero();
+        gbuffer_light_bound(
+            diffuse,
+            spec,
+            s.smoothness,
+            s.normal.dot(l).clamp(0.0, 1.0),
+            s.normal.dot(h).clamp(0.0, 1.0),
+            params.color * attenuation,
+        )
+    };
+    let mut bounds = vec![bound(&frame.main_light, LightType::Directional)];
+    bounds.extend(frame.lights.iter().map(|l| bound(&l.params, l.light_type)));
+    Terms {
+        main: base - c0,
+        base,
+        adds,
+        c0,
+        bounds,
+    }
+}
+
+/// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
+/// centre sees, lit by the forward formulas; `None` on the background.
+pub fn reference_rgb(frame: &FrameScene, x: u32, y: u32) -> Option<Vec3> {
+    let hit = frame.cast(f64::from(x) + 0.5, f64::from(y) + 0.5)?;
+    Some(terms(frame, &frame.objects[hit.object], &hit.geometry).total())
+}
+
+/// One compared pixel whose forward or deferred value (or their pair) is out of tolerance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameMismatch {
+    /// Pixel `(x, y)`.
+    pub pixel: [u32; 2],
+    /// The object the pixel sees (`background` for none).
+    pub object: &'static str,
+    /// The reference rgb (before the target clamps it).
+    pub reference: Vec3,
+    /// The forward path's rgb.
+    pub forward: Vec3,
+    /// The deferred path's rgb.
+    pub deferred: Vec3,
+    /// Which comparisons failed: forward, deferred, forward vs deferred.
+    pub failed: [bool; 3],
+}
+
+/// The result of [`check_frame`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameReport {
+    /// HDR or LDR.
+    pub hdr: bool,
+    /// Draw calls of the forward path.
+    pub forward_draws: usize,
+    /// Draw calls of the deferred path.
+    pub deferred_draws: usize,
+    /// Pixels on a surface, compared.
+    pub compared: usize,
+    /// Background pixels, compared (both paths must leave them empty).
+    pub background: usize,
+    /// Silhouette pixels left out (their sub-pixel window sees two objects or the background).
+    pub edges: usize,
+    /// Pixels out of tolerance: forward vs reference, deferred vs reference, forward vs
+    /// deferred.
+    pub failures: [usize; 3],
+    /// The largest ratio of a difference to its allowance (forward, deferred, pair): below 1
+    /// when everything passes, and how much room the tolerance left.
+    pub worst: [f32; 3],
+    /// Pixels each light changes by more than 1 % of its value (every light must reach some).
+    pub lit_by: Vec<(&'static str, usize)>,
+    /// The first mismatches (at most 20).
+    pub mismatches: Vec<FrameMismatch>,
+}
+
+impl FrameReport {
+    /// Whether every compared pixel agrees and every light lights something.
+    pub fn passed(&self) -> bool {
+        self.failures == [0; 3] && self.lit_by.iter().all(|&(_, n)| n > 0)
+    }
+}
+
+impl fmt::Display for FrameReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "frame {}: {} pixels compared, {} background, {} silhouette pixels left out; forward {} draws, deferred {} draws",
+            if self.hdr { "HDR" } else { "LDR" },
+            self.compared,
+            self.background,
+            self.edges,
+            self.forward_draws,
+            self.deferred_draws,
+        )?;
+        writeln!(
+            f,
+            "  mismatches: forward {} (worst {:.2} of the allowance), deferred {} (worst {:.2}), forward vs deferred {} (worst {:.2})",
+            self.failures[0],
+            self.worst[0],
+            self.failures[1],
+            self.worst[1],
+            self.failures[2],
+            self.worst[2],
+        )?;
+        for (name, n) in &self.lit_by {
+            writeln!(f, "  {name}: lights {n} pixels")?;
+        }
+        for m in &self.mismatches {
+            writeln!(
+                f,
+                "  ({}, {}) {}: reference {:.5} forward {:.5} deferred {:.5} failed [forward, deferred, pair] {:?}",
+                m.pixel[0], m.pixel[1], m.object, m.reference, m.forward, m.deferred, m.failed
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// The allowed interval of a path's value, per channel.
+#[derive(Clone, Copy, Debug)]
+struct Interval {
+    lo: Vec3,
+    hi: Vec3,
+}
+
+impl Interval {
+    fn around(centre: Vec3, allowed: Vec3) -> Interval {
+        Interval {
+            lo: centre - allowed,
+            hi: centre + allowed,
+        }
+    }
+
+    /// How far outside `got` is, relative to the interval's half width (≤ 1 inside).
+    fn ratio(&self, got: Vec3) -> f32 {
+        let mid = (self.lo + self.hi) * 0.5;
+        let half = ((self.hi - self.lo) * 0.5).max(Vec3::splat(f32::MIN_POSITIVE));
+        ((got - mid).abs() / half).max_element()
+    }
+
+    fn contains(&self, got: Vec3) -> bool {
+        got.cmpge(self.lo).all() && got.cmple(self.hi).all()
+    }
+
+    /// The interval clamped to [0, 1] and widened by `e` (an LDR target's last store).
+    fn saturated(&self, e: f32) -> Interval {
+        Interval {
+            lo: self.lo.clamp(Vec3::ZERO, Vec3::ONE) - Vec3::splat(e),
+            hi: self.hi.clamp(Vec3::ZERO, Vec3::ONE) + Vec3::splat(e),
+        }
+    }
+}
+
+/// Sum of [`f16_store_error`] over the partial sums `start, start + a₁, …`.
+fn f16_chain(start: Vec3, steps: &[Vec3]) -> Vec3 {
+    let mut sum = start;
+    let mut err = sum.to_array().map(f16_store_error);
+    for s in steps {
+        sum += *s;
+        let e = sum.to_array().map(f16_store_error);
+        for k in 0..3 {
+            err[k] += e[k];
+        }
+    }
+    Vec3::from_array(err)
+}
+
+/// The forward value's allowed interval: the reference `total`, the rounding of each of the
+/// `stores` draws (partial sums in f16, or one unorm step each in LDR, saturated) and the
+/// reference's window spread.
+fn forward_interval(t: &Terms, spread: Vec3, hdr: bool, stores: usize) -> Interval {
+    if hdr {
+        Interval::around(t.total(), f16_chain(t.base, &t.adds) + spread)
+    } else {
+        let e = Vec3::splat(stores as f32 * unorm_store_error(8));
+        Interval::around(t.total(), spread + e).saturated(0.0)
+    }
+}
+
+/// The deferred value's allowed interval when the exact light lies in `[lo, hi]`: the
+/// G-buffer bound of every light and the window spread, then the rounding of RT3 after the
+/// G-buffer pass and each of the `lights` Lighting draws (f16 partial sums in HDR; the 10-bit
+/// `exp2(−c)` chain and the final pass's 8-bit store in LDR).
+fn deferred_interval(
+    t: &Terms,
+    lo: Vec3,
+    hi: Vec3,
+    spread: Vec3,
+    hdr: bool,
+    lights: usize,
+) -> Interval {
+    let bounds: Vec3 = t.bounds.iter().copied().sum::<Vec3>() + spread;
+    if hdr {
+        let mut steps = vec![t.main];
+        steps.extend(t.adds.iter().copied());
+        let e = f16_chain(t.c0, &steps) + bounds;
+        Interval {
+            lo: lo - e,
+            hi: hi + e,
+        }
+    } else {
+        let (lo, hi) = (lo - bounds, hi + bounds);
+        let stores = 1 + lights as u32;
+        let mut out = Interval { lo, hi };
+        for k in 0..3 {
+            (out.lo[k], out.hi[k]) = ldr_chain_range(lo[k], hi[k], stores);
+        }
+        out.saturated(unorm_store_error(8))
+    }
+}
+
+/// Renders the frame both ways in HDR or LDR and compares every pixel with the reference and
+/// the two paths with each other.
+pub fn check_frame(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &FrameScene,
+    hdr: bool,
+) -> Result<FrameReport, GpuError> {
+    let forward = render_forward(ctx, lib, frame, hdr)?;
+    let deferred = render_deferred(ctx, lib, frame, hdr)?;
+    Ok(compare(frame, &forward, &deferred, hdr))
+}
+
+/// Compares the two paths' images of `frame` with the reference, pixel by pixel.
+pub fn compare(
+    frame: &FrameScene,
+    forward: &PathImage,
+    deferred: &PathImage,
+    hdr: bool,
+) -> FrameReport {
+    let mut report = FrameReport {
+        hdr,
+        forward_draws: forward.draws,
+        deferred_draws: deferred.draws,
+        compared: 0,
+        background: 0,
+        edges: 0,
+        failures: [0; 3],
+        worst: [0.0; 3],
+        lit_by: frame.lights.iter().map(|l| (l.name, 0)).collect(),
+        mismatches: Vec::new(),
+    };
+    // ForwardBase plus one ForwardAdd per light store into the forward target.
+    let forward_stores = 1 + frame.lights.len();
+    // The main light and each per-pixel light.
+    let deferred_lights = 1 + frame.lights.len();
+    let w = f64::from(SUBPIXEL_WINDOW);
+    for (i, (x, y)) in frame.pixels().enumerate() {
+        let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+        let centre = frame.cast(cx, cy);
+        let window: Vec<Option<Hit>> = [
+            (-w, -w),
+            (0.0, -w),
+            (w, -w),
+            (-w, 0.0),
+            (w, 0.0),
+            (-w, w),
+            (0.0, w),
+            (w, w),
+        ]
+        .iter()
+        .map(|(dx, dy)| frame.cast(cx + dx, cy + dy))
+        .collect();
+        let same = |h: &Option<Hit>| h.map(|h| h.object) == centre.map(|h| h.object);
+        if !window.iter().all(same) {
+            report.edges += 1;
+            continue;
+        }
+        let (f, d) = (forward.rgb(i), deferred.rgb(i));
+        let Some(hit) = centre else {
+            report.background += 1;
+            let empty = f == Vec3::ZERO && d == Vec3::ZERO;
+            if !empty {
+                report.failures[0] += usize::from(f != Vec3::ZERO);
+                report.failures[1] += usize::from(d != Vec3::ZERO);
+                report.failures[2] += 1;
+                push_mismatch(
+                    &mut report,
+                    [x, y],
+                    "background",
+                    Vec3::ZERO,
+                    f,
+                    d,
+                    [f != Vec3::ZERO, d != Vec3::ZERO, true],
+                );
+            }
+            continue;
+        };
+        report.compared += 1;
+        let object = &frame.objects[hit.object];
+        let t = terms(frame, object, &hit.geometry);
+        let samples: Vec<Vec3> = window
+            .iter()
+            .flatten()
+            .map(|h| terms(frame, object, &h.geometry).total())
+            .collect();
+        let total = t.total();
+        let spread = window_spread(total, &samples);
+        for (k, add) in t.adds.iter().enumerate() {
+            if add.max_element() > 0.01 * total.max_element().max(1e-3) {
+                report.lit_by[k].1 += 1;
+            }
+        }
+        let fi = forward_interval(&t, spread, hdr, forward_stores);
+        let di = deferred_interval(&t, total, total, spread, hdr, deferred_lights);
+        // Forward against deferred: the deferred interval around what the forward value says
+        // the light is (its own rounding undone; a saturated LDR value says only "≥ 1"). The
+        // window stays: forward interpolates the world position with the snapped triangle's
+        // weights, deferred rebuilds it on the centre's ray.
+        let (f_lo, f_hi) = if hdr {
+            let e = f16_chain(t.base, &t.adds);
+            (f - e, f + e)
+        } else {
+            let e = Vec3::splat(forward_stores as f32 * unorm_store_error(8));
+            let hi = Vec3::select(f.cmpge(Vec3::ONE), Vec3::splat(f32::INFINITY), f + e);
+            (f - e, hi)
+        };
+        let pi = deferred_interval(&t, f_lo, f_hi, spread, hdr, deferred_lights);
+        let ratios = [fi.ratio(f), di.ratio(d), pi.ratio(d)];
+        let failed = [!fi.contains(f), !di.contains(d), !pi.contains(d)];
+        for k in 0..3 {
+            report.worst[k] = report.worst[k].max(ratios[k]);
+            report.failures[k] += usize::from(failed[k]);
+        }
+        if failed.iter().any(|b| *b) {
+            push_mismatch(&mut report, [x, y], object.name, total, f, d, failed);
+        }
+    }
+    report
+}
+
+#[allow(clippy::too_many_arguments)]
+fn push_mismatch(
+    report: &mut FrameReport,
+    pixel: [u32; 2],
+    object: &'static str,
+    reference: Vec3,
+    forward: Vec3,
+    deferred: Vec3,
+    failed: [bool; 3],
+) {
+    if report.mismatches.len() < 20 {
+        report.mismatches.push(FrameMismatch {
+            pixel,
+            object,
+            reference,
+            forward,
+            deferred,
+            failed,
+        });
+    }
+}

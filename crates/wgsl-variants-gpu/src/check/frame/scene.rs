@@ -1,0 +1,668 @@
+//! The frame's scene, made by code: a floor, two spheres and two boxes, each with its own
+//! keyword set and material, seen by a perspective camera; the ambient light, the directional
+//! main light and the two reflection probes of [`Scene`]; and three per-pixel lights (two
+//! points and a spot).
+//!
+//! Every map of an object is one texel (`Rgba8Unorm`, exact in 8 bits), so a sample does not
+//! depend on the uv the rasterizer interpolates: the keywords still change the surface (a
+//! tilted normal map, a detail albedo, a metallic map …), and the only per-pixel inputs left
+//! are the interpolated position, normal and tangent — which the CPU reference gets by casting
+//! the pixel's ray against the same triangles ([`FrameScene::cast`]).
+
+use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
+
+use super::super::scene::{MapTexture, Maps, StandardBindings, cube, probe, push_mat4, push_vec4};
+use crate::{BoundResource, Resource, VertexBuffer};
+use wgsl_variants::reference::light::{Light, LightParams, LightType, look_at_rh, perspective_rh};
+use wgsl_variants::reference::probe::Probe;
+use wgsl_variants::reference::quantize::unorm_to_f32;
+use wgsl_variants::reference::surface::{
+    Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Texels,
+};
+
+/// Width of the frame in pixels.
+pub const FRAME_WIDTH: u32 = 64;
+
+/// Height of the frame in pixels.
+pub const FRAME_HEIGHT: u32 = 48;
+
+/// One vertex as the standard shader reads it: position (3), normal (3), tangent (4, w the
+/// bitangent sign), uv (2), in object space.
+pub type Vertex = [f32; 12];
+
+/// One object of the frame.
+#[derive(Clone, Debug)]
+pub struct FrameObject {
+    /// A name for reports.
+    pub name: &'static str,
+    /// The material keywords (opaque or cutout; HDR and reflection buffers are the frame's).
+    pub keywords: Keywords,
+    /// The material's uniforms.
+    pub material: Material,
+    /// The one texel of each map.
+    pub texels: [[u8; 4]; 8],
+    /// Object-to-world transform (rotation, uniform scale and translation).
+    pub model: Mat4,
+    /// The triangle list, three vertices per triangle.
+    pub vertices: Vec<Vertex>,
+}
+
+impl FrameObject {
+    /// Inverse transpose of `model`.
+    pub fn normal_matrix(&self) -> Mat4 {
+        self.model.inverse().transpose()
+    }
+
+    /// The texels as the reference reads them (`code / 255`).
+    pub fn reference_texels(&self) -> Texels {
+        let t = self
+            .texels
+            .map(|c| Vec4::from_array(c.map(|x| unorm_to_f32(u32::from(x), 8))));
+        Texels {
+            main_tex: t[0],
+            metallic_map: t[1],
+            normal_map: t[2],
+            occlusion_map: t[3],
+            emission_map: t[4],
+            detail_mask: t[5],
+            detail_albedo: t[6],
+            detail_normal: t[7],
+        }
+    }
+
+    /// The maps as textures of one texel each.
+    pub fn maps(&self) -> Maps {
+        let map = |i: usize| MapTexture::new(1, 1, |_, _| self.texels[i]);
+        Maps {
+            main_tex: map(0),
+            metallic_map: map(1),
+            normal_map: map(2),
+            occlusion_map: map(3),
+            emission_map: map(4),
+            detail_mask: map(5),
+            detail_albedo: map(6),
+            detail_normal: map(7),
+        }
+    }
+
+    /// The mesh as a vertex buffer (`@location` 0 to 3).
+    pub fn mesh(&self) -> VertexBuffer {
+        VertexBuffer::from_f32(&[(0, 3), (1, 3), (2, 4), (3, 2)], &self.vertices)
+    }
+}
+
+/// One per-pixel light of the frame (drawn by ForwardAdd forward, by a Lighting draw deferred).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameLight {
+    /// A name for reports.
+    pub name: &'static str,
+    /// Its light keyword.
+    pub light_type: LightType,
+    /// What the shaders read.
+    pub params: LightParams,
+}
+
+/// What a pixel's ray hits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// The object's index in [`FrameScene::objects`].
+    pub object: usize,
+    /// The interpolated vertex data at the hit, in world space.
+    pub geometry: Geometry,
+}
+
+/// The whole frame: camera, per-frame lighting, objects and lights.
+#[derive(Clone, Debug)]
+pub struct FrameScene {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// World-to-clip transform (perspective, depth 0 at the near plane).
+    pub view_proj: Mat4,
+    /// Camera position, ambient light, the main (directional) light, the probes and cubes.
+    pub scene: Scene,
+    /// The main light as a `DIRECTIONAL` light (the deferred path's first Lighting draw).
+    pub main_light: LightParams,
+    /// The per-pixel lights.
+    pub lights: Vec<FrameLight>,
+    /// The objects, drawn in this order.
+    pub objects: Vec<FrameObject>,
+}
+
+/// A unit normal's tangent-space texel (8-bit codes of `n · 0.5 + 0.5`).
+fn normal_texel(tx: f32, ty: f32) -> [u8; 4] {
+    let tz = (1.0 - tx * tx - ty * ty).sqrt();
+    let code = |v: f32| ((v * 0.5 + 0.5) * 255.0).round() as u8;
+    [code(tx), code(ty), code(tz), 255]
+}
+
+/// The default texels: white maps, flat normals.
+const WHITE: [u8; 4] = [255; 4];
+const FLAT: [u8; 4] = [128, 128, 255, 255];
+
+/// A UV sphere of radius 1 around the origin: `stacks × slices` quads, smooth normals, tangents
+/// along increasing longitude.
+fn sphere(stacks: u32, slices: u32) -> Vec<Vertex> {
+    let vertex = |i: u32, j: u32| -> Vertex {
+        let theta = std::f32::consts::PI * i as f32 / stacks as f32;
+        let phi = std::f32::consts::TAU * j as f32 / slices as f32;
+        let n = Vec3::new(
+            phi.cos() * theta.sin(),
+            theta.cos(),
+            phi.sin() * theta.sin(),
+        );
+        let t = Vec3::new(-phi.sin(), 0.0, phi.cos());
+        [
+            n.x,
+            n.y,
+            n.z,
+            n.x,
+            n.y,
+            n.z,
+            t.x,
+            t.y,
+            t.z,
+            1.0,
+            j as f32 / slices as f32,
+            i as f32 / stacks as f32,
+        ]
+    };
+    let mut out = Vec::new();
+    for i in 0..stacks {
+        for j in 0..slices {
+            let (a, b, c, d) = (
+                vertex(i, j),
+                vertex(i + 1, j),
+                vertex(i, j + 1),
+                vertex(i + 1, j + 1),
+            );
+            out.extend([a, b, c, c, b, d]);
+        }
+    }
+    out
+}
+
+/// The unit cube `[−1, 1]³`: six flat faces, each two triangles, tangent along the face's u.
+fn cube_mesh() -> Vec<Vertex> {
+    let mut out = Vec::new();
+    for axis in 0..3 {
+        for sign in [-1.0f32, 1.0] {
+            let mut n = Vec3::ZERO;
+            n[axis] = sign;
+            let mut u = Vec3::ZERO;
+            u[(axis + 1) % 3] = 1.0;
+            let v = n.cross(u);
+            let corner = |a: f32, b: f32| -> Vertex {
+                let p = n + u * a + v * b;
+                [
+                    p.x,
+                    p.y,
+                    p.z,
+                    n.x,
+                    n.y,
+                    n.z,
+                    u.x,
+                    u.y,
+                    u.z,
+                    1.0,
+                    (a + 1.0) * 0.5,
+                    (b + 1.0) * 0.5,
+                ]
+            };
+            let (p00, p10, p01, p11) = (
+                corner(-1.0, -1.0),
+                corner(1.0, -1.0),
+                corner(-1.0, 1.0),
+                corner(1.0, 1.0),
+            );
+            out.extend([p00, p10, p11, p00, p11, p01]);
+        }
+    }
+    out
+}
+
+/// The floor: the square `[−1, 1]²` in the plane `y = 0`, facing +y.
+fn floor_mesh() -> Vec<Vertex> {
+    let corner = |x: f32, z: f32| -> Vertex {
+        [
+            x,
+            0.0,
+            z,
+            0.0,
+            1.0,
+            0.0,
+            1.0,
+            0.0,
+            0.0,
+            1.0,
+            (x + 1.0) * 0.5,
+            (z + 1.0) * 0.5,
+        ]
+    };
+    let (a, b, c, d) = (
+        corner(-1.0, -1.0),
+        corner(1.0, -1.0),
+        corner(-1.0, 1.0),
+        corner(1.0, 1.0),
+    );
+    vec![a, c, b, b, c, d]
+}
+
+/// Rotation about y by `degrees`, uniform `scale`, then translation to `at`.
+fn placed(at: Vec3, scale: f32, degrees: f32) -> Mat4 {
+    Mat4::from_translation(at)
+        * Mat4::from_rotation_y(degrees.to_radians())
+        * Mat4::from_scale(Vec3::splat(scale))
+}
+
+impl FrameScene {
+    /// The frame the checks and pictures use.
+    pub fn new() -> FrameScene {
+        let (width, height) = (FRAME_WIDTH, FRAME_HEIGHT);
+        let eye = Vec3::new(0.5, 5.0, 5.6);
+        let view_proj = perspective_rh(0.9, width as f32 / height as f32, 1.0, 24.0)
+            * look_at_rh(eye, Vec3::new(0.4, 0.3, -0.2), Vec3::Y);
+        let to_main = Vec3::new(0.35, 0.8, 0.45).normalize();
+        let main_color = Vec3::new(0.8, 0.75, 0.7);
+        let scene = Scene {
+            camera_position: eye,
+            sh_r: Vec4::new(0.02, 0.06, 0.03, 0.18),
+            sh_g: Vec4::new(0.02, 0.07, 0.02, 0.2),
+            sh_b: Vec4::new(0.03, 0.09, 0.01, 0.26),
+            light_dir: to_main,
+            light_color: main_color,
+            probes: [
+                Probe {
+                    forward_weight: 0.65,
+                    ..probe(
+                        Vec3::new(0.0, 1.5, 0.0),
+                        Vec3::new(-8.5, -0.5, -8.5),
+                        Vec3::new(8.5, 6.0, 8.5),
+                        true,
+                        Vec3::new(2.0, 1.0, 1.0),
+                        1.0,
+                        1,
+                    )
+                },
+                probe(
+                    Vec3::new(-2.0, 1.0, 0.0),
+                    Vec3::splat(-10.0),
+                    Vec3::splat(10.0),
+                    false,
+                    Vec3::new(1.5, 1.0, 1.0),
+                    1.0,
+                    1,
+                ),
+            ],
+            cubes: [
+                cube([
+                    [200, 170, 140, 160],
+                    [120, 150, 190, 128],
+                    [150, 190, 240, 200],
+                    [90, 80, 60, 96],
+                    [170, 160, 150, 140],
+                    [110, 130, 100, 120],
+                ]),
+                cube([
+                    [240, 200, 120, 180],
+                    [80, 120, 200, 160],
+                    [200, 220, 255, 220],
+                    [60, 50, 40, 200],
+                    [130, 180, 150, 170],
+                    [230, 110, 150, 150],
+                ]),
+            ],
+        };
+        let main_light = Light::directional(-to_main, main_color)
+            .params()
+            .expect("the main light's parameters are valid");
+        let light = |name, light_type, light: Light| FrameLight {
+            name,
+            light_type,
+            params: light.params().expect("the frame's lights are valid"),
+        };
+        let lights = vec![
+            light(
+                "warm point",
+                LightType::Point,
+                Light::point(Vec3::new(-0.4, 1.6, 1.8), 4.5, Vec3::new(1.2, 0.6, 0.25)),
+            ),
+            light(
+                "cool point",
+                LightType::Point,
+                Light::point(Vec3::new(2.3, 1.4, 0.4), 3.0, Vec3::new(0.25, 0.6, 1.3)),
+            ),
+            light(
+                "spot",
+                LightType::Spot,
+                Light::spot(
+                    Vec3::new(0.8, 4.0, 1.5),
+                    Vec3::new(-0.6, -4.0, -2.3),
+                    55.0,
+                    9.0,
+                    Vec3::new(0.9, 0.9, 0.8),
+                ),
+            ),
+        ];
+        let lift = 0.02;
+        let objects = vec![
+            FrameObject {
+                name: "floor",
+                keywords: Keywords::NONE,
+                material: Material {
+                    tint: Vec4::new(0.7, 0.7, 0.65, 1.0),
+                    smoothness: 0.35,
+                    ..Material::default()
+                },
+                texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
+                model: Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0)),
+                vertices: floor_mesh(),
+            },
+            FrameObject {
+                name: "metal sphere",
+                keywords: Keywords {
+                    normal_map: true,
+                    metallic_map: true,
+                    smoothness: SmoothnessSource::Metallic,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    smoothness: 0.9,
+                    bump_scale: 0.8,
+                    ..Material::default()
+                },
+                texels: [
+                    [200, 120, 90, 255],
+                    [180, 0, 0, 200],
+                    normal_texel(0.3, -0.2),
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    FLAT,
+                ],
+                model: placed(Vec3::new(-1.7, 1.0 + lift, 0.2), 1.0, 0.0),
+                vertices: sphere(12, 24),
+            },
+            FrameObject {
+                name: "glowing sphere",
+                keywords: Keywords {
+                    emission_map: true,
+                    occlusion_map: true,
+                    detail_albedo: true,
+                    detail_mask: true,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    tint: Vec4::new(0.9, 0.95, 1.0, 1.0),
+                    emission: Vec3::new(0.3, 0.2, 0.05),
+                    smoothness: 0.6,
+                    occlusion_strength: 0.7,
+                    ..Material::default()
+                },
+                texels: [
+                    [90, 160, 220, 255],
+                    WHITE,
+                    FLAT,
+                    [0, 150, 0, 255],
+                    [255, 200, 120, 255],
+                    [0, 0, 0, 170],
+                    [200, 120, 90, 255],
+                    FLAT,
+                ],
+                model: placed(Vec3::new(1.6, 0.75 + lift, 1.2), 0.75, 0.0),
+                vertices: sphere(12, 24),
+            },
+            FrameObject {
+                name: "detail box",
+                keywords: Keywords {
+                    smoothness: SmoothnessSource::Albedo,
+                    detail_normal: true,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    tint: Vec4::new(0.8, 0.7, 0.9, 1.0),
+                    metallic: 0.3,
+                    smoothness: 0.8,
+                    detail_bump_scale: 0.7,
+                    ..Material::default()
+                },
+                texels: [
+                    [230, 220, 200, 180],
+                    WHITE,
+                    FLAT,
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    normal_texel(-0.25, 0.3),
+                ],
+                model: placed(Vec3::new(0.3, 0.6 + lift, -1.6), 0.6, 35.0),
+                vertices: cube_mesh(),
+            },
+            FrameObject {
+                name: "cutout box",
+                keywords: Keywords {
+                    rendering: RenderingMode::Cutout,
+                    normal_map: true,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    tint: Vec4::new(0.5, 0.8, 0.6, 1.0),
+                    smoothness: 0.5,
+                    ..Material::default()
+                },
+                texels: [
+                    [240, 240, 240, 230],
+                    WHITE,
+                    normal_texel(0.0, 0.35),
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    WHITE,
+                    FLAT,
+                ],
+                model: placed(Vec3::new(2.6, 0.45 + lift, -0.9), 0.45, -20.0),
+                vertices: cube_mesh(),
+            },
+        ];
+        FrameScene {
+            width,
+            height,
+            view_proj,
+            scene,
+            main_light,
+            lights,
+            objects,
+        }
+    }
+
+    /// The standard shader's resources for drawing `object`.
+    pub fn object_resources(&self, object: &FrameObject) -> Vec<BoundResource> {
+        StandardBindings {
+            view_proj: self.view_proj,
+            scene: &self.scene,
+            material: &object.material,
+            detail_st: Vec4::new(1.0, 1.0, 0.0, 0.0),
+            maps: &object.maps(),
+            model: object.model,
+            normal_matrix: object.normal_matrix(),
+        }
+        .resources()
+    }
+
+    /// The bindings of one per-pixel light (`lighting/light_bindings`): its uniform, and
+    /// white cookies with their sampler (the frame's lights have no cookie).
+    pub fn light_resources(params: &LightParams) -> Vec<BoundResource> {
+        let uniform = params
+            .uniform()
+            .into_iter()
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        let white = MapTexture::new(1, 1, |_, _| WHITE);
+        vec![
+            BoundResource::new(0, 6, Resource::Uniform(uniform)),
+            BoundResource::new(0, 7, white.resource()),
+            BoundResource::new(
+                0,
+                8,
+                super::super::scene::cube_resource(
+                    &wgsl_variants::reference::cube::CubeFaces::uniform(Vec4::ONE),
+                ),
+            ),
+            BoundResource::new(
+                0,
+                9,
+                Resource::SamplerAddressed {
+                    nearest: true,
+                    address_mode: wgpu::AddressMode::Repeat,
+                },
+            ),
+        ]
+    }
+
+    /// The `DeferredCamera` uniform of the full-screen passes: inverse view-projection,
+    /// camera position, view-projection.
+    pub fn deferred_camera(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        push_mat4(&mut out, self.view_proj.inverse());
+        push_vec4(&mut out, self.scene.camera_position.extend(1.0));
+        push_mat4(&mut out, self.view_proj);
+        out
+    }
+
+    /// Every pixel `(x, y)`, row by row.
+    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        (0..self.height).flat_map(move |y| (0..self.width).map(move |x| (x, y)))
+    }
+
+    /// What the ray through the point `(px, py)` of the target (in pixels, `(x + 0.5, y + 0.5)`
+    /// is pixel `(x, y)`'s centre) hits first, in `f64`: the object and its vertex data
+    /// interpolated at the hit (barycentric in world space, which is what perspective-correct
+    /// interpolation computes).
+    pub fn cast(&self, px: f64, py: f64) -> Option<Hit> {
+        let inv = self.view_proj.as_dmat4().inverse();
+        let ndc_x = px / f64::from(self.width) * 2.0 - 1.0;
+        let ndc_y = 1.0 - py / f64::from(self.height) * 2.0;
+        let unproject = |z: f64| {
+            let h = inv * DVec4::new(ndc_x, ndc_y, z, 1.0);
+            h.truncate() / h.w
+        };
+        let origin = unproject(0.0);
+        let dir = unproject(1.0) - origin;
+        let mut best: Option<(f64, usize, [f64; 3], usize)> = None;
+        for (o, object) in self.objects.iter().enumerate() {
+            let model = object.model.as_dmat4();
+            for (t_index, tri) in object.vertices.chunks_exact(3).enumerate() {
+                let p = |v: &Vertex| {
+                    model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()))
+                };
+                let (a, b, c) = (p(&tri[0]), p(&tri[1]), p(&tri[2]));
+                if let Some((t, w)) = intersect(origin, dir, a, b, c)
+                    && best.is_none_or(|(bt, ..)| t < bt)
+                {
+                    best = Some((t, o, w, t_index));
+                }
+            }
+        }
+        let (_, o, w, t_index) = best?;
+        let object = &self.objects[o];
+        let tri = &object.vertices[t_index * 3..t_index * 3 + 3];
+        let model = object.model.as_dmat4();
+        let normal_matrix = object.normal_matrix().as_dmat4();
+        let world =
+            |v: &Vertex| model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()));
+        let position = world(&tri[0]) * w[0] + world(&tri[1]) * w[1] + world(&tri[2]) * w[2];
+        // The vertex shader transforms per vertex; the rasterizer interpolates the results.
+        let per_vertex = |m: DMat4, range: std::ops::Range<usize>| {
+            let at = |v: &Vertex| {
+                m.transform_vector3(DVec3::new(
+                    v[range.start].into(),
+                    v[range.start + 1].into(),
+                    v[range.start + 2].into(),
+                ))
+            };
+            at(&tri[0]) * w[0] + at(&tri[1]) * w[1] + at(&tri[2]) * w[2]
+        };
+        let normal = per_vertex(normal_matrix, 3..6);
+        let tangent = per_vertex(model, 6..9);
+        // The bitangent sign is the same at the three vertices of every triangle here.
+        let sign = tri[0][9];
+        Some(Hit {
+            object: o,
+            geometry: Geometry {
+                world_position: position.as_vec3(),
+                normal: normal.as_vec3(),
+                tangent: tangent.as_vec3().extend(sign),
+            },
+        })
+    }
+}
+
+impl Default for FrameScene {
+    fn default() -> FrameScene {
+        FrameScene::new()
+    }
+}
+
+/// Möller–Trumbore: the ray `origin + t · dir` against triangle `abc` (either side); `t` and
+/// the barycentric weights of `a`, `b`, `c` where it hits with `t > 0`.
+fn intersect(origin: DVec3, dir: DVec3, a: DVec3, b: DVec3, c: DVec3) -> Option<(f64, [f64; 3])> {
+    let (e1, e2) = (b - a, c - a);
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-14 {
+        return None;
+    }
+    let s = origin - a;
+    let u = s.dot(p) / det;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = dir.dot(q) / det;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) / det;
+    (t > 0.0).then_some((t, [1.0 - u - v, u, v]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rays_hit_what_the_camera_sees() {
+        let f = FrameScene::new();
+        // The image centre looks at the floor or an object near the look-at point.
+        let hit = f.cast(32.0, 24.0).expect("the centre sees something");
+        let clip = f.view_proj * hit.geometry.world_position.extend(1.0);
+        let ndc = clip.truncate() / clip.w;
+        assert!(ndc.x.abs() < 1e-4 && ndc.y.abs() < 1e-4, "{ndc}");
+        // The bottom row sees the floor, facing up.
+        let floor = f.cast(32.5, 47.5).expect("the floor");
+        assert_eq!(f.objects[floor.object].name, "floor");
+        assert!((floor.geometry.normal - Vec3::Y).length() < 1e-6);
+        assert!(floor.geometry.world_position.y.abs() < 1e-5);
+    }
+
+    #[test]
+    fn sphere_normals_point_away_from_the_centre() {
+        let f = FrameScene::new();
+        let mut seen = 0;
+        for (x, y) in f.pixels() {
+            if let Some(hit) = f.cast(f64::from(x) + 0.5, f64::from(y) + 0.5)
+                && f.objects[hit.object].name == "metal sphere"
+            {
+                seen += 1;
+                let centre = f.objects[hit.object].model.w_axis.truncate();
+                let radial = (hit.geometry.world_position - centre).normalize();
+                // Interpolated normals of a 12 × 24 sphere stay within a few degrees.
+                assert!(radial.dot(hit.geometry.normal.normalize()) > 0.99);
+            }
+        }
+        assert!(seen > 50, "{seen} pixels of the metal sphere");
+    }
+}

@@ -1,0 +1,487 @@
+//! Several draws into the same colour targets and depth buffer, in one render pass: the
+//! objects of a frame (each its own variant, mesh and resources) with the depth test, then
+//! lights blended onto what they left.
+//!
+//! [`render`](super::render::render) draws one variant; a frame needs many: [`render_pass`]
+//! takes a [`DrawPass`] of [`Draw`]s, compiles each distinct pipeline once (same text, entry
+//! points, blend, depth test and vertex layout), uploads each draw's resources, records every
+//! draw in order into one pass and reads back the colour targets and, with
+//! [`DrawPass::depth`], the `Depth32Float` buffer (cleared to 1, the far plane).
+//!
+//! ```no_run
+//! use std::sync::Arc;
+//! use wgsl_variants_gpu::{ColorTarget, DepthTest, Draw, DrawPass, GpuContext, TargetFormat, render_pass};
+//! # fn main() -> Result<(), wgsl_variants_gpu::GpuError> {
+//! let ctx = GpuContext::new(None)?;
+//! let wgsl: Arc<str> = Arc::from(
+//!     "@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
+//!          let p = vec2f(f32(i % 2u) * 4.0 - 1.0, f32(i / 2u) * 4.0 - 1.0);
+//!          return vec4f(p, 0.5, 1.0);
+//!      }
+//!      @fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }",
+//! );
+//! let mut pass = DrawPass::new("two draws", 8, 8, vec![ColorTarget::new(TargetFormat::Rgba8Unorm)]);
+//! pass.depth = true;
+//! let draw = Draw::fullscreen("white", &wgsl, "vs", "fs").with_depth(DepthTest::OPAQUE);
+//! pass.draws = vec![draw.clone(), draw];
+//! let out = render_pass(&ctx, &pass)?;
+//! assert_eq!(out.depth.unwrap()[0], 0.5);
+//! # Ok(()) }
+//! ```
+
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+use super::bindings::{Slot, used_bindings};
+use super::compile::{compile_scoped, wgsl_module};
+use super::context::GpuContext;
+use super::error::GpuError;
+use super::readback::{encode_texture_readback, finish_readbacks};
+use super::render::{
+    ColorTarget, VertexBuffer, check_targets, check_vertex_buffers, color_attachments,
+    create_bind_groups, create_targets, upload_vertex_buffers, vertex_layouts, views,
+};
+use super::resources::{BoundResource, GpuResources};
+
+/// The depth buffer's format: 32-bit float, so the depth a deferred pass rebuilds positions
+/// from is the rasterizer's own value, not a 16- or 24-bit rounding of it.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// How a draw tests and writes the pass's depth buffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DepthTest {
+    /// The comparison against the stored depth (the fragment passes when
+    /// `fragment <compare> stored`).
+    pub compare: wgpu::CompareFunction,
+    /// Whether passing fragments write their depth.
+    pub write: bool,
+}
+
+impl DepthTest {
+    /// Opaque geometry: `Less`, writing (Unity's `ZTest LEqual` on a cleared buffer draws the
+    /// same pixels; `Less` keeps the first of two equal depths, deterministic in draw order).
+    pub const OPAQUE: DepthTest = DepthTest {
+        compare: wgpu::CompareFunction::Less,
+        write: true,
+    };
+
+    /// A later pass over geometry already in the buffer (Unity's ForwardAdd: `ZTest LEqual`,
+    /// `ZWrite Off`): only the fragments of the nearest surface pass.
+    pub const SAME_SURFACE: DepthTest = DepthTest {
+        compare: wgpu::CompareFunction::LessEqual,
+        write: false,
+    };
+}
+
+/// One draw of a [`DrawPass`]: a variant's text and entry points, its mesh and resources, and
+/// the pipeline state that differs between draws of a frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Draw {
+    /// Label used for the pipeline and in errors (usually the variant name).
+    pub label: String,
+    /// Complete WGSL source containing both entry points; shared, as many draws of a frame
+    /// (one per light) use the same text.
+    pub wgsl: Arc<str>,
+    /// Name of the `@vertex` entry point.
+    pub vertex_entry: String,
+    /// Name of the `@fragment` entry point.
+    pub fragment_entry: String,
+    /// Number of vertices (a triangle list, one instance).
+    pub vertex_count: u32,
+    /// Vertex buffers in slot order (empty: positions from `@builtin(vertex_index)`).
+    pub vertex_buffers: Vec<VertexBuffer>,
+    /// Resources for bind groups 0..N; those the entry points do not use are skipped.
+    pub resources: Vec<BoundResource>,
+    /// Blend state for every colour target; `None` uses each [`ColorTarget::blend`].
+    pub blend: Option<wgpu::BlendState>,
+    /// Depth test; `None` draws without testing or writing depth.
+    pub depth: Option<DepthTest>,
+    /// Faces culled (`None`: none).
+    pub cull: Option<wgpu::Face>,
+}
+
+impl Draw {
+    /// A full-screen draw: 3 vertices from `@builtin(vertex_index)`, no resources, no blend
+    /// override, no depth test, no culling.
+    pub fn fullscreen(
+        label: &str,
+        wgsl: &Arc<str>,
+        vertex_entry: &str,
+        fragment_entry: &str,
+    ) -> Draw {
+        Draw {
+            label: label.to_owned(),
+            wgsl: Arc::clone(wgsl),
+            vertex_entry: vertex_entry.to_owned(),
+            fragment_entry: fragment_entry.to_owned(),
+            vertex_count: 3,
+            vertex_buffers: Vec::new(),
+            resources: Vec::new(),
+            blend: None,
+            depth: None,
+            cull: None,
+        }
+    }
+
+    /// Draws `mesh` (all its vertices) instead of a full-screen triangle.
+    pub fn with_mesh(mut self, mesh: VertexBuffer) -> Draw {
+        self.vertex_count = (mesh.data.len() as u64 / mesh.stride.max(1)) as u32;
+        self.vertex_buffers = vec![mesh];
+        self
+    }
+
+    /// Sets the resources.
+    pub fn with_resources(mut self, resources: Vec<BoundResource>) -> Draw {
+        self.resources = resources;
+        self
+    }
+
+    /// Sets the blend state of every target.
+    pub fn with_blend(mut self, blend: wgpu::BlendState) -> Draw {
+        self.blend = Some(blend);
+        self
+    }
+
+    /// Sets the depth test.
+    pub fn with_depth(mut self, depth: DepthTest) -> Draw {
+        self.depth = Some(depth);
+        self
+    }
+}
+
+/// Draws recorded in order into one render pass over shared targets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrawPass {
+    /// Label of the pass (errors name the draw's own label where one draw is at fault).
+    pub label: String,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Colour targets in `@location` order, cleared or started with their initial contents.
+    pub targets: Vec<ColorTarget>,
+    /// A [`DEPTH_FORMAT`] buffer cleared to 1 (the far plane), read back after the pass.
+    /// Without it a draw's [`Draw::depth`] is an error.
+    pub depth: bool,
+    /// The draws, in order.
+    pub draws: Vec<Draw>,
+}
+
+impl DrawPass {
+    /// A pass of `width × height` over `targets`, no depth buffer, no draws yet.
+    pub fn new(label: &str, width: u32, height: u32, targets: Vec<ColorTarget>) -> DrawPass {
+        DrawPass {
+            label: label.to_owned(),
+            width,
+            height,
+            targets,
+            depth: false,
+            draws: Vec::new(),
+        }
+    }
+}
+
+/// What a [`DrawPass`] left: each colour target's tightly packed bytes and the depth buffer
+/// (one `f32` per pixel, row by row) when it had one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassOutput {
+    /// Colour targets, in target order.
+    pub targets: Vec<Vec<u8>>,
+    /// The depth buffer, with [`DrawPass::depth`].
+    pub depth: Option<Vec<f32>>,
+}
+
+/// What makes two draws' pipelines the same.
+#[derive(PartialEq)]
+struct PipelineKey<'a> {
+    wgsl: &'a str,
+    vertex_entry: &'a str,
+    fragment_entry: &'a str,
+    blend: Option<wgpu::BlendState>,
+    depth: Option<DepthTest>,
+    cull: Option<wgpu::Face>,
+    layouts: Vec<(u64, &'a [wgpu::VertexAttribute])>,
+}
+
+impl<'a> PipelineKey<'a> {
+    fn of(draw: &'a Draw) -> Self {
+        Self {
+            wgsl: &draw.wgsl,
+            vertex_entry: &draw.vertex_entry,
+            fragment_entry: &draw.fragment_entry,
+            blend: draw.blend,
+            depth: draw.depth,
+            cull: draw.cull,
+            layouts: draw
+                .vertex_buffers
+                .iter()
+                .map(|vb| (vb.stride, vb.attributes.as_slice()))
+                .collect(),
+        }
+    }
+}
+
+/// Renders every draw of `pass` in order and reads the targets (and depth) back.
+///
+/// Each draw is checked like a [`RenderJob`](super::render::RenderJob): vertex buffers large
+/// enough, a resource for every slot its entry points use ([`GpuError::Validation`] naming the
+/// draw), shaders that compile ([`GpuError::PipelineCompile`]). The wait is bounded by
+/// [`GpuContext::timeout`].
+pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuError> {
+    let label = pass.label.as_str();
+    check_targets(ctx, label, pass.width, pass.height, &pass.targets)?;
+    let mut keys: Vec<PipelineKey<'_>> = Vec::new();
+    let mut pipelines: Vec<(wgpu::RenderPipeline, BTreeSet<Slot>)> = Vec::new();
+    let mut prepared = Vec::with_capacity(pass.draws.len());
+    for draw in &pass.draws {
+        let dl = draw.label.as_str();
+        check_vertex_buffers(dl, &draw.vertex_buffers, draw.vertex_count)?;
+        if draw.depth.is_some() && !pass.depth {
+            return Err(GpuError::Validation {
+                label: dl.to_owned(),
+                message: String::from("the draw tests depth but the pass has no depth buffer"),
+            });
+        }
+        let key = PipelineKey::of(draw);
+        let index = match keys.iter().position(|k| *k == key) {
+            Some(i) => i,
+            None => {
+                let color_states: Vec<Option<wgpu::ColorTargetState>> = pass
+                    .targets
+                    .iter()
+                    .map(|t| {
+                        Some(wgpu::ColorTargetState {
+                            format: t.format.wgpu_format(),
+                            blend: draw.blend.or(t.blend),
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })
+                    })
+                    .collect();
+                let depth_stencil = pass.depth.then(|| {
+                    let test = draw.depth.unwrap_or(DepthTest {
+                        compare: wgpu::CompareFunction::Always,
+                        write: false,
+                    });
+                    depth_state(DEPTH_FORMAT, test)
+                });
+                let pipeline = create_pipeline(
+                    ctx,
+                    &PipelineDesc {
+                        label: dl,
+                        wgsl: &draw.wgsl,
+                        vertex: &draw.vertex_entry,
+                        fragment: Some(&draw.fragment_entry),
+                        vertex_buffers: &vertex_layouts(&draw.vertex_buffers),
+                        cull: draw.cull,
+                        depth_stencil,
+                        targets: &color_states,
+                    },
+                )?;
+                let used = used_bindings(
+                    dl,
+                    &draw.wgsl,
+                    &[draw.vertex_entry.as_str(), draw.fragment_entry.as_str()],
+                )?;
+                keys.push(key);
+                pipelines.push((pipeline, used));
+                pipelines.len() - 1
+            }
+        };
+        let resources = GpuResources::upload(ctx, dl, &draw.resources)?;
+        let (pipeline, used) = &pipelines[index];
+        let groups = bind(ctx, dl, pipeline, used, &resources)?;
+        let buffers = upload_vertex_buffers(ctx, dl, &draw.vertex_buffers);
+        prepared.push((index, groups, buffers));
+    }
+
+    let pending = ctx.scoped(label, || {
+        let targets = create_targets(ctx, label, pass.width, pass.height, &pass.targets);
+        let views = views(&targets);
+        let attachments = color_attachments(&views, &pass.targets);
+        let depth = pass.depth.then(|| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: pass.width,
+                    height: pass.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        });
+        let depth_view = depth
+            .as_ref()
+            .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        {
+            let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &attachments,
+                depth_stencil_attachment: depth_view.as_ref().map(|view| {
+                    wgpu::RenderPassDepthStencilAttachment {
+                        view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            for ((index, groups, buffers), draw) in prepared.iter().zip(&pass.draws) {
+                rp.set_pipeline(&pipelines[*index].0);
+                for (group, bind_group) in groups {
+                    rp.set_bind_group(*group, bind_group, &[]);
+                }
+                for (slot, buffer) in (0u32..).zip(buffers) {
+                    rp.set_vertex_buffer(slot, buffer.slice(..));
+                }
+                rp.draw(0..draw.vertex_count, 0..1);
+            }
+        }
+        let pending = targets
+            .iter()
+            .chain(&depth)
+            .map(|t| encode_texture_readback(ctx, &mut encoder, t, label))
+            .collect::<Result<Vec<_>, _>>();
+        if pending.is_ok() {
+            ctx.queue.submit([encoder.finish()]);
+        }
+        pending
+    })??;
+    let mut targets = finish_readbacks(ctx, label, pending)?;
+    let depth = pass.depth.then(|| {
+        let bytes = targets.pop().unwrap_or_default();
+        bytes
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect()
+    });
+    Ok(PassOutput { targets, depth })
+}
+
+/// The depth-only state of `test` on a buffer of `format`, no stencil, no bias.
+pub(crate) fn depth_state(format: wgpu::TextureFormat, test: DepthTest) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(test.write),
+        depth_compare: Some(test.compare),
+        stencil: wgpu::StencilState::default(),
+        bias: wgpu::DepthBiasState::default(),
+    }
+}
+
+/// What a render pipeline is made of, for [`create_pipeline`].
+pub(crate) struct PipelineDesc<'a> {
+    pub(crate) label: &'a str,
+    pub(crate) wgsl: &'a str,
+    pub(crate) vertex: &'a str,
+    /// `None`: no fragment stage (depth and stencil only).
+    pub(crate) fragment: Option<&'a str>,
+    pub(crate) vertex_buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub(crate) cull: Option<wgpu::Face>,
+    pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
+    pub(crate) targets: &'a [Option<wgpu::ColorTargetState>],
+}
+
+/// Compiles a render pipeline with wgpu's automatic layout; errors are
+/// [`GpuError::PipelineCompile`].
+pub(crate) fn create_pipeline(
+    ctx: &GpuContext,
+    desc: &PipelineDesc<'_>,
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    compile_scoped(ctx, desc.label, || {
+        let module = wgsl_module(ctx, desc.label, desc.wgsl);
+        ctx.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(desc.label),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(desc.vertex),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    buffers: desc.vertex_buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: desc.cull,
+                    ..wgpu::PrimitiveState::default()
+                },
+                depth_stencil: desc.depth_stencil.clone(),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: desc.fragment.map(|entry| wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    targets: desc.targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    })
+}
+
+/// The bind groups of `pipeline` for the `used` slots, from `resources`; a used slot without a
+/// resource is a [`GpuError::Validation`].
+pub(crate) fn bind(
+    ctx: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    used: &BTreeSet<Slot>,
+    resources: &GpuResources,
+) -> Result<Vec<(u32, wgpu::BindGroup)>, GpuError> {
+    if let Some((group, binding)) = used.iter().find(|&&slot| !resources.contains(slot)) {
+        return Err(GpuError::Validation {
+            label: label.to_owned(),
+            message: format!(
+                "shader uses @group({group}) @binding({binding}) but no resource was given for it"
+            ),
+        });
+    }
+    ctx.scoped(label, || {
+        create_bind_groups(ctx, label, pipeline, used, resources)
+    })
+}
+
+/// A render pipeline over `wgsl`'s `vertex` / `fragment` entry points (no fragment stage:
+/// depth and stencil only), its bind groups from `resources`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn pipeline(
+    ctx: &GpuContext,
+    label: &str,
+    wgsl: &str,
+    (vertex, fragment): (&str, Option<&str>),
+    vertex_buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    cull: Option<wgpu::Face>,
+    depth_stencil: wgpu::DepthStencilState,
+    targets: &[Option<wgpu::ColorTargetState>],
+    resources: &[BoundResource],
+) -> Result<(wgpu::RenderPipeline, Vec<(u32, wgpu::BindGroup)>), GpuError> {
+    let pipeline = create_pipeline(
+        ctx,
+        &PipelineDesc {
+            label,
+            wgsl,
+            vertex,
+            fragment,
+            vertex_buffers,
+            cull,
+            depth_stencil: Some(depth_stencil),
+            targets,
+        },
+    )?;
+    let entries: Vec<&str> = std::iter::once(vertex).chain(fragment).collect();
+    let used = used_bindings(label, wgsl, &entries)?;
+    let uploaded = GpuResources::upload(ctx, label, resources)?;
+    let groups = bind(ctx, label, &pipeline, &used, &uploaded)?;
+    Ok((pipeline, groups))
+}

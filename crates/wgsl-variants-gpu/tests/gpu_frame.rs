@@ -1,0 +1,80 @@
+//! The whole built-in frame forward and deferred, HDR and LDR, every pixel against the CPU
+//! reference and forward against deferred (docs/shading.md §12).
+//!
+//! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
+
+mod common;
+
+use wgsl_variants::Library;
+use wgsl_variants_gpu::GpuContext;
+use wgsl_variants_gpu::check::frame::{
+    FrameScene, check_frame, compare, render_deferred, render_forward,
+};
+
+/// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
+fn context() -> Option<GpuContext> {
+    common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "GPU context",
+    )
+}
+
+fn frame_passes(hdr: bool) {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = Library::bundled().expect("bundled library");
+    let frame = FrameScene::new();
+    let report = check_frame(&ctx, &lib, &frame, hdr).expect("the frame renders");
+    println!("{report}");
+    assert!(report.passed(), "{report}");
+    // Most of the frame is surface, not silhouette.
+    assert!(report.compared > 2000, "{report}");
+    assert!(report.edges < report.compared / 5, "{report}");
+    assert_eq!(report.forward_draws, 5 + 5 * 3);
+    assert_eq!(report.deferred_draws, 5 + 4 + usize::from(!hdr));
+}
+
+#[test]
+fn the_hdr_frame_is_the_same_forward_and_deferred() {
+    frame_passes(true);
+}
+
+#[test]
+fn the_ldr_frame_is_the_same_forward_and_deferred() {
+    frame_passes(false);
+}
+
+/// The comparison is sharp: a frame rendered with the main light 10 % too bright, a point
+/// light 25 % too bright (it is a sixth of the floor's light) or without the spot light's
+/// draws fails against the reference of the true frame, on both paths, in HDR and LDR.
+#[test]
+fn a_light_too_bright_or_missing_is_caught() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = Library::bundled().expect("bundled library");
+    let truth = FrameScene::new();
+    let mut main = truth.clone();
+    main.scene.light_color *= 1.1;
+    main.main_light.color *= 1.1;
+    let mut point = truth.clone();
+    point.lights[1].params.color *= 1.25;
+    let mut missing = truth.clone();
+    missing.lights.pop();
+    for (what, wrong) in [
+        ("main light 10 % brighter", &main),
+        ("cool point 25 % brighter", &point),
+        ("no spot", &missing),
+    ] {
+        for hdr in [true, false] {
+            let forward = render_forward(&ctx, &lib, wrong, hdr).expect("forward");
+            let deferred = render_deferred(&ctx, &lib, wrong, hdr).expect("deferred");
+            let report = compare(&truth, &forward, &deferred, hdr);
+            assert!(
+                report.failures[0] > 0 && report.failures[1] > 0,
+                "{what}, hdr {hdr}: not caught\n{report}"
+            );
+        }
+    }
+}
