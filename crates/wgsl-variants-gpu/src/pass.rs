@@ -4,7 +4,8 @@
 //!
 //! [`render`](super::render::render) draws one variant; a frame needs many: [`render_pass`]
 //! takes a [`DrawPass`] of [`Draw`]s, compiles each distinct pipeline once (same text, entry
-//! points, blend, depth test and vertex layout), uploads each draw's resources, records every
+//! points, blend, depth test and vertex layout), uploads each distinct resource once (draws
+//! share equal ones: the camera, the probes, a light's uniform), records every
 //! draw in order into one pass and reads back the colour targets and, with
 //! [`DrawPass::depth`], the `Depth32Float` buffer (cleared to 1, the far plane).
 //!
@@ -41,7 +42,7 @@ use super::render::{
     ColorTarget, VertexBuffer, check_targets, check_vertex_buffers, color_attachments,
     create_bind_groups, create_targets, upload_vertex_buffers, vertex_layouts, views,
 };
-use super::resources::{BoundResource, GpuResources};
+use super::resources::{BoundResource, GpuResources, ResourcePool};
 
 /// The depth buffer's format: 32-bit float, so the depth a deferred pass rebuilds positions
 /// from is the rasterizer's own value, not a 16- or 24-bit rounding of it.
@@ -92,12 +93,19 @@ pub struct Draw {
     pub vertex_buffers: Vec<VertexBuffer>,
     /// Resources for bind groups 0..N; those the entry points do not use are skipped.
     pub resources: Vec<BoundResource>,
+    /// More resources, in lists many draws share (a frame's camera and probes, an object's
+    /// material, the G-buffer a light reads): shared lists cost neither a copy per draw nor
+    /// a comparison of their contents.
+    pub shared: Vec<Arc<[BoundResource]>>,
     /// Blend state for every colour target; `None` uses each [`ColorTarget::blend`].
     pub blend: Option<wgpu::BlendState>,
     /// Depth test; `None` draws without testing or writing depth.
     pub depth: Option<DepthTest>,
     /// Faces culled (`None`: none).
     pub cull: Option<wgpu::Face>,
+    /// Which channels of every colour target the draw writes; empty for a draw that only
+    /// fills the depth buffer (its shader then needs no colour output).
+    pub color_writes: wgpu::ColorWrites,
 }
 
 impl Draw {
@@ -117,9 +125,11 @@ impl Draw {
             vertex_count: 3,
             vertex_buffers: Vec::new(),
             resources: Vec::new(),
+            shared: Vec::new(),
             blend: None,
             depth: None,
             cull: None,
+            color_writes: wgpu::ColorWrites::ALL,
         }
     }
 
@@ -136,6 +146,12 @@ impl Draw {
         self
     }
 
+    /// Adds a shared resource list.
+    pub fn with_shared(mut self, shared: &Arc<[BoundResource]>) -> Draw {
+        self.shared.push(Arc::clone(shared));
+        self
+    }
+
     /// Sets the blend state of every target.
     pub fn with_blend(mut self, blend: wgpu::BlendState) -> Draw {
         self.blend = Some(blend);
@@ -145,6 +161,18 @@ impl Draw {
     /// Sets the depth test.
     pub fn with_depth(mut self, depth: DepthTest) -> Draw {
         self.depth = Some(depth);
+        self
+    }
+
+    /// Culls `face`.
+    pub fn with_cull(mut self, face: wgpu::Face) -> Draw {
+        self.cull = Some(face);
+        self
+    }
+
+    /// Writes no colour, only depth.
+    pub fn depth_only(mut self) -> Draw {
+        self.color_writes = wgpu::ColorWrites::empty();
         self
     }
 }
@@ -200,6 +228,7 @@ struct PipelineKey<'a> {
     blend: Option<wgpu::BlendState>,
     depth: Option<DepthTest>,
     cull: Option<wgpu::Face>,
+    color_writes: wgpu::ColorWrites,
     layouts: Vec<(u64, &'a [wgpu::VertexAttribute])>,
 }
 
@@ -212,6 +241,7 @@ impl<'a> PipelineKey<'a> {
             blend: draw.blend,
             depth: draw.depth,
             cull: draw.cull,
+            color_writes: draw.color_writes,
             layouts: draw
                 .vertex_buffers
                 .iter()
@@ -233,6 +263,8 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
     let mut keys: Vec<PipelineKey<'_>> = Vec::new();
     let mut pipelines: Vec<(wgpu::RenderPipeline, BTreeSet<Slot>)> = Vec::new();
     let mut prepared = Vec::with_capacity(pass.draws.len());
+    let mut pool = ResourcePool::default();
+    let mut meshes: Vec<(&VertexBuffer, wgpu::Buffer)> = Vec::new();
     for draw in &pass.draws {
         let dl = draw.label.as_str();
         check_vertex_buffers(dl, &draw.vertex_buffers, draw.vertex_count)?;
@@ -253,7 +285,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                         Some(wgpu::ColorTargetState {
                             format: t.format.wgpu_format(),
                             blend: draw.blend.or(t.blend),
-                            write_mask: wgpu::ColorWrites::ALL,
+                            write_mask: draw.color_writes,
                         })
                     })
                     .collect();
@@ -287,10 +319,26 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                 pipelines.len() - 1
             }
         };
-        let resources = GpuResources::upload(ctx, dl, &draw.resources)?;
+        let all = draw
+            .shared
+            .iter()
+            .flat_map(|l| l.iter())
+            .chain(&draw.resources);
+        let resources = GpuResources::upload_pooled(ctx, dl, all, &mut pool)?;
         let (pipeline, used) = &pipelines[index];
         let groups = bind(ctx, dl, pipeline, used, &resources)?;
-        let buffers = upload_vertex_buffers(ctx, dl, &draw.vertex_buffers);
+        let buffers = draw
+            .vertex_buffers
+            .iter()
+            .map(|vb| match meshes.iter().find(|(known, _)| *known == vb) {
+                Some((_, buffer)) => buffer.clone(),
+                None => {
+                    let buffer = upload_vertex_buffers(ctx, dl, std::slice::from_ref(vb)).remove(0);
+                    meshes.push((vb, buffer.clone()));
+                    buffer
+                }
+            })
+            .collect::<Vec<_>>();
         prepared.push((index, groups, buffers));
     }
 

@@ -80,8 +80,8 @@ impl BoundResource {
     }
 }
 
-/// One uploaded resource.
-#[derive(Debug)]
+/// One uploaded resource (handles: cloning shares the GPU object).
+#[derive(Clone, Debug)]
 enum GpuResource {
     Buffer(wgpu::Buffer),
     Texture {
@@ -109,6 +109,18 @@ impl GpuResources {
         label: &str,
         resources: &[BoundResource],
     ) -> Result<Self, GpuError> {
+        Self::upload_pooled(ctx, label, resources, &mut ResourcePool::default())
+    }
+
+    /// Like [`GpuResources::upload`], but a resource equal to one already in `pool` is not
+    /// uploaded again: its GPU object is shared (many draws of a frame bind the same camera,
+    /// probes and cube maps). Storage buffers are never shared (a shader may write them).
+    pub(crate) fn upload_pooled<'a>(
+        ctx: &GpuContext,
+        label: &str,
+        resources: impl IntoIterator<Item = &'a BoundResource>,
+        pool: &mut ResourcePool<'a>,
+    ) -> Result<Self, GpuError> {
         ctx.check_device()?;
         let result = ctx.scoped(label, || {
             let mut slots = BTreeMap::new();
@@ -120,7 +132,25 @@ impl GpuResources {
                         format!("@group({}) @binding({}) given twice", slot.0, slot.1),
                     ));
                 }
-                slots.insert(slot, upload_one(ctx, label, &r.resource)?);
+                // The same object (a shared list) first: comparing contents is the slow path.
+                let shareable = !matches!(r.resource, Resource::Storage(_));
+                let shared = pool
+                    .entries
+                    .iter()
+                    .find(|(known, _)| std::ptr::eq(*known, &r.resource))
+                    .or_else(|| pool.entries.iter().find(|(known, _)| *known == &r.resource))
+                    .filter(|_| shareable);
+                let uploaded = match shared {
+                    Some((_, gpu)) => gpu.clone(),
+                    None => {
+                        let gpu = upload_one(ctx, label, &r.resource)?;
+                        if shareable {
+                            pool.entries.push((&r.resource, gpu.clone()));
+                        }
+                        gpu
+                    }
+                };
+                slots.insert(slot, uploaded);
             }
             Ok(Self { slots })
         });
@@ -150,6 +180,12 @@ impl GpuResources {
             GpuResource::Sampler(sampler) => wgpu::BindingResource::Sampler(sampler),
         })
     }
+}
+
+/// Resources uploaded so far by [`GpuResources::upload_pooled`], by content.
+#[derive(Debug, Default)]
+pub(crate) struct ResourcePool<'a> {
+    entries: Vec<(&'a Resource, GpuResource)>,
 }
 
 fn invalid(label: &str, message: String) -> GpuError {

@@ -33,6 +33,8 @@ fn frame_passes(hdr: bool) {
     assert!(report.edges < report.compared / 5, "{report}");
     assert_eq!(report.forward_draws, 5 + 5 * 3);
     assert_eq!(report.deferred_draws, 5 + 4 + usize::from(!hdr));
+    // The point and spot lights are drawn as their volumes (none crosses a clip plane).
+    assert_eq!(report.volumes, 3, "{report}");
 }
 
 #[test]

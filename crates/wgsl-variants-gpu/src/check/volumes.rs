@@ -39,7 +39,7 @@ const DEPTH_STENCIL: wgpu::TextureFormat = wgpu::TextureFormat::Depth24PlusStenc
 const STENCIL_MARK: u32 = 1;
 
 /// Writes the rig's depth (an `R32Float` texture) into the depth attachment.
-const DEPTH_FILL_WGSL: &str = "
+pub(crate) const DEPTH_FILL_WGSL: &str = "
 @group(0) @binding(0) var scene_depth: texture_2d<f32>;
 
 @vertex

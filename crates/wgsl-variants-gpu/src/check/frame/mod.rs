@@ -28,6 +28,7 @@
 
 pub mod scene;
 
+use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
 
@@ -37,9 +38,11 @@ pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, 
 
 use super::compare::pixel;
 use super::deferred::{final_pass, rt3_blend, texture};
+use super::volumes::DEPTH_FILL_WGSL;
+use crate::light_volume::{LightDraw, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DepthTest, Draw, DrawPass, GpuContext, GpuError,
-    Resource, TargetFormat, render_pass,
+    Resource, TargetFormat, VertexBuffer, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
@@ -63,6 +66,9 @@ pub struct PathImage {
     pub format: TargetFormat,
     /// Draw calls, full-screen passes included.
     pub draws: usize,
+    /// Lights drawn as their volume (the deferred path's point and spot lights that
+    /// [`light_draw`] does not send full screen); 0 forward.
+    pub volumes: usize,
 }
 
 impl PathImage {
@@ -94,42 +100,78 @@ fn object_keywords(
     names
 }
 
-/// A variant's label and composed text, shared by every draw of it.
-fn variant_text(
-    lib: &Library,
-    shader: &str,
-    pass: &str,
-    names: &[&str],
-) -> Result<(String, Arc<str>), GpuError> {
-    let variant = lib
-        .variant(shader, pass, names)
-        .map_err(|e| CheckError::lookup(format!("{shader}/{pass} {names:?}"), e))?;
-    Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
+/// A `standard` or lighting variant by pass and keyword names.
+type VariantKey = (&'static str, Vec<&'static str>);
+
+/// A variant's label and composed text.
+type VariantText = (String, Arc<str>);
+
+/// The variants a path draws, composed once each (a frame draws the same variant for many
+/// lights), and each object's resources, shared by its draws.
+struct Drawer<'a> {
+    lib: &'a Library,
+    frame: &'a FrameScene,
+    hdr: bool,
+    texts: HashMap<VariantKey, VariantText>,
+    objects: Vec<Arc<[BoundResource]>>,
 }
 
-/// One object's draw of a `standard` pass.
-fn object_draw(
-    lib: &Library,
-    frame: &FrameScene,
-    object: &FrameObject,
-    pass: &str,
-    light: Option<&FrameLight>,
-    hdr: bool,
-) -> Result<Draw, GpuError> {
-    let names = object_keywords(object, pass, light.map(|l| l.light_type), hdr);
-    let (label, wgsl) = variant_text(lib, "standard", pass, &names)?;
-    let mut resources = frame.object_resources(object);
-    if let Some(light) = light {
-        resources.extend(FrameScene::light_resources(&light.params));
+impl<'a> Drawer<'a> {
+    fn new(lib: &'a Library, frame: &'a FrameScene, hdr: bool) -> Self {
+        let objects = frame
+            .objects
+            .iter()
+            .map(|o| Arc::from(frame.object_resources(o)))
+            .collect();
+        Drawer {
+            lib,
+            frame,
+            hdr,
+            texts: HashMap::new(),
+            objects,
+        }
     }
-    Ok(Draw::fullscreen(
-        &format!("{} {label}", object.name),
-        &wgsl,
-        "vs_main",
-        "fs_main",
-    )
-    .with_mesh(object.mesh())
-    .with_resources(resources))
+
+    /// A variant's label and composed text.
+    fn text(
+        &mut self,
+        shader: &'static str,
+        pass: &'static str,
+        names: Vec<&'static str>,
+    ) -> Result<VariantText, GpuError> {
+        if let Some(known) = self.texts.get(&(pass, names.clone())) {
+            return Ok(known.clone());
+        }
+        let variant = self
+            .lib
+            .variant(shader, pass, &names)
+            .map_err(|e| CheckError::lookup(format!("{shader}/{pass} {names:?}"), e))?;
+        let text = (variant.label(), Arc::from(self.lib.wgsl(&variant)));
+        self.texts.insert((pass, names), text.clone());
+        Ok(text)
+    }
+
+    /// Object `o`'s draw of a `standard` pass (with `light`'s bindings for ForwardAdd).
+    fn object(
+        &mut self,
+        o: usize,
+        pass: &'static str,
+        light: Option<&FrameLight>,
+    ) -> Result<Draw, GpuError> {
+        let object = &self.frame.objects[o];
+        let names = object_keywords(object, pass, light.map(|l| l.light_type), self.hdr);
+        let (label, wgsl) = self.text("standard", pass, names)?;
+        let resources = light.map_or_else(Vec::new, |l| FrameScene::light_resources(&l.params));
+        Ok(Draw::fullscreen(
+            &format!("{} {label}", object.name),
+            &wgsl,
+            "vs_main",
+            "fs_main",
+        )
+        .with_mesh(object.mesh())
+        .with_shared(&self.objects[o])
+        .with_resources(resources))
+    }
 }
 
 /// One-One additive blending (ForwardAdd on opaque and cutout surfaces).
@@ -165,16 +207,19 @@ pub fn render_forward(
         vec![ColorTarget::new(format)],
     );
     pass.depth = true;
-    for object in &frame.objects {
+    let mut drawer = Drawer::new(lib, frame, hdr);
+    for o in 0..frame.objects.len() {
         pass.draws.push(
-            object_draw(lib, frame, object, "ForwardBase", None, hdr)?
+            drawer
+                .object(o, "ForwardBase", None)?
                 .with_depth(DepthTest::OPAQUE),
         );
     }
     for light in &frame.lights {
-        for object in &frame.objects {
+        for o in 0..frame.objects.len() {
             pass.draws.push(
-                object_draw(lib, frame, object, "ForwardAdd", Some(light), hdr)?
+                drawer
+                    .object(o, "ForwardAdd", Some(light))?
                     .with_blend(ADD)
                     .with_depth(DepthTest::SAME_SURFACE),
             );
@@ -186,6 +231,7 @@ pub fn render_forward(
         bytes,
         format,
         draws,
+        volumes: 0,
     })
 }
 
@@ -198,8 +244,9 @@ pub struct GBufferFrame {
     pub depth: Vec<f32>,
 }
 
-/// Renders the deferred path: the G-buffer pass over every object, one full-screen Lighting
-/// draw per light (the main light first), and in LDR the final pass.
+/// Renders the deferred path: the G-buffer pass over every object, one Lighting draw per light
+/// (the main light first, full screen; the others as their volumes where
+/// [`light_draw`] allows, else full screen), and in LDR the final pass.
 pub fn render_deferred(
     ctx: &GpuContext,
     lib: &Library,
@@ -226,9 +273,12 @@ pub fn render_deferred(
         ],
     );
     gbuffer.depth = true;
-    for object in &frame.objects {
+    let mut drawer = Drawer::new(lib, frame, hdr);
+    for o in 0..frame.objects.len() {
         gbuffer.draws.push(
-            object_draw(lib, frame, object, "Deferred", None, hdr)?.with_depth(DepthTest::OPAQUE),
+            drawer
+                .object(o, "Deferred", None)?
+                .with_depth(DepthTest::OPAQUE),
         );
     }
     let out = render_pass(ctx, &gbuffer)?;
@@ -237,6 +287,9 @@ pub fn render_deferred(
         targets: out.targets,
     };
 
+    // The lighting pass tests the G-buffer's depth: a first draw writes it into the pass's
+    // depth buffer (no colour), then each light draws its volume's back faces where the scene
+    // lies in front of them (depth GreaterEqual), or full screen (light_volume::light_draw).
     let mut lighting = DrawPass::new(
         "frame: lighting",
         w,
@@ -247,8 +300,24 @@ pub fn render_deferred(
                 .with_initial(g.targets[3].clone()),
         ],
     );
-    let depth: Vec<u8> = g.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
-    let shared = vec![
+    lighting.depth = true;
+    let depth_texture = Resource::Texture2d {
+        format: wgpu::TextureFormat::R32Float,
+        width: w,
+        height: h,
+        data: g.depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
+    };
+    let fill: Arc<str> = Arc::from(DEPTH_FILL_WGSL);
+    lighting.draws.push(
+        Draw::fullscreen("scene depth", &fill, "vs_main", "fs_main")
+            .with_resources(vec![BoundResource::new(0, 0, depth_texture.clone())])
+            .with_depth(DepthTest {
+                compare: wgpu::CompareFunction::Always,
+                write: true,
+            })
+            .depth_only(),
+    );
+    let shared: Arc<[BoundResource]> = Arc::from(vec![
         BoundResource::new(0, 0, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[0])),
         BoundResource::new(0, 1, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[1])),
         BoundResource::new(
@@ -256,48 +325,59 @@ pub fn render_deferred(
             2,
             texture(TargetFormat::Rgb10a2Unorm, w, h, &g.targets[2]),
         ),
-        BoundResource::new(
-            0,
-            3,
-            Resource::Texture2d {
-                format: wgpu::TextureFormat::R32Float,
-                width: w,
-                height: h,
-                data: depth,
-            },
-        ),
+        BoundResource::new(0, 3, depth_texture),
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
-    ];
-    let main = FrameLight {
-        name: "main",
-        light_type: LightType::Directional,
-        params: frame.main_light,
-    };
-    for light in std::iter::once(&main).chain(&frame.lights) {
-        let mut names = vec![light.light_type.keyword()];
+    ]);
+    let mut volumes = 0;
+    let main = (LightType::Directional, frame.main_light, None);
+    let lights = frame
+        .lights
+        .iter()
+        .map(|l| (l.light_type, l.params, Some(&l.light)));
+    for (light_type, params, light) in std::iter::once(main).chain(lights) {
+        let mut names = vec![light_type.keyword()];
         if hdr {
             names.push("UNITY_HDR_ON");
         }
-        let (label, wgsl) = variant_text(lib, "deferred_shading", "Lighting", &names)?;
-        let mut resources = shared.clone();
-        resources.extend(FrameScene::light_resources(&light.params));
-        lighting.draws.push(
-            Draw::fullscreen(
-                &format!("{} {label}", light.name),
-                &wgsl,
-                "vs_main",
-                "fs_main",
-            )
-            .with_resources(resources),
-        );
+        let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
+        let resources = FrameScene::light_resources(&params);
+        let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
+            Some(Ok(LightDraw::Volume(v))) => Some(v),
+            Some(Err(e)) => {
+                return Err(GpuError::Validation {
+                    label: label.clone(),
+                    message: e.to_string(),
+                });
+            }
+            _ => None,
+        };
+        let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+            .with_shared(&shared)
+            .with_resources(resources);
+        volumes += usize::from(volume.is_some());
+        lighting.draws.push(match volume {
+            Some(v) => Draw {
+                vertex_entry: String::from("vs_volume"),
+                ..draw
+                    .with_mesh(VertexBuffer::from_f32(&[(0, 3)], &v.positions))
+                    .with_cull(wgpu::Face::Front)
+                    .with_depth(DepthTest {
+                        compare: wgpu::CompareFunction::GreaterEqual,
+                        write: false,
+                    })
+            },
+            None => draw,
+        });
     }
-    let mut draws = gbuffer.draws.len() + lighting.draws.len();
+    // The depth fill is this harness's way to hand the G-buffer's depth to the next pass.
+    let mut draws = gbuffer.draws.len() + lighting.draws.len() - 1;
     let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
     if hdr {
         return Ok(PathImage {
             bytes: rt3,
             format: rt3_format,
             draws,
+            volumes,
         });
     }
     draws += 1;
@@ -305,6 +385,7 @@ pub fn render_deferred(
         bytes: final_pass(ctx, lib, &rt3, w, h)?,
         format: TargetFormat::Rgba8Unorm,
         draws,
+        volumes,
     })
 }
 
@@ -414,6 +495,8 @@ pub struct FrameReport {
     pub forward_draws: usize,
     /// Draw calls of the deferred path.
     pub deferred_draws: usize,
+    /// Lights the deferred path drew as their volume.
+    pub volumes: usize,
     /// Pixels on a surface, compared.
     pub compared: usize,
     /// Background pixels, compared (both paths must leave them empty).
@@ -443,13 +526,14 @@ impl fmt::Display for FrameReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "frame {}: {} pixels compared, {} background, {} silhouette pixels left out; forward {} draws, deferred {} draws",
+            "frame {}: {} pixels compared, {} background, {} silhouette pixels left out; forward {} draws, deferred {} draws ({} light volumes)",
             if self.hdr { "HDR" } else { "LDR" },
             self.compared,
             self.background,
             self.edges,
             self.forward_draws,
             self.deferred_draws,
+            self.volumes,
         )?;
         writeln!(
             f,
@@ -592,6 +676,7 @@ pub fn compare(
         hdr,
         forward_draws: forward.draws,
         deferred_draws: deferred.draws,
+        volumes: deferred.volumes,
         compared: 0,
         background: 0,
         edges: 0,

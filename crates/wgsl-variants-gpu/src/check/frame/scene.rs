@@ -11,9 +11,13 @@
 
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 
-use super::super::scene::{MapTexture, Maps, StandardBindings, cube, probe, push_mat4, push_vec4};
+use super::super::scene::{
+    MapTexture, Maps, Rng, StandardBindings, cube, probe, push_mat4, push_vec4,
+};
 use crate::{BoundResource, Resource, VertexBuffer};
-use wgsl_variants::reference::light::{Light, LightParams, LightType, look_at_rh, perspective_rh};
+use wgsl_variants::reference::light::{
+    Light, LightError, LightParams, LightType, look_at_rh, perspective_rh,
+};
 use wgsl_variants::reference::probe::Probe;
 use wgsl_variants::reference::quantize::unorm_to_f32;
 use wgsl_variants::reference::surface::{
@@ -98,8 +102,29 @@ pub struct FrameLight {
     pub name: &'static str,
     /// Its light keyword.
     pub light_type: LightType,
-    /// What the shaders read.
+    /// The light as a renderer describes it (its volume comes from this).
+    pub light: Light,
+    /// What the shaders read (`light.params()`).
     pub params: LightParams,
+}
+
+impl FrameLight {
+    /// The light `light` of type `light_type`.
+    ///
+    /// # Errors
+    /// The light's [`LightError`] when its parameters make the math undefined.
+    pub fn new(
+        name: &'static str,
+        light_type: LightType,
+        light: Light,
+    ) -> Result<FrameLight, LightError> {
+        Ok(FrameLight {
+            name,
+            light_type,
+            params: light.params()?,
+            light,
+        })
+    }
 }
 
 /// What a pixel's ray hits.
@@ -257,9 +282,13 @@ fn placed(at: Vec3, scale: f32, degrees: f32) -> Mat4 {
 }
 
 impl FrameScene {
-    /// The frame the checks and pictures use.
+    /// The frame the checks and pictures use ([`FRAME_WIDTH`] × [`FRAME_HEIGHT`]).
     pub fn new() -> FrameScene {
-        let (width, height) = (FRAME_WIDTH, FRAME_HEIGHT);
+        FrameScene::sized(FRAME_WIDTH, FRAME_HEIGHT)
+    }
+
+    /// The frame at `width × height` pixels (the same view, the aspect ratio adjusted).
+    pub fn sized(width: u32, height: u32) -> FrameScene {
         let eye = Vec3::new(0.5, 5.0, 5.6);
         let view_proj = perspective_rh(0.9, width as f32 / height as f32, 1.0, 24.0)
             * look_at_rh(eye, Vec3::new(0.4, 0.3, -0.2), Vec3::Y);
@@ -317,16 +346,14 @@ impl FrameScene {
         let main_light = Light::directional(-to_main, main_color)
             .params()
             .expect("the main light's parameters are valid");
-        let light = |name, light_type, light: Light| FrameLight {
-            name,
-            light_type,
-            params: light.params().expect("the frame's lights are valid"),
+        let light = |name, light_type, light: Light| {
+            FrameLight::new(name, light_type, light).expect("the frame's lights are valid")
         };
         let lights = vec![
             light(
                 "warm point",
                 LightType::Point,
-                Light::point(Vec3::new(-0.4, 1.6, 1.8), 4.5, Vec3::new(1.2, 0.6, 0.25)),
+                Light::point(Vec3::new(-0.4, 1.6, 1.8), 3.5, Vec3::new(1.2, 0.6, 0.25)),
             ),
             light(
                 "cool point",
@@ -340,7 +367,7 @@ impl FrameScene {
                     Vec3::new(0.8, 4.0, 1.5),
                     Vec3::new(-0.6, -4.0, -2.3),
                     55.0,
-                    9.0,
+                    6.5,
                     Vec3::new(0.9, 0.9, 0.8),
                 ),
             ),
@@ -476,6 +503,31 @@ impl FrameScene {
             lights,
             objects,
         }
+    }
+
+    /// The frame with `n` point lights instead of its three per-pixel lights (the main light
+    /// stays): the benchmark's light count. They are placed by a fixed pseudo-random sequence
+    /// over the floor in view, 0.6 to 1.8 above it, with ranges of 1.2 to 2.2 (so each is drawn
+    /// as its volume in the deferred path) and varied colours.
+    pub fn with_point_lights(mut self, n: usize) -> FrameScene {
+        let mut rng = Rng::new(0x1167_5EED);
+        self.lights = (0..n)
+            .map(|_| {
+                let position = Vec3::new(
+                    rng.range(-4.0, 4.5),
+                    rng.range(0.6, 1.8),
+                    rng.range(-3.0, 2.5),
+                );
+                let color = Vec3::new(
+                    rng.range(0.2, 1.0),
+                    rng.range(0.2, 1.0),
+                    rng.range(0.2, 1.0),
+                );
+                let light = Light::point(position, rng.range(1.2, 2.2), color);
+                FrameLight::new("point", LightType::Point, light).expect("valid point lights")
+            })
+            .collect();
+        self
     }
 
     /// The standard shader's resources for drawing `object`.
