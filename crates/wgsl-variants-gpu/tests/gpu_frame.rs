@@ -31,9 +31,10 @@ fn frame_passes(hdr: bool) {
     // Most of the frame is surface, not silhouette.
     assert!(report.compared > 2000, "{report}");
     assert!(report.edges < report.compared / 5, "{report}");
-    assert_eq!(report.forward_draws, 5 + 5 * 3);
-    assert_eq!(report.deferred_draws, 5 + 4 + usize::from(!hdr));
-    // The point and spot lights are drawn as their volumes (none crosses a clip plane).
+    assert_eq!(report.forward_draws, 5 + 5 * 4);
+    assert_eq!(report.deferred_draws, 5 + 5 + usize::from(!hdr));
+    // The point and spot lights are drawn as their volumes (none crosses a clip plane), the
+    // directional ones full screen.
     assert_eq!(report.volumes, 3, "{report}");
 }
 
@@ -47,9 +48,10 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
     frame_passes(false);
 }
 
-/// The comparison is sharp: a frame rendered with the main light 10 % too bright, a point
-/// light 25 % too bright (it is a sixth of the floor's light) or without the spot light's
-/// draws fails against the reference of the true frame, on both paths, in HDR and LDR.
+/// The comparison is sharp: a frame rendered with the main light 10 % too bright, the warm
+/// point light 25 % too bright in HDR (50 % in LDR, whose 8-bit targets round each of the five
+/// forward draws) or without the spot light's draws fails against the reference of the true
+/// frame, on both paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -60,16 +62,21 @@ fn a_light_too_bright_or_missing_is_caught() {
     let mut main = truth.clone();
     main.scene.light_color *= 1.1;
     main.main_light.color *= 1.1;
-    let mut point = truth.clone();
-    point.lights[1].params.color *= 1.25;
+    let brighter = |factor: f32| {
+        let mut frame = truth.clone();
+        frame.lights[0].params.color *= factor;
+        frame
+    };
+    let (point_hdr, point_ldr) = (brighter(1.25), brighter(1.5));
     let mut missing = truth.clone();
     missing.lights.pop();
-    for (what, wrong) in [
-        ("main light 10 % brighter", &main),
-        ("cool point 25 % brighter", &point),
-        ("no spot", &missing),
+    for (what, wrong, modes) in [
+        ("main light 10 % brighter", &main, &[true, false][..]),
+        ("warm point 25 % brighter", &point_hdr, &[true]),
+        ("warm point 50 % brighter", &point_ldr, &[false]),
+        ("no spot", &missing, &[true, false]),
     ] {
-        for hdr in [true, false] {
+        for &hdr in modes {
             let forward = render_forward(&ctx, &lib, wrong, hdr).expect("forward");
             let deferred = render_deferred(&ctx, &lib, wrong, hdr).expect("deferred");
             let report = compare(&truth, &forward, &deferred, hdr);

@@ -46,7 +46,7 @@ use crate::{
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
-use wgsl_variants::reference::light::{LightParams, LightType};
+use wgsl_variants::reference::light::{Cookies, LightParams, LightType};
 use wgsl_variants::reference::surface::{
     Geometry, Keywords, shade_deferred, shade_forward, shade_forward_add, surface,
     view_and_reflection,
@@ -161,7 +161,7 @@ impl<'a> Drawer<'a> {
         let object = &self.frame.objects[o];
         let names = object_keywords(object, pass, light.map(|l| l.light_type), self.hdr);
         let (label, wgsl) = self.text("standard", pass, names)?;
-        let resources = light.map_or_else(Vec::new, |l| FrameScene::light_resources(&l.params));
+        let resources = light.map_or_else(Vec::new, |l| self.frame.light_resources(&l.params));
         Ok(Draw::fullscreen(
             &format!("{} {label}", object.name),
             &wgsl,
@@ -340,7 +340,7 @@ pub fn render_deferred(
             names.push("UNITY_HDR_ON");
         }
         let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
-        let resources = FrameScene::light_resources(&params);
+        let resources = frame.light_resources(&params);
         let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
             Some(Ok(LightDraw::Volume(v))) => Some(v),
             Some(Err(e)) => {
@@ -421,6 +421,11 @@ fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
     let tex = object.reference_texels();
     let mat = &object.material;
     let camera = frame.scene.camera_position;
+    let (cookie, cube) = frame.cookies();
+    let cookies = Some(Cookies {
+        texture: &cookie,
+        cube,
+    });
     // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
     let base =
         shade_forward(&kw, mat, &tex, geo, &frame.scene).map_or(Vec3::ZERO, |c| c.truncate());
@@ -428,8 +433,17 @@ fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
         .lights
         .iter()
         .map(|l| {
-            shade_forward_add(&kw, mat, &tex, geo, camera, &l.params, l.light_type, None)
-                .map_or(Vec3::ZERO, |c| c.truncate())
+            shade_forward_add(
+                &kw,
+                mat,
+                &tex,
+                geo,
+                camera,
+                &l.params,
+                l.light_type,
+                cookies,
+            )
+            .map_or(Vec3::ZERO, |c| c.truncate())
         })
         .collect();
     let hdr_kw = Keywords { hdr: true, ..kw };
@@ -440,7 +454,7 @@ fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
     let p = geo.world_position;
     let (v, _) = view_and_reflection(camera, p, s.normal);
     let bound = |params: &LightParams, t: LightType| {
-        let (l, attenuation) = params.sample(t, p, None);
+        let (l, attenuation) = params.sample(t, p, cookies);
         let h = (l + v).normalize_or_zero();
         gbuffer_light_bound(
             diffuse,

@@ -1,7 +1,8 @@
 //! The frame's scene, made by code: a floor, two spheres and two boxes, each with its own
 //! keyword set and material, seen by a perspective camera; the ambient light, the directional
-//! main light and the two reflection probes of [`Scene`]; and three per-pixel lights (two
-//! points and a spot).
+//! main light and the two reflection probes of [`Scene`]; and four per-pixel lights (a
+//! directional light with a 2D cookie, a point light, a point light with a cube cookie, a
+//! spot).
 //!
 //! Every map of an object is one texel (`Rgba8Unorm`, exact in 8 bits), so a sample does not
 //! depend on the uv the rasterizer interpolates: the keywords still change the surface (a
@@ -12,11 +13,12 @@
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 
 use super::super::scene::{
-    MapTexture, Maps, Rng, StandardBindings, cube, probe, push_mat4, push_vec4,
+    MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe, push_mat4, push_vec4,
 };
 use crate::{BoundResource, Resource, VertexBuffer};
+use wgsl_variants::reference::cube::CubeFaces;
 use wgsl_variants::reference::light::{
-    Light, LightError, LightParams, LightType, look_at_rh, perspective_rh,
+    Cookie2d, Light, LightError, LightParams, LightShape, LightType, look_at_rh, perspective_rh,
 };
 use wgsl_variants::reference::probe::Probe;
 use wgsl_variants::reference::quantize::unorm_to_f32;
@@ -153,6 +155,11 @@ pub struct FrameScene {
     pub lights: Vec<FrameLight>,
     /// The objects, drawn in this order.
     pub objects: Vec<FrameObject>,
+    /// The 2D cookie of `DIRECTIONAL_COOKIE` lights (`Rgba8Unorm`, alpha read; nearest,
+    /// repeating).
+    pub cookie: MapTexture,
+    /// The cube cookie of `POINT_COOKIE` lights (one alpha per face).
+    pub cube_cookie: CubeFaces,
 }
 
 /// A unit normal's tangent-space texel (8-bit codes of `n · 0.5 + 0.5`).
@@ -356,8 +363,20 @@ impl FrameScene {
                 Light::point(Vec3::new(-0.4, 1.6, 1.8), 3.5, Vec3::new(1.2, 0.6, 0.25)),
             ),
             light(
-                "cool point",
-                LightType::Point,
+                "cookie sun",
+                LightType::DirectionalCookie,
+                Light {
+                    shape: LightShape::Directional {
+                        direction: Vec3::new(-0.3, -1.0, -0.2),
+                        cookie_size: 2.5,
+                        cookie_origin: Vec3::new(0.3, 0.0, 0.1),
+                    },
+                    color: Vec3::new(0.35, 0.3, 0.4),
+                },
+            ),
+            light(
+                "cool point (cube cookie)",
+                LightType::PointCookie,
                 Light::point(Vec3::new(2.3, 1.4, 0.4), 3.0, Vec3::new(0.25, 0.6, 1.3)),
             ),
             light(
@@ -494,6 +513,20 @@ impl FrameScene {
                 vertices: cube_mesh(),
             },
         ];
+        // A 4 × 4 pattern of alphas, and one alpha per cube face.
+        let alpha = [
+            255u8, 60, 190, 120, 30, 230, 90, 160, 210, 140, 255, 0, 110, 180, 50, 245,
+        ];
+        let cookie = MapTexture::new(4, 4, |x, y| [255, 255, 255, alpha[(y * 4 + x) as usize]]);
+        let face = |a: u8| Vec4::new(1.0, 1.0, 1.0, unorm_to_f32(u32::from(a), 8));
+        let cube_cookie = CubeFaces([
+            face(255),
+            face(90),
+            face(200),
+            face(40),
+            face(150),
+            face(230),
+        ]);
         FrameScene {
             width,
             height,
@@ -502,6 +535,8 @@ impl FrameScene {
             main_light,
             lights,
             objects,
+            cookie,
+            cube_cookie,
         }
     }
 
@@ -544,25 +579,31 @@ impl FrameScene {
         .resources()
     }
 
-    /// The bindings of one per-pixel light (`lighting/light_bindings`): its uniform, and
-    /// white cookies with their sampler (the frame's lights have no cookie).
-    pub fn light_resources(params: &LightParams) -> Vec<BoundResource> {
+    /// The cookies as the reference samples them.
+    pub fn cookies(&self) -> (Cookie2d, &CubeFaces) {
+        let texture = Cookie2d {
+            width: self.cookie.width,
+            height: self.cookie.height,
+            alpha: (0..self.cookie.height)
+                .flat_map(|y| (0..self.cookie.width).map(move |x| (x, y)))
+                .map(|(x, y)| self.cookie.get(x, y).w)
+                .collect(),
+        };
+        (texture, &self.cube_cookie)
+    }
+
+    /// The bindings of one per-pixel light (`lighting/light_bindings`): its uniform, the
+    /// frame's cookies and their sampler (nearest, repeating).
+    pub fn light_resources(&self, params: &LightParams) -> Vec<BoundResource> {
         let uniform = params
             .uniform()
             .into_iter()
             .flat_map(f32::to_le_bytes)
             .collect();
-        let white = MapTexture::new(1, 1, |_, _| WHITE);
         vec![
             BoundResource::new(0, 6, Resource::Uniform(uniform)),
-            BoundResource::new(0, 7, white.resource()),
-            BoundResource::new(
-                0,
-                8,
-                super::super::scene::cube_resource(
-                    &wgsl_variants::reference::cube::CubeFaces::uniform(Vec4::ONE),
-                ),
-            ),
+            BoundResource::new(0, 7, self.cookie.resource()),
+            BoundResource::new(0, 8, cube_resource(&self.cube_cookie)),
             BoundResource::new(
                 0,
                 9,
