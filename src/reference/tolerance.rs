@@ -14,7 +14,7 @@
 //! | `R32Uint` (rendering layers) | exact | an integer copied from a uniform |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
-//! | the frame (docs/shading.md §12): forward and deferred against the reference and each other | per pixel and channel: [`f16_store_error`] of each partial sum (HDR) or [`unorm_store_error`] per draw (forward LDR) or [`ldr_chain_range`] (deferred LDR), plus [`gbuffer_light_bound`] of every deferred light, plus the reference's [`window_spread`] over [`SUBPIXEL_WINDOW`] | every draw rounds the target once; the rasterizer evaluates a pixel's attributes on vertices snapped to its sub-pixel grid, i.e. at a point up to [`SUBPIXEL_WINDOW`] from the centre; pixels whose window sees two objects (silhouettes) are left out and counted |
+//! | the frame (docs/shading.md §12): forward and deferred against the reference and each other | per pixel and channel: [`f16_store_error`] of each partial sum (HDR) or [`unorm_store_error`] per draw (forward LDR) or [`ldr_chain_range`] (deferred LDR), plus [`gbuffer_light_bound`] of every deferred light, around the reference's range over [`SUBPIXEL_WINDOW`] ([`window_range`]) | every draw rounds the target once; the rasterizer evaluates a pixel's attributes on vertices snapped to its sub-pixel grid, i.e. at a point up to [`SUBPIXEL_WINDOW`] from the centre; pixels whose window sees two objects (silhouettes) are left out and counted |
 //!
 //! ```
 //! use wgsl_variants::reference::tolerance::{unorm_within, f16_within, f32_within};
@@ -497,24 +497,25 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
 /// 4 bits (lavapipe has 8); an affine attribute evaluated at the centre of the snapped
 /// triangle equals the original triangle's value at a point moved by no more than the
 /// vertices moved, half a grid step per axis: 1/32 pixel at 4 bits. The window is twice that.
-/// The frame's comparisons allow, per pixel, the largest change of the reference over the
-/// window ([`window_spread`]); a pixel whose window reaches another object is an edge pixel
+/// The frame's comparisons allow, per pixel, the reference's whole range over the window
+/// ([`window_range`]); a pixel whose window reaches another object is an edge pixel
 /// and is left out (counted).
 pub const SUBPIXEL_WINDOW: f32 = 1.0 / 16.0;
 
-/// The largest change, per channel, between the reference at a pixel's centre and at the
-/// points of its [`SUBPIXEL_WINDOW`].
+/// The reference's range, per channel, over the values it takes at a pixel's centre and the
+/// points of its [`SUBPIXEL_WINDOW`]: `(min, max)`.
 ///
 /// ```
 /// use glam::Vec3;
-/// use wgsl_variants::reference::tolerance::window_spread;
-/// let s = window_spread(Vec3::splat(1.0), &[Vec3::new(1.1, 1.0, 0.8), Vec3::new(0.95, 1.0, 1.0)]);
-/// assert!((s - Vec3::new(0.1, 0.0, 0.2)).abs().max_element() < 1e-6);
+/// use wgsl_variants::reference::tolerance::window_range;
+/// let (lo, hi) = window_range(&[Vec3::splat(1.0), Vec3::new(1.1, 1.0, 0.8)]);
+/// assert_eq!((lo, hi), (Vec3::new(1.0, 1.0, 0.8), Vec3::new(1.1, 1.0, 1.0)));
 /// ```
-pub fn window_spread(centre: Vec3, samples: &[Vec3]) -> Vec3 {
-    samples
-        .iter()
-        .fold(Vec3::ZERO, |m, s| m.max((*s - centre).abs()))
+pub fn window_range(values: &[Vec3]) -> (Vec3, Vec3) {
+    values.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+    )
 }
 
 /// The spacing of half floats around `x`: `2^(e − 10)` for `2^e ≤ |x| < 2^(e+1)`, and the

@@ -16,7 +16,9 @@ use test_support as common;
 use serde_json::json;
 use wgsl_variants::Library;
 use wgsl_variants_gpu::GpuContext;
-use wgsl_variants_gpu::check::frame::{FrameScene, render_deferred, render_forward};
+use wgsl_variants_gpu::check::frame::{
+    FrameScene, render_deferred, render_forward, render_shadows,
+};
 
 fn main() {
     let rounds = common::rounds();
@@ -40,18 +42,20 @@ fn main() {
     let mut crossover = None;
     for &n in &counts {
         let frame = FrameScene::sized(1280, 720).with_point_lights(n);
+        // The bench's point lights cast no shadows: no maps to render.
+        let shadows = render_shadows(&ctx, &lib, &frame).expect("shadows");
         let (mut forward_draws, mut deferred_draws) = (0, 0);
         let times = common::interleaved(
             rounds,
             1,
             &mut [
                 &mut |_| {
-                    forward_draws = render_forward(&ctx, &lib, &frame, true)
+                    forward_draws = render_forward(&ctx, &lib, &frame, &shadows, true)
                         .expect("forward")
                         .draws;
                 },
                 &mut |_| {
-                    deferred_draws = render_deferred(&ctx, &lib, &frame, true)
+                    deferred_draws = render_deferred(&ctx, &lib, &frame, &shadows, true)
                         .expect("deferred")
                         .draws;
                 },

@@ -188,9 +188,13 @@ pub struct DrawPass {
     pub height: u32,
     /// Colour targets in `@location` order, cleared or started with their initial contents.
     pub targets: Vec<ColorTarget>,
-    /// A [`DEPTH_FORMAT`] buffer cleared to 1 (the far plane), read back after the pass.
-    /// Without it a draw's [`Draw::depth`] is an error.
+    /// A depth buffer of [`DrawPass::depth_format`] cleared to 1 (the far plane), read back
+    /// after the pass. Without it a draw's [`Draw::depth`] is an error; with it the pass may
+    /// have no colour targets (a shadow map).
     pub depth: bool,
+    /// The depth buffer's format: [`DEPTH_FORMAT`] unless set (`Depth16Unorm` for a shadow
+    /// map the receivers compare against).
+    pub depth_format: wgpu::TextureFormat,
     /// The draws, in order.
     pub draws: Vec<Draw>,
 }
@@ -204,6 +208,7 @@ impl DrawPass {
             height,
             targets,
             depth: false,
+            depth_format: DEPTH_FORMAT,
             draws: Vec::new(),
         }
     }
@@ -215,7 +220,8 @@ impl DrawPass {
 pub struct PassOutput {
     /// Colour targets, in target order.
     pub targets: Vec<Vec<u8>>,
-    /// The depth buffer, with [`DrawPass::depth`].
+    /// The depth buffer, with [`DrawPass::depth`] (a `Depth16Unorm` code `c` as `c / 65535`,
+    /// exact in `f32`).
     pub depth: Option<Vec<f32>>,
 }
 
@@ -259,7 +265,14 @@ impl<'a> PipelineKey<'a> {
 /// [`GpuContext::timeout`].
 pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuError> {
     let label = pass.label.as_str();
-    check_targets(ctx, label, pass.width, pass.height, &pass.targets)?;
+    check_targets(
+        ctx,
+        label,
+        pass.width,
+        pass.height,
+        &pass.targets,
+        pass.depth,
+    )?;
     let mut keys: Vec<PipelineKey<'_>> = Vec::new();
     let mut pipelines: Vec<(wgpu::RenderPipeline, BTreeSet<Slot>)> = Vec::new();
     let mut prepared = Vec::with_capacity(pass.draws.len());
@@ -294,7 +307,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                         compare: wgpu::CompareFunction::Always,
                         write: false,
                     });
-                    depth_state(DEPTH_FORMAT, test)
+                    depth_state(pass.depth_format, test)
                 });
                 let pipeline = create_pipeline(
                     ctx,
@@ -357,7 +370,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_FORMAT,
+                format: pass.depth_format,
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
                 view_formats: &[],
             })
@@ -410,10 +423,16 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
     let mut targets = finish_readbacks(ctx, label, pending)?;
     let depth = pass.depth.then(|| {
         let bytes = targets.pop().unwrap_or_default();
-        bytes
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect()
+        match pass.depth_format {
+            wgpu::TextureFormat::Depth16Unorm => bytes
+                .chunks_exact(2)
+                .map(|b| f32::from(u16::from_le_bytes([b[0], b[1]])) / 65535.0)
+                .collect(),
+            _ => bytes
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect(),
+        }
     });
     Ok(PassOutput { targets, depth })
 }

@@ -189,7 +189,7 @@ pub fn render_with(
     resources: &GpuResources,
 ) -> Result<Vec<Vec<u8>>, GpuError> {
     let label = job.label.as_str();
-    check_targets(ctx, label, job.width, job.height, &job.targets)?;
+    check_targets(ctx, label, job.width, job.height, &job.targets, false)?;
     check_vertex_buffers(label, &job.vertex_buffers, job.vertex_count)?;
     let vertex_layouts = vertex_layouts(&job.vertex_buffers);
     let color_states: Vec<Option<wgpu::ColorTargetState>> = job
@@ -262,13 +262,15 @@ pub fn render_with(
     finish_readbacks(ctx, label, pending)
 }
 
-/// Checks a pass's size against the device limits and each target's initial contents.
+/// Checks a pass's size against the device limits and each target's initial contents; a pass
+/// without colour targets is allowed only when `depth_only` (it renders into a depth buffer).
 pub(crate) fn check_targets(
     ctx: &GpuContext,
     label: &str,
     width: u32,
     height: u32,
     targets: &[ColorTarget],
+    depth_only: bool,
 ) -> Result<(), GpuError> {
     let invalid = |message: String| GpuError::Validation {
         label: label.to_owned(),
@@ -281,7 +283,8 @@ pub(crate) fn check_targets(
             "render size {width}x{height} is outside 1..={max}"
         )));
     }
-    if targets.is_empty() || targets.len() > limits.max_color_attachments as usize {
+    if (targets.is_empty() && !depth_only) || targets.len() > limits.max_color_attachments as usize
+    {
         return Err(invalid(format!(
             "{} colour targets; 1..={} are supported",
             targets.len(),

@@ -8,7 +8,7 @@ mod common;
 use wgsl_variants::Library;
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::{
-    FrameScene, check_frame, compare, render_deferred, render_forward,
+    FrameScene, check_frame, compare, render_deferred, render_forward, render_shadows,
 };
 
 /// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
@@ -33,6 +33,8 @@ fn frame_passes(hdr: bool) {
     assert!(report.edges < report.compared / 5, "{report}");
     assert_eq!(report.forward_draws, 5 + 5 * 4);
     assert_eq!(report.deferred_draws, 5 + 5 + usize::from(!hdr));
+    // Shadows fall on the surfaces in view.
+    assert!(report.shadowed > 100, "{report}");
     // The point and spot lights are drawn as their volumes (none crosses a clip plane), the
     // directional ones full screen.
     assert_eq!(report.volumes, 3, "{report}");
@@ -50,8 +52,8 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 
 /// The comparison is sharp: a frame rendered with the main light 10 % too bright, the warm
 /// point light 25 % too bright in HDR (50 % in LDR, whose 8-bit targets round each of the five
-/// forward draws) or without the spot light's draws fails against the reference of the true
-/// frame, on both paths.
+/// forward draws), without the spot light's draws or without the shadows fails against the
+/// reference of the true frame, on both paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -70,16 +72,23 @@ fn a_light_too_bright_or_missing_is_caught() {
     let (point_hdr, point_ldr) = (brighter(1.25), brighter(1.5));
     let mut missing = truth.clone();
     missing.lights.pop();
+    let mut unshadowed = truth.clone();
+    for light in &mut unshadowed.lights {
+        light.shadow = None;
+    }
+    let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
         ("warm point 25 % brighter", &point_hdr, &[true]),
         ("warm point 50 % brighter", &point_ldr, &[false]),
         ("no spot", &missing, &[true, false]),
+        ("no shadows", &unshadowed, &[true, false]),
     ] {
         for &hdr in modes {
-            let forward = render_forward(&ctx, &lib, wrong, hdr).expect("forward");
-            let deferred = render_deferred(&ctx, &lib, wrong, hdr).expect("deferred");
-            let report = compare(&truth, &forward, &deferred, hdr);
+            let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");
+            let forward = render_forward(&ctx, &lib, wrong, &shadows, hdr).expect("forward");
+            let deferred = render_deferred(&ctx, &lib, wrong, &shadows, hdr).expect("deferred");
+            let report = compare(&truth, &truth_shadows, &forward, &deferred, hdr);
             assert!(
                 report.failures[0] > 0 && report.failures[1] > 0,
                 "{what}, hdr {hdr}: not caught\n{report}"

@@ -7,7 +7,7 @@ use glam::Vec3;
 
 use super::compare::pixel;
 use super::deferred::{final_pass, render_chain, render_gbuffer};
-use super::frame::{FrameScene, reference_rgb, render_deferred, render_forward};
+use super::frame::{FrameScene, reference_rgb, render_deferred, render_forward, render_shadows};
 use super::lights::LightRig;
 use super::passes::standard_job;
 use super::scene::TestScene;
@@ -95,9 +95,10 @@ pub fn frame_pictures(
     frame: &FrameScene,
 ) -> Result<Vec<Picture>, GpuError> {
     let (w, h) = (frame.width, frame.height);
+    let shadows = render_shadows(ctx, lib, frame)?;
     let reference: Vec<Vec3> = frame
         .pixels()
-        .map(|(x, y)| reference_rgb(frame, x, y).unwrap_or(Vec3::ZERO))
+        .map(|(x, y)| reference_rgb(frame, &shadows, x, y).unwrap_or(Vec3::ZERO))
         .collect();
     let mut pictures = vec![Picture::from_fn(
         "frame_reference",
@@ -107,8 +108,8 @@ pub fn frame_pictures(
         |i| rgb(reference[i].extend(1.0).to_array()),
     )];
     for hdr in [false, true] {
-        let forward = render_forward(ctx, lib, frame, hdr)?;
-        let deferred = render_deferred(ctx, lib, frame, hdr)?;
+        let forward = render_forward(ctx, lib, frame, &shadows, hdr)?;
+        let deferred = render_deferred(ctx, lib, frame, &shadows, hdr)?;
         let mode = if hdr { "hdr" } else { "ldr" };
         let clamp = if hdr { " (clamped to 1)" } else { "" };
         pictures.push(Picture::from_fn(

@@ -122,9 +122,9 @@ fn caster_resources(view_proj: Mat4, position: Vec4) -> Vec<BoundResource> {
 }
 
 /// The depth format of the shadow maps: renderable, and copyable both ways.
-const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth16Unorm;
+pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth16Unorm;
 /// The colour format of the cube's faces.
-const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub(crate) const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// What one caster draw leaves: the depth buffer (16-bit) and, for `SHADOWS_CUBE`, the
 /// colour target's bytes.
@@ -284,7 +284,7 @@ pub(crate) fn render_depth(
 }
 
 /// The r channel of `Rgba16Float` bytes, one value per texel.
-fn red_f16(bytes: &[u8]) -> Vec<f32> {
+pub(crate) fn red_f16(bytes: &[u8]) -> Vec<f32> {
     bytes
         .chunks_exact(8)
         .map(|t| f16_bits_to_f32(u16::from_le_bytes([t[0], t[1]])))
@@ -394,46 +394,11 @@ impl ShadowRig {
     /// The shadow bindings (group 0, 10–14 of `wgsl/lighting/light_bindings.wgsl`) with the
     /// `Shadow` uniform of `params`.
     pub fn resources(&self, params: &ShadowParams) -> Vec<BoundResource> {
-        let uniform: Vec<u8> = params
-            .uniform()
-            .into_iter()
-            .flat_map(f32::to_le_bytes)
-            .collect();
-        vec![
-            BoundResource::new(0, 10, Resource::Uniform(uniform)),
-            BoundResource::new(
-                0,
-                11,
-                Resource::Texture2d {
-                    format: DEPTH,
-                    width: MAP_SIZE,
-                    height: MAP_SIZE,
-                    data: self
-                        .map_texels
-                        .iter()
-                        .flat_map(|d| d.to_le_bytes())
-                        .collect(),
-                },
-            ),
-            BoundResource::new(
-                0,
-                12,
-                Resource::ComparisonSampler {
-                    compare: wgpu::CompareFunction::LessEqual,
-                    nearest: true,
-                },
-            ),
-            BoundResource::new(
-                0,
-                13,
-                Resource::TextureCube {
-                    format: CUBE_FORMAT,
-                    size: CUBE_SIZE,
-                    levels: vec![self.cube_faces.clone()],
-                },
-            ),
-            BoundResource::new(0, 14, Resource::Sampler { nearest: true }),
-        ]
+        shadow_bindings(
+            params,
+            Some((&self.map_texels, MAP_SIZE)),
+            Some((&self.cube_faces, CUBE_SIZE)),
+        )
     }
 
     /// The reference shadow factor interval at `p` for light `t` under `keywords`.
@@ -451,6 +416,60 @@ impl ShadowRig {
             _ => (1.0, 1.0),
         }
     }
+}
+
+/// The receivers' shadow bindings (group 0, 10–14 of `wgsl/lighting/light_bindings.wgsl`): the
+/// `Shadow` uniform of `params`, the 2D map (`Depth16Unorm` codes, `size × size`) with its
+/// LessEqual comparison sampler, and the cube of distances (six `Rgba16Float` faces of
+/// `size × size`, wgpu's layer order) with a nearest sampler — each map only where given.
+pub(crate) fn shadow_bindings(
+    params: &ShadowParams,
+    map: Option<(&[u16], u32)>,
+    cube: Option<(&[Vec<u8>; 6], u32)>,
+) -> Vec<BoundResource> {
+    let uniform: Vec<u8> = params
+        .uniform()
+        .into_iter()
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let mut out = vec![BoundResource::new(0, 10, Resource::Uniform(uniform))];
+    if let Some((texels, size)) = map {
+        out.push(BoundResource::new(
+            0,
+            11,
+            Resource::Texture2d {
+                format: DEPTH,
+                width: size,
+                height: size,
+                data: texels.iter().flat_map(|d| d.to_le_bytes()).collect(),
+            },
+        ));
+        out.push(BoundResource::new(
+            0,
+            12,
+            Resource::ComparisonSampler {
+                compare: wgpu::CompareFunction::LessEqual,
+                nearest: true,
+            },
+        ));
+    }
+    if let Some((faces, size)) = cube {
+        out.push(BoundResource::new(
+            0,
+            13,
+            Resource::TextureCube {
+                format: CUBE_FORMAT,
+                size,
+                levels: vec![faces.clone()],
+            },
+        ));
+        out.push(BoundResource::new(
+            0,
+            14,
+            Resource::Sampler { nearest: true },
+        ));
+    }
+    out
 }
 
 /// Whether the segment from `p` to `light` crosses an occluder where its texture keeps the

@@ -27,6 +27,7 @@
 //! ```
 
 pub mod scene;
+pub mod shadow;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -35,9 +36,11 @@ use std::sync::Arc;
 use glam::Vec3;
 
 pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
+pub use shadow::{FrameShadow, ShadowSpec, render_shadows};
 
 use super::compare::pixel;
 use super::deferred::{final_pass, rt3_blend, texture};
+use super::lights::shadowed;
 use super::volumes::DEPTH_FILL_WGSL;
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -53,7 +56,7 @@ use wgsl_variants::reference::surface::{
 };
 use wgsl_variants::reference::tolerance::{
     SUBPIXEL_WINDOW, f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error,
-    window_spread,
+    window_range,
 };
 
 /// The rendered frame of one path: its final colour (`Rgba16Float` in HDR, `Rgba8Unorm` in
@@ -151,17 +154,22 @@ impl<'a> Drawer<'a> {
         Ok(text)
     }
 
-    /// Object `o`'s draw of a `standard` pass (with `light`'s bindings for ForwardAdd).
+    /// Object `o`'s draw of a `standard` pass (with the bindings of `light` and its shadow for
+    /// ForwardAdd).
     fn object(
         &mut self,
         o: usize,
         pass: &'static str,
-        light: Option<&FrameLight>,
+        light: Option<(&FrameLight, Option<&FrameShadow>)>,
     ) -> Result<Draw, GpuError> {
         let object = &self.frame.objects[o];
-        let names = object_keywords(object, pass, light.map(|l| l.light_type), self.hdr);
+        let mut names = object_keywords(object, pass, light.map(|l| l.0.light_type), self.hdr);
+        let shadow = light.and_then(|l| l.1);
+        names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
         let (label, wgsl) = self.text("standard", pass, names)?;
-        let resources = light.map_or_else(Vec::new, |l| self.frame.light_resources(&l.params));
+        let mut resources =
+            light.map_or_else(Vec::new, |l| self.frame.light_resources(&l.0.params));
+        resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
         Ok(Draw::fullscreen(
             &format!("{} {label}", object.name),
             &wgsl,
@@ -188,11 +196,13 @@ const ADD: wgpu::BlendState = wgpu::BlendState {
     },
 };
 
-/// Renders the forward path: ForwardBase per object, then ForwardAdd per light and object.
+/// Renders the forward path: ForwardBase per object, then ForwardAdd per light and object
+/// (with the light's shadow keywords and `shadows`' maps).
 pub fn render_forward(
     ctx: &GpuContext,
     lib: &Library,
     frame: &FrameScene,
+    shadows: &[Option<FrameShadow>],
     hdr: bool,
 ) -> Result<PathImage, GpuError> {
     let format = if hdr {
@@ -215,11 +225,11 @@ pub fn render_forward(
                 .with_depth(DepthTest::OPAQUE),
         );
     }
-    for light in &frame.lights {
+    for (light, shadow) in frame.lights.iter().zip(shadows) {
         for o in 0..frame.objects.len() {
             pass.draws.push(
                 drawer
-                    .object(o, "ForwardAdd", Some(light))?
+                    .object(o, "ForwardAdd", Some((light, shadow.as_ref())))?
                     .with_blend(ADD)
                     .with_depth(DepthTest::SAME_SURFACE),
             );
@@ -246,11 +256,13 @@ pub struct GBufferFrame {
 
 /// Renders the deferred path: the G-buffer pass over every object, one Lighting draw per light
 /// (the main light first, full screen; the others as their volumes where
-/// [`light_draw`] allows, else full screen), and in LDR the final pass.
+/// [`light_draw`] allows, else full screen; with the light's shadow keywords and `shadows`'
+/// maps), and in LDR the final pass.
 pub fn render_deferred(
     ctx: &GpuContext,
     lib: &Library,
     frame: &FrameScene,
+    shadows: &[Option<FrameShadow>],
     hdr: bool,
 ) -> Result<PathImage, GpuError> {
     let (w, h) = (frame.width, frame.height);
@@ -329,18 +341,21 @@ pub fn render_deferred(
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
     ]);
     let mut volumes = 0;
-    let main = (LightType::Directional, frame.main_light, None);
+    let main = (LightType::Directional, frame.main_light, None, None);
     let lights = frame
         .lights
         .iter()
-        .map(|l| (l.light_type, l.params, Some(&l.light)));
-    for (light_type, params, light) in std::iter::once(main).chain(lights) {
+        .zip(shadows)
+        .map(|(l, s)| (l.light_type, l.params, Some(&l.light), s.as_ref()));
+    for (light_type, params, light, shadow) in std::iter::once(main).chain(lights) {
         let mut names = vec![light_type.keyword()];
+        names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
         if hdr {
             names.push("UNITY_HDR_ON");
         }
         let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
-        let resources = frame.light_resources(&params);
+        let mut resources = frame.light_resources(&params);
+        resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
         let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
             Some(Ok(LightDraw::Volume(v))) => Some(v),
             Some(Err(e)) => {
@@ -395,8 +410,11 @@ pub fn render_deferred(
 struct Terms {
     /// ForwardBase's rgb: ambient, probes, emission and the main light.
     base: Vec3,
-    /// The light each ForwardAdd draw adds.
+    /// The light each ForwardAdd draw adds (with the shadow factor's upper end).
     adds: Vec<Vec3>,
+    /// The same with the shadow factor's lower end (an uncertain shadow tap may go either
+    /// way; equal to `adds` where no tap is uncertain).
+    adds_lo: Vec<Vec3>,
     /// What the G-buffer pass writes to RT3 (ambient, probes, emission).
     c0: Vec3,
     /// The main light's direct term.
@@ -409,10 +427,19 @@ impl Terms {
     fn total(&self) -> Vec3 {
         self.base + self.adds.iter().copied().sum::<Vec3>()
     }
+
+    fn total_lo(&self) -> Vec3 {
+        self.base + self.adds_lo.iter().copied().sum::<Vec3>()
+    }
 }
 
-/// The reference terms of `object` at `geo`.
-fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
+/// The reference terms of `object` at `geo`, the lights shadowed by `shadows`.
+fn terms(
+    frame: &FrameScene,
+    shadows: &[Option<FrameShadow>],
+    object: &FrameObject,
+    geo: &Geometry,
+) -> Terms {
     let kw = Keywords {
         hdr: false,
         reflection_buffers: false,
@@ -429,29 +456,46 @@ fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
     // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
     let base =
         shade_forward(&kw, mat, &tex, geo, &frame.scene).map_or(Vec3::ZERO, |c| c.truncate());
+    let p = geo.world_position;
+    // One factor per light (a light without a shadow, or without a map, keeps all of it).
+    let factors: Vec<(f32, f32)> = (0..frame.lights.len())
+        .map(|i| {
+            shadows
+                .get(i)
+                .and_then(Option::as_ref)
+                .map_or((1.0, 1.0), |s| s.factor(p))
+        })
+        .collect();
+    let add = |l: &FrameLight, factor: f32| {
+        shade_forward_add(
+            &kw,
+            mat,
+            &tex,
+            geo,
+            camera,
+            &shadowed(&l.params, factor),
+            l.light_type,
+            cookies,
+        )
+        .map_or(Vec3::ZERO, |c| c.truncate())
+    };
     let adds = frame
         .lights
         .iter()
-        .map(|l| {
-            shade_forward_add(
-                &kw,
-                mat,
-                &tex,
-                geo,
-                camera,
-                &l.params,
-                l.light_type,
-                cookies,
-            )
-            .map_or(Vec3::ZERO, |c| c.truncate())
-        })
+        .zip(&factors)
+        .map(|(l, f)| add(l, f.0.max(f.1)))
+        .collect();
+    let adds_lo = frame
+        .lights
+        .iter()
+        .zip(&factors)
+        .map(|(l, f)| add(l, f.0.min(f.1)))
         .collect();
     let hdr_kw = Keywords { hdr: true, ..kw };
     let c0 = shade_deferred(&hdr_kw, mat, &tex, geo, &frame.scene)
         .map_or(Vec3::ZERO, |g| g.rt3.truncate());
     let s = surface(&kw, mat, &tex, geo);
     let (diffuse, spec, _) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
-    let p = geo.world_position;
     let (v, _) = view_and_reflection(camera, p, s.normal);
     let bound = |params: &LightParams, t: LightType| {
         let (l, attenuation) = params.sample(t, p, cookies);
@@ -466,21 +510,34 @@ fn terms(frame: &FrameScene, object: &FrameObject, geo: &Geometry) -> Terms {
         )
     };
     let mut bounds = vec![bound(&frame.main_light, LightType::Directional)];
-    bounds.extend(frame.lights.iter().map(|l| bound(&l.params, l.light_type)));
+    bounds.extend(
+        frame
+            .lights
+            .iter()
+            .zip(&factors)
+            .map(|(l, f)| bound(&shadowed(&l.params, f.0.max(f.1)), l.light_type)),
+    );
     Terms {
         main: base - c0,
         base,
         adds,
+        adds_lo,
         c0,
         bounds,
     }
 }
 
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
-/// centre sees, lit by the forward formulas; `None` on the background.
-pub fn reference_rgb(frame: &FrameScene, x: u32, y: u32) -> Option<Vec3> {
+/// centre sees, lit by the forward formulas and shadowed by `shadows`; `None` on the
+/// background.
+pub fn reference_rgb(
+    frame: &FrameScene,
+    shadows: &[Option<FrameShadow>],
+    x: u32,
+    y: u32,
+) -> Option<Vec3> {
     let hit = frame.cast(f64::from(x) + 0.5, f64::from(y) + 0.5)?;
-    Some(terms(frame, &frame.objects[hit.object], &hit.geometry).total())
+    Some(terms(frame, shadows, &frame.objects[hit.object], &hit.geometry).total())
 }
 
 /// One compared pixel whose forward or deferred value (or their pair) is out of tolerance.
@@ -523,8 +580,14 @@ pub struct FrameReport {
     /// The largest ratio of a difference to its allowance (forward, deferred, pair): below 1
     /// when everything passes, and how much room the tolerance left.
     pub worst: [f32; 3],
+    /// Where each of `worst` was found.
+    pub worst_pixel: [[u32; 2]; 3],
     /// Pixels each light changes by more than 1 % of its value (every light must reach some).
     pub lit_by: Vec<(&'static str, usize)>,
+    /// Compared pixels in some light's shadow (factor below 1 at the centre).
+    pub shadowed: usize,
+    /// Compared pixels where a shadow tap is too close to call (the reference allows both).
+    pub uncertain: usize,
     /// The first mismatches (at most 20).
     pub mismatches: Vec<FrameMismatch>,
 }
@@ -551,17 +614,25 @@ impl fmt::Display for FrameReport {
         )?;
         writeln!(
             f,
-            "  mismatches: forward {} (worst {:.2} of the allowance), deferred {} (worst {:.2}), forward vs deferred {} (worst {:.2})",
+            "  mismatches: forward {} (worst {:.2} of the allowance, at {:?}), deferred {} (worst {:.2}, at {:?}), forward vs deferred {} (worst {:.2}, at {:?})",
             self.failures[0],
             self.worst[0],
+            self.worst_pixel[0],
             self.failures[1],
             self.worst[1],
+            self.worst_pixel[1],
             self.failures[2],
             self.worst[2],
+            self.worst_pixel[2],
         )?;
         for (name, n) in &self.lit_by {
             writeln!(f, "  {name}: lights {n} pixels")?;
         }
+        writeln!(
+            f,
+            "  {} pixels in a shadow, {} with a shadow tap too close to call",
+            self.shadowed, self.uncertain
+        )?;
         for m in &self.mismatches {
             writeln!(
                 f,
@@ -581,13 +652,6 @@ struct Interval {
 }
 
 impl Interval {
-    fn around(centre: Vec3, allowed: Vec3) -> Interval {
-        Interval {
-            lo: centre - allowed,
-            hi: centre + allowed,
-        }
-    }
-
     /// How far outside `got` is, relative to the interval's half width (≤ 1 inside).
     fn ratio(&self, got: Vec3) -> f32 {
         let mid = (self.lo + self.hi) * 0.5;
@@ -622,31 +686,28 @@ fn f16_chain(start: Vec3, steps: &[Vec3]) -> Vec3 {
     Vec3::from_array(err)
 }
 
-/// The forward value's allowed interval: the reference `total`, the rounding of each of the
-/// `stores` draws (partial sums in f16, or one unorm step each in LDR, saturated) and the
-/// reference's window spread.
-fn forward_interval(t: &Terms, spread: Vec3, hdr: bool, stores: usize) -> Interval {
-    if hdr {
-        Interval::around(t.total(), f16_chain(t.base, &t.adds) + spread)
+/// The forward value's allowed interval: the reference's range over the sub-pixel window
+/// `[lo, hi]`, widened by the rounding of each of the `stores` draws (partial sums in f16, or
+/// one unorm step each in LDR, saturated).
+fn forward_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, stores: usize) -> Interval {
+    let e = if hdr {
+        f16_chain(t.base, &t.adds)
     } else {
-        let e = Vec3::splat(stores as f32 * unorm_store_error(8));
-        Interval::around(t.total(), spread + e).saturated(0.0)
-    }
+        Vec3::splat(stores as f32 * unorm_store_error(8))
+    };
+    let out = Interval {
+        lo: lo - e,
+        hi: hi + e,
+    };
+    if hdr { out } else { out.saturated(0.0) }
 }
 
 /// The deferred value's allowed interval when the exact light lies in `[lo, hi]`: the
-/// G-buffer bound of every light and the window spread, then the rounding of RT3 after the
-/// G-buffer pass and each of the `lights` Lighting draws (f16 partial sums in HDR; the 10-bit
-/// `exp2(−c)` chain and the final pass's 8-bit store in LDR).
-fn deferred_interval(
-    t: &Terms,
-    lo: Vec3,
-    hi: Vec3,
-    spread: Vec3,
-    hdr: bool,
-    lights: usize,
-) -> Interval {
-    let bounds: Vec3 = t.bounds.iter().copied().sum::<Vec3>() + spread;
+/// G-buffer bound of every light, then the rounding of RT3 after the G-buffer pass and each
+/// of the `lights` Lighting draws (f16 partial sums in HDR; the 10-bit `exp2(−c)` chain and
+/// the final pass's 8-bit store in LDR).
+fn deferred_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, lights: usize) -> Interval {
+    let bounds: Vec3 = t.bounds.iter().copied().sum::<Vec3>();
     if hdr {
         let mut steps = vec![t.main];
         steps.extend(t.adds.iter().copied());
@@ -674,14 +735,17 @@ pub fn check_frame(
     frame: &FrameScene,
     hdr: bool,
 ) -> Result<FrameReport, GpuError> {
-    let forward = render_forward(ctx, lib, frame, hdr)?;
-    let deferred = render_deferred(ctx, lib, frame, hdr)?;
-    Ok(compare(frame, &forward, &deferred, hdr))
+    let shadows = render_shadows(ctx, lib, frame)?;
+    let forward = render_forward(ctx, lib, frame, &shadows, hdr)?;
+    let deferred = render_deferred(ctx, lib, frame, &shadows, hdr)?;
+    Ok(compare(frame, &shadows, &forward, &deferred, hdr))
 }
 
-/// Compares the two paths' images of `frame` with the reference, pixel by pixel.
+/// Compares the two paths' images of `frame` with the reference (shadowed by `shadows`, the
+/// maps both paths were given), pixel by pixel.
 pub fn compare(
     frame: &FrameScene,
+    shadows: &[Option<FrameShadow>],
     forward: &PathImage,
     deferred: &PathImage,
     hdr: bool,
@@ -696,7 +760,10 @@ pub fn compare(
         edges: 0,
         failures: [0; 3],
         worst: [0.0; 3],
+        worst_pixel: [[0; 2]; 3],
         lit_by: frame.lights.iter().map(|l| (l.name, 0)).collect(),
+        shadowed: 0,
+        uncertain: 0,
         mismatches: Vec::new(),
     };
     // ForwardBase plus one ForwardAdd per light store into the forward target.
@@ -747,25 +814,37 @@ pub fn compare(
         };
         report.compared += 1;
         let object = &frame.objects[hit.object];
-        let t = terms(frame, object, &hit.geometry);
-        let samples: Vec<Vec3> = window
+        let t = terms(frame, shadows, object, &hit.geometry);
+        let factors: Vec<(f32, f32)> = shadows
             .iter()
             .flatten()
-            .map(|h| terms(frame, object, &h.geometry).total())
+            .map(|s| s.factor(hit.geometry.world_position))
             .collect();
+        report.shadowed += usize::from(factors.iter().any(|f| f.0.min(f.1) < 1.0));
+        report.uncertain += usize::from(factors.iter().any(|f| f.0 != f.1));
+        let window_terms: Vec<Terms> = window
+            .iter()
+            .flatten()
+            .map(|h| terms(frame, shadows, object, &h.geometry))
+            .collect();
+        let mut values = vec![t.total(), t.total_lo()];
+        for w in &window_terms {
+            values.extend([w.total(), w.total_lo()]);
+        }
+        let (lo, hi) = window_range(&values);
         let total = t.total();
-        let spread = window_spread(total, &samples);
-        for (k, add) in t.adds.iter().enumerate() {
+        for (k, add) in t.adds_lo.iter().enumerate() {
             if add.max_element() > 0.01 * total.max_element().max(1e-3) {
                 report.lit_by[k].1 += 1;
             }
         }
-        let fi = forward_interval(&t, spread, hdr, forward_stores);
-        let di = deferred_interval(&t, total, total, spread, hdr, deferred_lights);
+        let fi = forward_interval(&t, lo, hi, hdr, forward_stores);
+        let di = deferred_interval(&t, lo, hi, hdr, deferred_lights);
         // Forward against deferred: the deferred interval around what the forward value says
-        // the light is (its own rounding undone; a saturated LDR value says only "≥ 1"). The
-        // window stays: forward interpolates the world position with the snapped triangle's
-        // weights, deferred rebuilds it on the centre's ray.
+        // the light is (its own rounding undone; a saturated LDR value says only "≥ 1"),
+        // widened by the window's range: forward interpolates the world position with the
+        // snapped triangle's weights, deferred rebuilds it on the centre's ray.
+        let width = hi - lo;
         let (f_lo, f_hi) = if hdr {
             let e = f16_chain(t.base, &t.adds);
             (f - e, f + e)
@@ -774,11 +853,14 @@ pub fn compare(
             let hi = Vec3::select(f.cmpge(Vec3::ONE), Vec3::splat(f32::INFINITY), f + e);
             (f - e, hi)
         };
-        let pi = deferred_interval(&t, f_lo, f_hi, spread, hdr, deferred_lights);
+        let pi = deferred_interval(&t, f_lo - width, f_hi + width, hdr, deferred_lights);
         let ratios = [fi.ratio(f), di.ratio(d), pi.ratio(d)];
         let failed = [!fi.contains(f), !di.contains(d), !pi.contains(d)];
         for k in 0..3 {
-            report.worst[k] = report.worst[k].max(ratios[k]);
+            if ratios[k] > report.worst[k] {
+                report.worst[k] = ratios[k];
+                report.worst_pixel[k] = [x, y];
+            }
             report.failures[k] += usize::from(failed[k]);
         }
         if failed.iter().any(|b| *b) {

@@ -1,8 +1,8 @@
 //! The frame's scene, made by code: a floor, two spheres and two boxes, each with its own
 //! keyword set and material, seen by a perspective camera; the ambient light, the directional
 //! main light and the two reflection probes of [`Scene`]; and four per-pixel lights (a
-//! directional light with a 2D cookie, a point light, a point light with a cube cookie, a
-//! spot).
+//! directional light with a 2D cookie, a point light with a cube shadow, a point light with a
+//! cube cookie, a spot with a soft shadow).
 //!
 //! Every map of an object is one texel (`Rgba8Unorm`, exact in 8 bits), so a sample does not
 //! depend on the uv the rasterizer interpolates: the keywords still change the surface (a
@@ -15,6 +15,7 @@ use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 use super::super::scene::{
     MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe, push_mat4, push_vec4,
 };
+use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
 use wgsl_variants::reference::cube::CubeFaces;
 use wgsl_variants::reference::light::{
@@ -108,6 +109,8 @@ pub struct FrameLight {
     pub light: Light,
     /// What the shaders read (`light.params()`).
     pub params: LightParams,
+    /// Its shadow, if it casts one (spot and point lights).
+    pub shadow: Option<ShadowSpec>,
 }
 
 impl FrameLight {
@@ -125,7 +128,14 @@ impl FrameLight {
             light_type,
             params: light.params()?,
             light,
+            shadow: None,
         })
+    }
+
+    /// The light casting `shadow`.
+    pub fn with_shadow(mut self, shadow: ShadowSpec) -> FrameLight {
+        self.shadow = Some(shadow);
+        self
     }
 }
 
@@ -300,7 +310,7 @@ impl FrameScene {
         let view_proj = perspective_rh(0.9, width as f32 / height as f32, 1.0, 24.0)
             * look_at_rh(eye, Vec3::new(0.4, 0.3, -0.2), Vec3::Y);
         let to_main = Vec3::new(0.35, 0.8, 0.45).normalize();
-        let main_color = Vec3::new(0.8, 0.75, 0.7);
+        let main_color = Vec3::new(0.5, 0.47, 0.44);
         let scene = Scene {
             camera_position: eye,
             sh_r: Vec4::new(0.02, 0.06, 0.03, 0.18),
@@ -358,10 +368,15 @@ impl FrameScene {
         };
         let lights = vec![
             light(
-                "warm point",
+                "warm point (cube shadow)",
                 LightType::Point,
-                Light::point(Vec3::new(-0.4, 1.6, 1.8), 3.5, Vec3::new(1.2, 0.6, 0.25)),
-            ),
+                Light::point(Vec3::new(-0.4, 1.6, 1.8), 3.5, Vec3::new(3.0, 1.5, 0.6)),
+            )
+            .with_shadow(ShadowSpec {
+                strength: 1.0,
+                bias: 0.0,
+                soft: false,
+            }),
             light(
                 "cookie sun",
                 LightType::DirectionalCookie,
@@ -371,7 +386,7 @@ impl FrameScene {
                         cookie_size: 2.5,
                         cookie_origin: Vec3::new(0.3, 0.0, 0.1),
                     },
-                    color: Vec3::new(0.35, 0.3, 0.4),
+                    color: Vec3::new(0.22, 0.2, 0.26),
                 },
             ),
             light(
@@ -380,16 +395,21 @@ impl FrameScene {
                 Light::point(Vec3::new(2.3, 1.4, 0.4), 3.0, Vec3::new(0.25, 0.6, 1.3)),
             ),
             light(
-                "spot",
+                "spot (soft shadow)",
                 LightType::Spot,
                 Light::spot(
-                    Vec3::new(0.8, 4.0, 1.5),
-                    Vec3::new(-0.6, -4.0, -2.3),
-                    55.0,
-                    6.5,
-                    Vec3::new(0.9, 0.9, 0.8),
+                    Vec3::new(3.6, 3.2, 0.8),
+                    Vec3::new(-3.6, -3.2, -1.2),
+                    60.0,
+                    7.0,
+                    Vec3::new(5.0, 5.0, 4.4),
                 ),
-            ),
+            )
+            .with_shadow(ShadowSpec {
+                strength: 0.85,
+                bias: 0.002,
+                soft: true,
+            }),
         ];
         let lift = 0.02;
         let objects = vec![
