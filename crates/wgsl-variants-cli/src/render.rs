@@ -29,7 +29,7 @@ pub struct RenderArgs {
         conflicts_with = "frame"
     )]
     keywords: Option<Vec<String>>,
-    /// Render the whole frame (five objects, four lights) forward and deferred, HDR and LDR,
+    /// Render the whole frame (five objects, five lights, cookies and shadows) forward and deferred, HDR and LDR,
     /// and the CPU reference, with the forward − deferred differences (docs/shading.md §12).
     #[arg(long)]
     frame: bool,
