@@ -36,7 +36,83 @@ pub struct Probe {
     pub forward_weight: f32,
 }
 
+/// Probe parameters that make the deferred pass's math undefined (a box with no volume, where
+/// the box projection divides by zero-length spans; NaN; a negative blend distance).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ProbeError {
+    /// A parameter holds NaN or an infinity.
+    #[error("probe {what} is not finite: {value}")]
+    NonFinite {
+        /// The parameter.
+        what: &'static str,
+        /// Its value, printed.
+        value: String,
+    },
+    /// `box_max` not greater than `box_min` on some axis.
+    #[error(
+        "probe box {box_min} .. {box_max} has no volume (box_max must exceed box_min on every axis)"
+    )]
+    EmptyBox {
+        /// The minimum corner given.
+        box_min: Vec3,
+        /// The maximum corner given.
+        box_max: Vec3,
+    },
+    /// A blend distance below 0.
+    #[error("probe blend distance {0} must be ≥ 0")]
+    BlendDistance(f32),
+}
+
 impl Probe {
+    /// Checks that the deferred pass's math is defined for this probe: finite values, a box
+    /// with volume, a blend distance ≥ 0.
+    ///
+    /// # Errors
+    /// The first [`ProbeError`] found.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants::reference::probe::{Probe, ProbeError};
+    /// assert!(Probe::new(Vec3::ZERO, Vec3::splat(-1.0), Vec3::splat(1.0)).check().is_ok());
+    /// let flat = Probe::new(Vec3::ZERO, Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0));
+    /// assert!(matches!(flat.check(), Err(ProbeError::EmptyBox { .. })));
+    /// let nan = Probe::new(Vec3::NAN, Vec3::splat(-1.0), Vec3::splat(1.0));
+    /// assert!(matches!(nan.check(), Err(ProbeError::NonFinite { what: "position", .. })));
+    /// ```
+    pub fn check(&self) -> Result<(), ProbeError> {
+        let finite = |what: &'static str, v: Vec3| {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(ProbeError::NonFinite {
+                    what,
+                    value: v.to_string(),
+                })
+            }
+        };
+        finite("position", self.position)?;
+        finite("box_min", self.box_min)?;
+        finite("box_max", self.box_max)?;
+        finite("hdr", self.hdr)?;
+        if !self.blend_distance.is_finite() {
+            return Err(ProbeError::NonFinite {
+                what: "blend distance",
+                value: self.blend_distance.to_string(),
+            });
+        }
+        if self.blend_distance < 0.0 {
+            return Err(ProbeError::BlendDistance(self.blend_distance));
+        }
+        if !self.box_max.cmpgt(self.box_min).all() {
+            return Err(ProbeError::EmptyBox {
+                box_min: self.box_min,
+                box_max: self.box_max,
+            });
+        }
+        Ok(())
+    }
+
     /// A probe with the given centre and box, no box projection, identity decode
     /// (`hdr = (1, 1, 0)`), blend distance 1, importance 1 and forward weight 1.
     ///

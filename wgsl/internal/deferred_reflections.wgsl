@@ -1,9 +1,13 @@
 #shader deferred_reflections
 // Unity's Internal-DeferredReflections for UNITY_ENABLE_REFLECTION_BUFFERS (docs/shading.md §6, §7).
 //
-// Reflections: one full-screen draw per probe (the host orders them: larger box volume first,
-//   higher importance later), into an Rgba16Float reflection buffer cleared to 0 with
-//   SrcAlpha / OneMinusSrcAlpha blending: result = mix(previous, rgb, falloff).
+// Reflections: one draw per probe (the host orders them: larger box volume first, higher
+//   importance later), into an Rgba16Float reflection buffer cleared to 0 with
+//   SrcAlpha / OneMinusSrcAlpha blending: result = mix(previous, rgb, falloff). Drawn as
+//   vs_box over the probe's grown box (world positions at @location(0), Cull Front, depth test
+//   GreaterEqual), or full screen (vs_main) when the box crosses the near or far plane; outside
+//   the grown box the falloff is 0 and the blend leaves the buffer as it is, so both give the
+//   same result (docs/shading.md §6).
 //   group 0: 0 rt0, 1 rt1, 2 rt2, 3 depth (R32Float copy of the depth buffer; the world position
 //            is rebuilt from it, deferred/depth), 4 camera (DeferredCamera), 5 probe cube,
 //            6 probe sampler, 7 probe (Probe).
@@ -30,6 +34,11 @@
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
     return fullscreen_position(vertex_index);
+}
+
+@vertex
+fn vs_box(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
+    return deferred_camera.view_proj * vec4f(world_position, 1.0);
 }
 
 // rgb = the probe's indirect specular (§5 with env = sample · occlusion, occlusion = RT0.a,

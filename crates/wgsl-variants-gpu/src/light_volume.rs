@@ -7,7 +7,8 @@
 //! as an icosphere and a spot light as a pyramid, after a stencil pass that marks the pixels
 //! whose geometry lies in front of the volume; a volume that reaches in front of the near plane
 //! (or behind the far plane) is drawn full-screen instead. The meshes are plain world-space
-//! triangle lists a renderer can copy into its own vertex buffers.
+//! triangle lists a renderer can copy into its own vertex buffers. Deferred reflection probes
+//! are drawn the same way, as their (grown) boxes ([`probe_draw`]).
 //!
 //! ```
 //! use glam::{Mat4, Vec3};
@@ -27,6 +28,7 @@
 
 use glam::{Mat4, Vec3};
 use wgsl_variants::reference::light::{Light, LightError, LightShape, light_frame};
+use wgsl_variants::reference::probe::{Probe, ProbeError};
 
 /// Relative margin between a light's reach and its volume: the mesh lies at least
 /// `VOLUME_MARGIN · range` outside every point the light reaches, so a pixel with a non-zero
@@ -169,13 +171,74 @@ pub fn light_draw(light: &Light, view_proj: Mat4) -> Result<LightDraw, LightErro
     let Some(volume) = light_volume(light)? else {
         return Ok(LightDraw::FullScreen(FullScreenReason::Directional));
     };
+    Ok(volume_draw(volume, view_proj))
+}
+
+/// The volume, or full screen when part of it lies in front of the near plane or beyond the
+/// far plane.
+fn volume_draw(volume: LightVolume, view_proj: Mat4) -> LightDraw {
     if volume.clip(view_proj).any(|c| c.z < 0.0 || !c.is_finite()) {
-        return Ok(LightDraw::FullScreen(FullScreenReason::CrossesNearPlane));
+        return LightDraw::FullScreen(FullScreenReason::CrossesNearPlane);
     }
     if volume.clip(view_proj).any(|c| c.z > c.w) {
-        return Ok(LightDraw::FullScreen(FullScreenReason::CrossesFarPlane));
+        return LightDraw::FullScreen(FullScreenReason::CrossesFarPlane);
     }
-    Ok(LightDraw::Volume(volume))
+    LightDraw::Volume(volume)
+}
+
+/// The mesh bounding where a deferred reflection probe contributes: its box grown by the
+/// blend distance ([`Probe::grown`]; outside it the probe's falloff is 0) and then by
+/// [`VOLUME_MARGIN`] of its largest edge, so no pixel with a non-zero falloff is on the
+/// mesh's edge. Twelve triangles, counter-clockwise from outside.
+///
+/// # Errors
+/// The probe's [`ProbeError`] when its parameters make the math undefined ([`Probe::check`]).
+pub fn probe_volume(probe: &Probe) -> Result<LightVolume, ProbeError> {
+    probe.check()?;
+    let grown = probe.grown();
+    let margin = (grown.box_max - grown.box_min).max_element() * VOLUME_MARGIN;
+    let (lo, hi) = (grown.box_min - margin, grown.box_max + margin);
+    let corner = |i: usize| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    };
+    // Each face as two triangles over its four corners (bits: the fixed axis and side).
+    const FACES: [[usize; 4]; 6] = [
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+        [0, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 1, 3, 2],
+        [4, 6, 7, 5],
+    ];
+    let tris = FACES
+        .iter()
+        .flat_map(|&[a, b, c, d]| {
+            [
+                [corner(a), corner(b), corner(c)],
+                [corner(a), corner(c), corner(d)],
+            ]
+        })
+        .collect();
+    Ok(LightVolume {
+        positions: outward(tris, (lo + hi) * 0.5),
+    })
+}
+
+/// How to draw a deferred reflection probe (`deferred_reflections/Reflections`) seen through
+/// `view_proj`: its [`probe_volume`] (`vs_box`, back faces, depth test GreaterEqual: the
+/// pixels whose geometry lies in front of the box's far side) — Unity's built-in path draws
+/// each probe as its box — or full screen (`vs_main`) when the box reaches in front of the
+/// near plane (a camera inside the box, say) or beyond the far plane. The result is the same:
+/// outside the grown box the probe's falloff is 0 and its blend leaves the buffer as it is.
+///
+/// # Errors
+/// The probe's [`ProbeError`] when its parameters make the math undefined.
+pub fn probe_draw(probe: &Probe, view_proj: Mat4) -> Result<LightDraw, ProbeError> {
+    Ok(volume_draw(probe_volume(probe)?, view_proj))
 }
 
 /// A unit icosphere: the icosahedron with each triangle split `subdivisions` times into four,

@@ -4,7 +4,8 @@
 //! `light_volume::light_draw` says (icosphere / pyramid after the `stencil_write` pre-pass, or
 //! the full-screen fallback) and once full-screen: RT3 must be bit-identical at every pixel,
 //! since the light adds exactly nothing where its attenuation is 0. And a deliberately too
-//! small volume is caught by the same comparison.
+//! small volume is caught by the same comparison. Deferred reflection probes drawn as their
+//! boxes equal full-screen probes the same way.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
 
@@ -16,8 +17,13 @@ use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::volumes::{
     LightRender, VolumeCase, compare_draws, render_light, volume_cases,
 };
-use wgsl_variants_gpu::check::{CHAIN_INPUTS, GBufferImage, LightRig, TestScene, render_gbuffer};
-use wgsl_variants_gpu::light_volume::{FullScreenReason, LightDraw, LightVolume, light_draw};
+use wgsl_variants_gpu::check::{
+    CHAIN_INPUTS, GBufferImage, LightRig, ProbeDrawing, TestScene, reflection_buffer,
+    render_gbuffer,
+};
+use wgsl_variants_gpu::light_volume::{
+    FullScreenReason, LightDraw, LightVolume, light_draw, probe_draw,
+};
 
 struct Setup {
     ctx: GpuContext,
@@ -152,4 +158,61 @@ fn a_too_small_volume_is_caught() {
             "the small volume still lights some pixels"
         );
     }
+}
+
+/// Deferred reflection probes drawn as their grown boxes (depth test GreaterEqual against the
+/// scene's depth) leave the reflection buffer bit-identical to full-screen draws; the small
+/// probe is drawn as a box, the probes around the camera full screen.
+#[test]
+fn probe_boxes_and_full_screen_probes_are_bit_identical() {
+    let Some(s) = setup() else {
+        return;
+    };
+    let probes: Vec<_> = s.scene.deferred_probes.iter().map(|(p, _)| *p).collect();
+    let expected_boxes = probes
+        .iter()
+        .filter(|p| matches!(probe_draw(p, s.scene.view_proj), Ok(LightDraw::Volume(_))))
+        .count();
+    assert!(
+        expected_boxes >= 1 && expected_boxes < probes.len(),
+        "{expected_boxes} of {} probes as boxes",
+        probes.len()
+    );
+    for g in &s.gbuffers {
+        let boxes = reflection_buffer(&s.ctx, &s.lib, &s.scene, g, ProbeDrawing::Boxes).unwrap();
+        let full =
+            reflection_buffer(&s.ctx, &s.lib, &s.scene, g, ProbeDrawing::FullScreen).unwrap();
+        assert_eq!(boxes.boxes, expected_boxes);
+        assert_eq!(full.boxes, 0);
+        assert!(
+            boxes.last == full.last,
+            "hdr={}: the box draws change the reflection buffer",
+            g.hdr
+        );
+        assert!(boxes.last.iter().any(|&b| b != 0), "no reflections at all");
+    }
+}
+
+/// A probe whose box has no volume, or with a NaN, is a typed error, not a NaN frame.
+#[test]
+fn a_probe_without_volume_is_refused() {
+    use wgsl_variants::reference::probe::{Probe, ProbeError};
+    let view_proj = glam::Mat4::IDENTITY;
+    let flat = Probe::new(
+        Vec3::ZERO,
+        Vec3::new(-1.0, 0.0, -1.0),
+        Vec3::new(1.0, 0.0, 1.0),
+    );
+    assert!(matches!(
+        probe_draw(&flat, view_proj),
+        Err(ProbeError::EmptyBox { .. })
+    ));
+    let nan = Probe {
+        blend_distance: f32::NAN,
+        ..Probe::new(Vec3::ZERO, Vec3::splat(-1.0), Vec3::splat(1.0))
+    };
+    assert!(matches!(
+        probe_draw(&nan, view_proj),
+        Err(ProbeError::NonFinite { .. })
+    ));
 }

@@ -16,9 +16,11 @@ use super::lights::{LightingCamera, depth_camera_resources};
 use super::passes::{keyword_coverage, standard_job};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource, push_probe};
+use super::volumes::{depth_fill_draw, over_volume};
+use crate::light_volume::{LightDraw, probe_draw};
 use crate::{
-    BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
-    TargetFormat, render,
+    BoundResource, CheckError, ColorTarget, Draw, DrawPass, GpuContext, GpuError, RenderJob,
+    Resource, TargetFormat, render, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::cube::face_margin;
@@ -184,10 +186,36 @@ pub(crate) fn compare_texel(
     });
 }
 
-/// The reflection buffer after each probe's draw, for one G-buffer.
-struct Reflections {
-    /// Rgba16Float bytes after the last draw.
-    last: Vec<u8>,
+/// The reflection buffer after the probes' draws, for one G-buffer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reflections {
+    /// `Rgba16Float` bytes after the last draw.
+    pub last: Vec<u8>,
+    /// Probes drawn as their boxes ([`probe_draw`]); the others were drawn full screen.
+    pub boxes: usize,
+}
+
+/// How the deferred probes are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProbeDrawing {
+    /// As [`probe_draw`] says: the grown box with the depth test, full screen where the box
+    /// crosses the near or far plane (what a renderer does).
+    Boxes,
+    /// Every probe full screen (the reference's point of view: every pixel blended).
+    FullScreen,
+}
+
+/// Draws the deferred probes of `scene` over `gbuffer` (`deferred_reflections/Reflections`,
+/// in [`draw_order`]) as `drawing` says, and returns the reflection buffer: the
+/// probe-box = full-screen comparison of the `gpu_volumes` test.
+pub fn reflection_buffer(
+    ctx: &GpuContext,
+    lib: &Library,
+    scene: &TestScene,
+    gbuffer: &GBufferImage,
+    drawing: ProbeDrawing,
+) -> Result<Reflections, GpuError> {
+    run_reflections(ctx, lib, scene, gbuffer, None, drawing)
 }
 
 /// Draws the deferred probes over `gbuffer` one by one, comparing after each draw when
@@ -198,6 +226,7 @@ fn run_reflections(
     scene: &TestScene,
     gbuffer: &GBufferImage,
     mut report: Option<&mut PassReport>,
+    drawing: ProbeDrawing,
 ) -> Result<Reflections, GpuError> {
     let (label, wgsl) = pass_wgsl(lib, "deferred_reflections", "Reflections", &[])?;
     let (w, h) = (scene.width, scene.height);
@@ -220,6 +249,14 @@ fn run_reflections(
         position: scene.scene.camera_position,
         depth: &depth,
     };
+    let wgsl: std::sync::Arc<str> = std::sync::Arc::from(wgsl);
+    let depth_texture = Resource::Texture2d {
+        format: wgpu::TextureFormat::R32Float,
+        width: w,
+        height: h,
+        data: depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
+    };
+    let mut boxes = 0;
     let mut previous: Option<Vec<u8>> = None;
     for (step, &p) in order.iter().enumerate() {
         let (probe, cube) = &scene.deferred_probes[p];
@@ -230,8 +267,8 @@ fn run_reflections(
         if let Some(bytes) = &previous {
             target = target.with_initial(bytes.clone());
         }
-        let mut job = fullscreen_job(&format!("{label} probe {p}"), &wgsl, w, h, target);
-        job.resources = vec![
+        let probe_label = format!("{label} probe {p}");
+        let mut resources = vec![
             BoundResource::new(
                 0,
                 0,
@@ -251,9 +288,34 @@ fn run_reflections(
             BoundResource::new(0, 6, Resource::Sampler { nearest: true }),
             BoundResource::new(0, 7, Resource::Uniform(probe_uniform(probe))),
         ];
-        job.resources
-            .extend(depth_camera_resources((scene.width, scene.height), &camera));
-        let out = render(ctx, &job)?.remove(0);
+        resources.extend(depth_camera_resources((scene.width, scene.height), &camera));
+        let draw =
+            Draw::fullscreen(&probe_label, &wgsl, "vs_main", "fs_main").with_resources(resources);
+        let volume = match drawing {
+            ProbeDrawing::FullScreen => None,
+            ProbeDrawing::Boxes => match probe_draw(probe, scene.view_proj) {
+                Ok(LightDraw::Volume(v)) => Some(v),
+                Ok(LightDraw::FullScreen(_)) => None,
+                Err(e) => {
+                    return Err(GpuError::Validation {
+                        label: probe_label,
+                        message: e.to_string(),
+                    });
+                }
+            },
+        };
+        let mut pass = DrawPass::new(&probe_label, w, h, vec![target]);
+        if let Some(v) = volume {
+            boxes += 1;
+            // The scene's depth into the pass's depth buffer, then the box's back faces where
+            // the scene lies in front of them.
+            pass.depth = true;
+            pass.draws.push(depth_fill_draw(depth_texture.clone()));
+            pass.draws.push(over_volume(draw, "vs_box", &v));
+        } else {
+            pass.draws.push(draw);
+        }
+        let out = render_pass(ctx, &pass)?.targets.remove(0);
         if let Some(report) = report.as_deref_mut() {
             report.draws += 1;
             let target = format!(
@@ -307,6 +369,7 @@ fn run_reflections(
     }
     Ok(Reflections {
         last: previous.unwrap_or_else(|| vec![0; (w * h * 8) as usize]),
+        boxes,
     })
 }
 
@@ -463,7 +526,7 @@ pub fn render_chain(
     scene: &TestScene,
     gbuffer: &GBufferImage,
 ) -> Result<ChainImages, GpuError> {
-    let refl = run_reflections(ctx, lib, scene, gbuffer, None)?.last;
+    let refl = run_reflections(ctx, lib, scene, gbuffer, None, ProbeDrawing::Boxes)?.last;
     let rt3 = run_add(ctx, lib, scene, gbuffer, &refl, None)?;
     let frame = if gbuffer.hdr {
         None
@@ -520,6 +583,7 @@ pub fn check_deferred_chain(
                     scene,
                     &gbuffer,
                     wants("Reflections").then_some(&mut reflections),
+                    ProbeDrawing::Boxes,
                 )?;
                 t_refl += start.elapsed().as_secs_f64();
                 let start = Instant::now();

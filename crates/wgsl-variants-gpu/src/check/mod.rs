@@ -51,7 +51,9 @@ pub mod volumes;
 
 use std::time::Instant;
 
-pub use deferred::{CHAIN_INPUTS, GBufferImage, render_gbuffer};
+pub use deferred::{
+    CHAIN_INPUTS, GBufferImage, ProbeDrawing, Reflections, reflection_buffer, render_gbuffer,
+};
 pub use lights::LightRig;
 use passes::Worker;
 pub use passes::standard_job;

@@ -41,11 +41,11 @@ pub use shadow::{FrameShadow, ShadowSpec, render_shadows};
 use super::compare::pixel;
 use super::deferred::{final_pass, rt3_blend, texture};
 use super::lights::shadowed;
-use super::volumes::DEPTH_FILL_WGSL;
+use super::volumes::{depth_fill_draw, over_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DepthTest, Draw, DrawPass, GpuContext, GpuError,
-    Resource, TargetFormat, VertexBuffer, render_pass,
+    Resource, TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
@@ -319,16 +319,7 @@ pub fn render_deferred(
         height: h,
         data: g.depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
     };
-    let fill: Arc<str> = Arc::from(DEPTH_FILL_WGSL);
-    lighting.draws.push(
-        Draw::fullscreen("scene depth", &fill, "vs_main", "fs_main")
-            .with_resources(vec![BoundResource::new(0, 0, depth_texture.clone())])
-            .with_depth(DepthTest {
-                compare: wgpu::CompareFunction::Always,
-                write: true,
-            })
-            .depth_only(),
-    );
+    lighting.draws.push(depth_fill_draw(depth_texture.clone()));
     let shared: Arc<[BoundResource]> = Arc::from(vec![
         BoundResource::new(0, 0, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[0])),
         BoundResource::new(0, 1, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[1])),
@@ -371,16 +362,7 @@ pub fn render_deferred(
             .with_resources(resources);
         volumes += usize::from(volume.is_some());
         lighting.draws.push(match volume {
-            Some(v) => Draw {
-                vertex_entry: String::from("vs_volume"),
-                ..draw
-                    .with_mesh(VertexBuffer::from_f32(&[(0, 3)], &v.positions))
-                    .with_cull(wgpu::Face::Front)
-                    .with_depth(DepthTest {
-                        compare: wgpu::CompareFunction::GreaterEqual,
-                        write: false,
-                    })
-            },
+            Some(v) => over_volume(draw, "vs_volume", &v),
             None => draw,
         });
     }
