@@ -309,7 +309,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                     });
                     depth_state(pass.depth_format, test)
                 });
-                let pipeline = create_pipeline(
+                let compiled = create_pipeline(
                     ctx,
                     &PipelineDesc {
                         label: dl,
@@ -322,13 +322,8 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                         targets: &color_states,
                     },
                 )?;
-                let used = used_bindings(
-                    dl,
-                    &draw.wgsl,
-                    &[draw.vertex_entry.as_str(), draw.fragment_entry.as_str()],
-                )?;
                 keys.push(key);
-                pipelines.push((pipeline, used));
+                pipelines.push(compiled);
                 pipelines.len() - 1
             }
         };
@@ -461,13 +456,16 @@ pub(crate) struct PipelineDesc<'a> {
     pub(crate) targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
-/// Compiles a render pipeline with wgpu's automatic layout; errors are
-/// [`GpuError::PipelineCompile`].
+/// Compiles a render pipeline with wgpu's automatic layout (errors are
+/// [`GpuError::PipelineCompile`]) and returns it with the slots its entry points use (what
+/// its bind groups must hold).
 pub(crate) fn create_pipeline(
     ctx: &GpuContext,
     desc: &PipelineDesc<'_>,
-) -> Result<wgpu::RenderPipeline, GpuError> {
-    compile_scoped(ctx, desc.label, || {
+) -> Result<(wgpu::RenderPipeline, BTreeSet<Slot>), GpuError> {
+    let entries: Vec<&str> = std::iter::once(desc.vertex).chain(desc.fragment).collect();
+    let used = used_bindings(desc.label, desc.wgsl, &entries)?;
+    let pipeline = compile_scoped(ctx, desc.label, || {
         let module = wgsl_module(ctx, desc.label, desc.wgsl);
         ctx.device
             .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -494,7 +492,8 @@ pub(crate) fn create_pipeline(
                 multiview_mask: None,
                 cache: None,
             })
-    })
+    })?;
+    Ok((pipeline, used))
 }
 
 /// The bind groups of `pipeline` for the `used` slots, from `resources`; a used slot without a
@@ -533,7 +532,7 @@ pub(crate) fn pipeline(
     targets: &[Option<wgpu::ColorTargetState>],
     resources: &[BoundResource],
 ) -> Result<(wgpu::RenderPipeline, Vec<(u32, wgpu::BindGroup)>), GpuError> {
-    let pipeline = create_pipeline(
+    let (pipeline, used) = create_pipeline(
         ctx,
         &PipelineDesc {
             label,
@@ -546,8 +545,6 @@ pub(crate) fn pipeline(
             targets,
         },
     )?;
-    let entries: Vec<&str> = std::iter::once(vertex).chain(fragment).collect();
-    let used = used_bindings(label, wgsl, &entries)?;
     let uploaded = GpuResources::upload(ctx, label, resources)?;
     let groups = bind(ctx, label, &pipeline, &used, &uploaded)?;
     Ok((pipeline, groups))

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeSet;
 
-use super::bindings::{Slot, used_bindings};
+use super::bindings::Slot;
 use super::context::GpuContext;
 use super::error::GpuError;
 use super::format::TargetFormat;
@@ -203,7 +203,7 @@ pub fn render_with(
             })
         })
         .collect();
-    let pipeline = create_pipeline(
+    let (pipeline, used) = create_pipeline(
         ctx,
         &PipelineDesc {
             label,
@@ -215,11 +215,6 @@ pub fn render_with(
             depth_stencil: None,
             targets: &color_states,
         },
-    )?;
-    let used = used_bindings(
-        label,
-        &job.wgsl,
-        &[job.vertex_entry.as_str(), job.fragment_entry.as_str()],
     )?;
     let bind_groups = bind(ctx, label, &pipeline, &used, resources)?;
 

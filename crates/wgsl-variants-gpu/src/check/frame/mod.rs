@@ -154,6 +154,13 @@ impl<'a> Drawer<'a> {
         Ok(text)
     }
 
+    /// Every object's draw of `pass` (ForwardBase, Deferred) with the opaque depth test.
+    fn opaque(&mut self, pass: &'static str) -> Result<Vec<Draw>, GpuError> {
+        (0..self.frame.objects.len())
+            .map(|o| Ok(self.object(o, pass, None)?.with_depth(DepthTest::OPAQUE)))
+            .collect()
+    }
+
     /// Object `o`'s draw of a `standard` pass (with the bindings of `light` and its shadow for
     /// ForwardAdd).
     fn object(
@@ -218,13 +225,7 @@ pub fn render_forward(
     );
     pass.depth = true;
     let mut drawer = Drawer::new(lib, frame, hdr);
-    for o in 0..frame.objects.len() {
-        pass.draws.push(
-            drawer
-                .object(o, "ForwardBase", None)?
-                .with_depth(DepthTest::OPAQUE),
-        );
-    }
+    pass.draws = drawer.opaque("ForwardBase")?;
     for (light, shadow) in frame.lights.iter().zip(shadows) {
         for o in 0..frame.objects.len() {
             pass.draws.push(
@@ -286,13 +287,7 @@ pub fn render_deferred(
     );
     gbuffer.depth = true;
     let mut drawer = Drawer::new(lib, frame, hdr);
-    for o in 0..frame.objects.len() {
-        gbuffer.draws.push(
-            drawer
-                .object(o, "Deferred", None)?
-                .with_depth(DepthTest::OPAQUE),
-        );
-    }
+    gbuffer.draws = drawer.opaque("Deferred")?;
     let out = render_pass(ctx, &gbuffer)?;
     let g = GBufferFrame {
         depth: out.depth.unwrap_or_default(),
