@@ -61,12 +61,12 @@ fn bundled_library_counts_match_the_hand_computed_ones() {
     ] {
         assert_eq!(row(independent).distinct_factor, Some(2), "{independent}");
     }
-    // ForwardBase: rendering mode 4 · 2 · 3 · 2^6 = 1536, all distinct (_RENDERING_CUTOUT
-    // clips, _RENDERING_FADE and _RENDERING_TRANSPARENT change the output alpha, TRANSPARENT
-    // also premultiplies).
+    // ForwardBase: rendering mode 4 · 2 · 3 · 2^6 · 2 (SHADOWS_SCREEN) = 3072, all distinct
+    // (_RENDERING_CUTOUT clips, _RENDERING_FADE and _RENDERING_TRANSPARENT change the output
+    // alpha, TRANSPARENT also premultiplies, SHADOWS_SCREEN reads the mask).
     let f = audit_of(&lib, "standard", "ForwardBase", &o);
-    assert_eq!(f.full_space, big(1536));
-    assert_eq!(f.distinct.count, big(1536));
+    assert_eq!(f.full_space, big(3072));
+    assert_eq!(f.distinct.count, big(3072));
     assert!(f.distinct.exact && f.dead_keywords.is_empty());
     // The internal shaders: Final and Reflections have no keywords; Add has UNITY_HDR_ON.
     assert_eq!(

@@ -84,7 +84,7 @@ fn bundled_standard_shader_counts() {
     assert_eq!(deferred.tag("LightMode"), Some("Deferred"));
     assert_eq!(deferred.exclude_renderers, ["nomrt"]);
     let forward = lib.pass("standard", "ForwardBase").unwrap();
-    assert_eq!(Space::full(forward).count(), BigUint::from(1536u32));
+    assert_eq!(Space::full(forward).count(), BigUint::from(3072u32));
 }
 
 #[test]

@@ -1,6 +1,6 @@
 #shader standard
 // Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow:
-// a forward base pass (1536 variants), a forward add pass for each extra per-pixel light (5376),
+// a forward base pass (3072 variants), a forward add pass for each extra per-pixel light (6144),
 // a G-buffer pass for the deferred path (3072 variants) and the shadow caster (8). The program is
 // standard/my_lighting; the lit passes differ only in their keyword sets and in which of
 // FORWARD_BASE_PASS / FORWARD_ADD_PASS / DEFERRED_PASS they define. The caster is
@@ -17,6 +17,8 @@
 #pragma shader_feature _DETAIL_MASK
 #pragma shader_feature _DETAIL_ALBEDO_MAP
 #pragma shader_feature _DETAIL_NORMAL_MAP
+// Unity's multi_compile_fwdbase, of which the main directional light's screen-space shadow.
+#pragma multi_compile _ SHADOWS_SCREEN
 #define FORWARD_BASE_PASS
 #import standard/my_lighting
 #endpass
@@ -35,8 +37,11 @@
 #pragma shader_feature _DETAIL_NORMAL_MAP
 #pragma multi_compile DIRECTIONAL DIRECTIONAL_COOKIE POINT POINT_COOKIE SPOT
 // Unity's multi_compile_fwdadd_fullshadows: the lighting pass's shadow keywords and pairings.
-#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE
+#pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE SHADOWS_SCREEN
 #pragma multi_compile _ SHADOWS_SOFT
+#pragma exclude SHADOWS_SCREEN POINT
+#pragma exclude SHADOWS_SCREEN POINT_COOKIE
+#pragma exclude SHADOWS_SCREEN SPOT
 #pragma exclude SHADOWS_DEPTH POINT
 #pragma exclude SHADOWS_DEPTH POINT_COOKIE
 #pragma exclude SHADOWS_DEPTH DIRECTIONAL

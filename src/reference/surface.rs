@@ -410,6 +410,26 @@ impl Default for Scene {
     }
 }
 
+impl Scene {
+    /// The scene with its directional light shadowed by `factor` (ForwardBase's
+    /// `SHADOWS_SCREEN`: the screen-space mask's value at the pixel, `1 − strength` to 1;
+    /// docs/shading.md §11): the light's colour times the factor, everything else unchanged.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants::reference::surface::Scene;
+    /// let scene = Scene { light_color: Vec3::splat(2.0), ..Scene::default() };
+    /// assert_eq!(scene.with_main_shadow(0.25).light_color, Vec3::splat(0.5));
+    /// assert_eq!(scene.with_main_shadow(1.0), scene);
+    /// ```
+    pub fn with_main_shadow(&self, factor: f32) -> Scene {
+        Scene {
+            light_color: self.light_color * factor,
+            ..*self
+        }
+    }
+}
+
 /// The surface values the keywords and inputs produce (docs/shading.md §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {

@@ -14,6 +14,8 @@
 //! | `R32Uint` (rendering layers) | exact | an integer copied from a uniform |
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
+//! | reflection probes blended SrcAlpha / OneMinusSrcAlpha into the `Rgba16Float` reflection buffer | [`f16_store_error`] + [`f16_blend_error`] | Vulkan may blend a float target at the format's precision: the source, alpha and both products may each be rounded to f16 before the sum is stored |
+//! | `standard/ShadowCaster` depth (16-bit unorm) and cube distance (f16) | [`UNORM_LSB`] / [`F16_ULP`] from the nearest value the reference takes over the texel's [`SUBPIXEL_WINDOW`] ([`window_offsets`]) | the rasterizer interpolates depth over vertices snapped to its sub-pixel grid; on a surface seen at a grazing angle one sixteenth of a pixel is several depth steps |
 //! | the frame (docs/shading.md §12): forward and deferred against the reference and each other | per pixel and channel: [`f16_store_error`] of each partial sum (HDR) or [`unorm_store_error`] per draw (forward LDR) or [`ldr_chain_range`] (deferred LDR), plus [`gbuffer_light_bound`] of every deferred light, around the reference's range over [`SUBPIXEL_WINDOW`] ([`window_range`]) | every draw rounds the target once; the rasterizer evaluates a pixel's attributes on vertices snapped to its sub-pixel grid, i.e. at a point up to [`SUBPIXEL_WINDOW`] from the centre; pixels whose window sees two objects (silhouettes) are left out and counted |
 //!
 //! ```
@@ -502,6 +504,32 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
 /// and is left out (counted).
 pub const SUBPIXEL_WINDOW: f32 = 1.0 / 16.0;
 
+/// The pixel-space offsets of a pixel's [`SUBPIXEL_WINDOW`] where a reference is evaluated:
+/// the centre, then the eight points `±SUBPIXEL_WINDOW` away along each axis and diagonal.
+/// An affine quantity (depth across a triangle) takes its extremes at the corners; the edge
+/// midpoints catch a curved one.
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::{SUBPIXEL_WINDOW, window_offsets};
+/// let w = window_offsets();
+/// assert_eq!(w[0], (0.0, 0.0));
+/// assert!(w.iter().all(|&(x, y)| x.abs() <= SUBPIXEL_WINDOW && y.abs() <= SUBPIXEL_WINDOW));
+/// ```
+pub fn window_offsets() -> [(f32, f32); 9] {
+    let w = SUBPIXEL_WINDOW;
+    [
+        (0.0, 0.0),
+        (-w, -w),
+        (0.0, -w),
+        (w, -w),
+        (-w, 0.0),
+        (w, 0.0),
+        (-w, w),
+        (0.0, w),
+        (w, w),
+    ]
+}
+
 /// The reference's range, per channel, over the values it takes at a pixel's centre and the
 /// points of its [`SUBPIXEL_WINDOW`]: `(min, max)`.
 ///
@@ -541,6 +569,32 @@ pub fn f16_step(x: f32) -> f32 {
 /// ```
 pub fn f16_store_error(x: f32) -> f32 {
     (F16_ULP as f32 + 0.5) * f16_step(x)
+}
+
+/// The most an `Rgba16Float` channel blended `src · a + dst · (1 − a)` (blend factors
+/// SrcAlpha / OneMinusSrcAlpha) may be off beyond the store's own rounding
+/// ([`f16_store_error`]), when the blend runs at the target's precision.
+///
+/// Vulkan blends a floating-point attachment "with at least the precision and dynamic range
+/// of the format": for a 16-bit float target the blend unit may round the source colour and
+/// alpha to f16 and then each product (NVIDIA's does; lavapipe blends in f32). Each rounding
+/// is at most half an f16 step of the value rounded, so to first order the result moves by
+/// `a · ½step(src) + ½step(a) · (|src| + |dst|) + ½step(src · a) + ½step(dst · (1 − a))`
+/// (the alpha's error enters both factors).
+///
+/// ```
+/// use wgsl_variants::reference::tolerance::{f16_blend_error, f16_step};
+/// // 0.25 over 0.25 at a = 0.5: 1.25 steps of 0.25 on top of the store's rounding.
+/// let e = f16_blend_error(0.25, 0.5, 0.25);
+/// assert!(e > f16_step(0.25) && e < 2.5 * f16_step(0.25));
+/// assert_eq!(f16_blend_error(0.25, 0.5, 0.25), 1.25 * f16_step(0.25));
+/// assert_eq!(f16_blend_error(0.0, 0.0, 0.0), f16_step(0.0));
+/// ```
+pub fn f16_blend_error(src: f32, a: f32, dst: f32) -> f32 {
+    0.5 * (a.abs() * f16_step(src)
+        + f16_step(a) * (src.abs() + dst.abs())
+        + f16_step(src * a)
+        + f16_step(dst * (1.0 - a)))
 }
 
 /// The most a value stored in a unorm channel of `bits` bits may be off, in value units: half

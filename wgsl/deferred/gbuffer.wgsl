@@ -22,10 +22,13 @@ struct GBufferOutput {
     @location(3) rt3: vec4f,
 }
 
-// normalize(n) · 0.5 + 0.5. The normal is divided by its largest |component| first, so that
-// tiny and huge normals (whose squared length under- or overflows f32) normalize like any
-// other. A zero normal, and one with an infinite or NaN component, encodes as (0, 0, 1) ->
-// (0.5, 0.5, 1). Integer tests on the bits: comparisons with NaN may be folded by compilers.
+// normalize(n) · 0.5 + 0.5. The normal is first scaled by the power of two that brings its
+// largest |component| into [0.5, 1), so that tiny and huge normals (whose squared length under-
+// or overflows f32) normalize like any other. ldexp is exact; dividing by the largest component
+// is not safe: GPUs divide through the reciprocal, a denormal for a huge divisor, which may be
+// flushed to zero (NVIDIA's driver does) and leave a zero vector to normalize. A zero normal,
+// and one with an infinite or NaN component, encodes as (0, 0, 1) -> (0.5, 0.5, 1). Integer
+// tests on the bits: comparisons with NaN may be folded by compilers.
 fn gbuffer_encode_normal(n: vec3f) -> vec3f {
     let magnitude = bitcast<vec3u>(n) & vec3u(0x7fffffffu);
     let finite = all(magnitude < vec3u(0x7f800000u));
@@ -34,7 +37,7 @@ fn gbuffer_encode_normal(n: vec3f) -> vec3f {
     if !finite || largest == 0.0 {
         return vec3f(0.5, 0.5, 1.0);
     }
-    return normalize(n / largest) * 0.5 + 0.5;
+    return normalize(ldexp(n, vec3i(-frexp(largest).exp))) * 0.5 + 0.5;
 }
 
 // normalize(rgb · 2 - 1), as stored in RT2.

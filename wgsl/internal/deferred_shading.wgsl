@@ -74,12 +74,7 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
 
     let n = gbuffer_decode_normal(gbuffer2.rgb);
     let v = brdf_view_dir(deferred_camera.position.xyz, p);
-#if defined(SHADOWS_SCREEN)
-    var s = light_at(p);
-    s.attenuation *= light_screen_shadow(pixel);
-#else
-    let s = light_at(p);
-#endif
+    let s = light_at_pixel(p, pixel);
     let c = light_direct(gbuffer0.rgb, gbuffer1.rgb, gbuffer1.a, n, v, light, s);
 #if UNITY_HDR_ON
     // One / One: RT3 += c (alpha 0 leaves RT3's a = 1).

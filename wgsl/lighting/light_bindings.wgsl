@@ -11,13 +11,12 @@
 //               nearest, LessEqual, clamp to edge) (SHADOWS_DEPTH),
 //            13 shadow_cube (texture_cube<f32>, r = |p - light| / range) + 14 shadow_cube_sampler
 //               (nearest) (SHADOWS_CUBE),
-//            15 screen_shadow (texture_2d<f32>, the screen-space shadow mask in r, read with
-//               textureLoad at the pixel) (SHADOWS_SCREEN)
+//            15 screen_shadow (SHADOWS_SCREEN; lighting/screen_shadow)
 //
 // Shadow keywords (Unity's multi_compile_lightpass / multi_compile_fwdadd_fullshadows pairs):
 // SHADOWS_DEPTH with SPOT only (a 2D map through the light's view-projection), SHADOWS_CUBE with
 // POINT and POINT_COOKIE (a cube of distances), SHADOWS_SOFT filters either (docs/shading.md
-// §11); SHADOWS_SCREEN with DIRECTIONAL and DIRECTIONAL_COOKIE in the lighting pass (the mask
+// §11); SHADOWS_SCREEN with DIRECTIONAL and DIRECTIONAL_COOKIE (the mask
 // internal/screen_space_shadows made from the light's map, SHADOWS_SOFT applied there); the
 // passes' exclude pragmas drop every other pairing.
 //
@@ -26,12 +25,15 @@
 //       DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light),
 //       times the shadow with SHADOWS_DEPTH or SHADOWS_CUBE
 //   fn light_shadow(p: vec3f) -> f32       the shadow factor in [1 - strength, 1] (1 without one)
-//   fn light_screen_shadow(pixel: vec2i) -> f32   SHADOWS_SCREEN: the mask at the pixel (the
-//       factor, strength included); the lighting pass multiplies the light's attenuation by it
+//   fn light_at_pixel(p: vec3f, pixel: vec2i) -> LightSample   light_at(p), times the
+//       SHADOWS_SCREEN mask at the pixel (the factor, strength included)
 
 #import lighting/light
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
 #import lighting/shadow
+#endif
+#if defined(SHADOWS_SCREEN)
+#import lighting/screen_shadow
 #endif
 
 @group(0) @binding(6) var<uniform> light: Light;
@@ -55,14 +57,15 @@
 @group(0) @binding(13) var shadow_cube: texture_cube<f32>;
 @group(0) @binding(14) var shadow_cube_sampler: sampler;
 #endif
-#if defined(SHADOWS_SCREEN)
-@group(0) @binding(15) var screen_shadow: texture_2d<f32>;
 
-// Unity's UnityDeferredComputeShadow for DIRECTIONAL / DIRECTIONAL_COOKIE: the mask's r.
-fn light_screen_shadow(pixel: vec2i) -> f32 {
-    return textureLoad(screen_shadow, pixel, 0).r;
-}
+// light_at(p) at the pixel `pixel`: with SHADOWS_SCREEN also the screen-space mask there.
+fn light_at_pixel(p: vec3f, pixel: vec2i) -> LightSample {
+    var s = light_at(p);
+#if defined(SHADOWS_SCREEN)
+    s.attenuation *= light_screen_shadow(pixel);
 #endif
+    return s;
+}
 
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
 fn light_at(p: vec3f) -> LightSample {

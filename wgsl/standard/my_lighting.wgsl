@@ -14,6 +14,8 @@
 #import deferred/gbuffer
 #if defined(FORWARD_ADD_PASS)
 #import lighting/light_bindings
+#elif defined(FORWARD_BASE_PASS) && defined(SHADOWS_SCREEN)
+#import lighting/screen_shadow
 #endif
 
 struct VertexInput {
@@ -89,7 +91,8 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
 
 #if defined(FORWARD_ADD_PASS)
     // One per-pixel light, nothing else: the same lighting code as the deferred lighting pass.
-    let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, light_at(in.world_position));
+    let pixel = vec2i(in.clip_position.xy);
+    let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, light_at_pixel(in.world_position, pixel));
 #else
     let indirect_diffuse = brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b) * occlusion;
 #if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS
@@ -113,6 +116,11 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
     return vec4f(c, 1.0);
 #endif
 #else
+    var main_color = lighting.light_color.rgb;
+#if defined(SHADOWS_SCREEN)
+    // The main light's shadow: the screen-space mask at this pixel (lighting/screen_shadow).
+    main_color *= light_screen_shadow(vec2i(in.clip_position.xy));
+#endif
     let direct = brdf_direct(
         diffuse,
         setup.spec_color,
@@ -120,7 +128,7 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
         n,
         v,
         lighting.light_dir.xyz,
-        lighting.light_color.rgb,
+        main_color,
     );
 #if defined(_RENDERING_FADE) || defined(_RENDERING_TRANSPARENT)
     return vec4f(c + direct, out_alpha);

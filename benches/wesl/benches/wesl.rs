@@ -38,9 +38,9 @@ use wesl::{Resolver, VirtualResolver, Wesl};
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space, Variant};
 
-/// The WESL dialect copy of the modules the Deferred pass uses, by WESL module path. Each
+/// The WESL dialect copy of the modules the Deferred and ForwardBase passes use, by WESL module path. Each
 /// file's header says what the translation from `wgsl/` had to change.
-const MODULES: [(&str, &str); 7] = [
+const MODULES: [(&str, &str); 8] = [
     (
         "package::standard::my_lighting",
         include_str!("../wesl/standard/my_lighting.wesl"),
@@ -56,6 +56,10 @@ const MODULES: [(&str, &str); 7] = [
     (
         "package::lighting::brdf",
         include_str!("../wesl/lighting/brdf.wesl"),
+    ),
+    (
+        "package::lighting::screen_shadow",
+        include_str!("../wesl/lighting/screen_shadow.wesl"),
     ),
     (
         "package::deferred::gbuffer",

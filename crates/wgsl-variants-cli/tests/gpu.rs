@@ -90,7 +90,7 @@ fn check_gpu_shards_merge_to_the_counts_of_one_run() {
 }
 
 /// `check-gpu --cover 2` renders the pairwise covering sets of the standard passes (10 of
-/// Deferred's 3072 variants, 12 of ForwardBase's 1536) and compares them with the reference.
+/// Deferred's 3072 variants, 12 of ForwardBase's 3072) and compares them with the reference.
 #[test]
 fn check_gpu_cover_renders_the_covering_sets() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
@@ -116,7 +116,7 @@ fn check_gpu_cover_renders_the_covering_sets() {
 }
 
 /// A sample step that shares a factor with the shard count still splits the sample evenly:
-/// `--sample 64` of ForwardBase's 1536 variants is 24, and shard 2/2 runs 12 of them (it ran
+/// `--sample 64` of ForwardBase's 3072 variants is 48, and shard 2/2 runs 24 of them (it ran
 /// none when shards were taken by the index in the space).
 #[test]
 fn check_gpu_sample_and_shard_with_a_common_factor() {
@@ -140,7 +140,7 @@ fn check_gpu_sample_and_shard_with_a_common_factor() {
         String::from_utf8_lossy(&out.stderr)
     );
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(report["passes"][0]["variants_run"], 12, "{report}");
+    assert_eq!(report["passes"][0]["variants_run"], 24, "{report}");
 }
 
 /// URP's UniversalGBuffer: by default a 3-wise covering set plus one partner per keyword

@@ -31,10 +31,13 @@ fn frame_passes(hdr: bool) {
     // Most of the frame is surface, not silhouette.
     assert!(report.compared > 2000, "{report}");
     assert!(report.edges < report.compared / 5, "{report}");
-    assert_eq!(report.forward_draws, 5 + 5 * 4);
-    assert_eq!(report.deferred_draws, 5 + 5 + usize::from(!hdr));
-    // Shadows fall on the surfaces in view.
+    // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd.
+    assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4);
+    // Deferred: the G-buffer, the masks, five lights, and the final pass in LDR.
+    assert_eq!(report.deferred_draws, 5 + 2 + 5 + usize::from(!hdr));
+    // Shadows fall on the surfaces in view, and most pixels are clear of a shadow edge.
     assert!(report.shadowed > 100, "{report}");
+    assert!(report.uncertain < report.compared / 20, "{report}");
     // The point and spot lights are drawn as their volumes (none crosses a clip plane), the
     // directional ones full screen.
     assert_eq!(report.volumes, 3, "{report}");
@@ -52,8 +55,9 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 
 /// The comparison is sharp: a frame rendered with the main light 10 % too bright, the warm
 /// point light 25 % too bright in HDR (50 % in LDR, whose 8-bit targets round each of the five
-/// forward draws), without the spot light's draws or without the shadows fails against the
-/// reference of the true frame, on both paths.
+/// forward draws), without the spot light's draws, without the shadows, or without one
+/// directional light's screen-space shadow fails against the reference of the true frame, on
+/// both paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -73,9 +77,14 @@ fn a_light_too_bright_or_missing_is_caught() {
     let mut missing = truth.clone();
     missing.lights.pop();
     let mut unshadowed = truth.clone();
+    unshadowed.main_shadow = None;
     for light in &mut unshadowed.lights {
         light.shadow = None;
     }
+    let mut main_unshadowed = truth.clone();
+    main_unshadowed.main_shadow = None;
+    let mut sun_unshadowed = truth.clone();
+    sun_unshadowed.lights[1].shadow = None;
     let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
@@ -83,6 +92,8 @@ fn a_light_too_bright_or_missing_is_caught() {
         ("warm point 50 % brighter", &point_ldr, &[false]),
         ("no spot", &missing, &[true, false]),
         ("no shadows", &unshadowed, &[true, false]),
+        ("no main-light shadow", &main_unshadowed, &[true, false]),
+        ("no cookie-sun shadow", &sun_unshadowed, &[true]),
     ] {
         for &hdr in modes {
             let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");

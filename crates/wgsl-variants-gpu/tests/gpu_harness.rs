@@ -21,6 +21,11 @@ fn context() -> Option<GpuContext> {
     Some(ctx)
 }
 
+/// Held by the two tests that destroy a device or leave a long dispatch running: run at the
+/// same time in one process, they hung NVIDIA's 580 driver (H200) for over two minutes, while
+/// each alone takes a second there (and both together a second on lavapipe).
+static DEVICE_ABUSE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Full-screen triangle vertex shader shared by the render tests.
 const FULLSCREEN_VS: &str = r#"
 @vertex
@@ -433,6 +438,7 @@ fn main() { output[0] = 1u; }
 
 #[test]
 fn uncaptured_errors_and_device_loss_are_recorded() {
+    let _serial = DEVICE_ABUSE.lock().unwrap_or_else(|e| e.into_inner());
     let Some(ctx) = context() else { return };
     // An invalid buffer created outside any harness scope goes to the recording handler.
     let _buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -465,6 +471,7 @@ fn uncaptured_errors_and_device_loss_are_recorded() {
 
 #[test]
 fn waits_are_bounded() {
+    let _serial = DEVICE_ABUSE.lock().unwrap_or_else(|e| e.into_inner());
     let Some(mut ctx) = context() else { return };
     // Enough work to take far longer than the 1 ms timeout on any adapter.
     let wgsl = r#"

@@ -1,5 +1,5 @@
 //! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (28) and
-//! of `standard/ForwardAdd` (5376), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
+//! of `standard/ForwardAdd` (6144), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
 //! with the CPU reference (`wgsl_variants::reference::light`), each keyword proven to change at
 //! least one pixel; and a library with a wrong falloff is caught.
 //!
@@ -75,7 +75,7 @@ fn forward_add_every_variant_matches_the_reference() {
         return;
     };
     let p = &report.passes[0];
-    let variants = 5376usize.div_ceil(n);
+    let variants = 6144usize.div_ceil(n);
     eprintln!(
         "standard/ForwardAdd on {}: {} pixels over {} variants ({} discarded) in {:.1} s",
         report.adapter, p.pixels_compared, p.variants_run, p.discarded_compared, p.seconds
@@ -84,8 +84,8 @@ fn forward_add_every_variant_matches_the_reference() {
     assert_eq!(p.variants_run, variants, "{report}");
     assert_eq!(p.pixels_compared, variants * 256);
     if n == 1 {
-        // 4 light keywords (against DIRECTIONAL), 3 shadow keywords, 10 material keywords.
-        assert_eq!(p.keywords.len(), 17, "{report}");
+        // 4 light keywords (against DIRECTIONAL), 4 shadow keywords, 10 material keywords.
+        assert_eq!(p.keywords.len(), 18, "{report}");
         assert!(p.untested_keywords.is_empty(), "{report}");
         assert!(p.passed(), "{report}");
     }

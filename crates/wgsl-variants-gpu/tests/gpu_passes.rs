@@ -1,5 +1,5 @@
 //! The GPU proof of the bundled passes: every variant of `standard/Deferred` (3072) and
-//! `standard/ForwardBase` (1536) rendered on the test scene and compared pixel by pixel with the
+//! `standard/ForwardBase` (3072) rendered on the test scene and compared pixel by pixel with the
 //! CPU reference, then the deferred reflection, add and final passes (`check::run`).
 //!
 //! They need a wgpu adapter (Mesa's lavapipe is enough: `apt-get install mesa-vulkan-drivers`).
@@ -7,7 +7,7 @@
 //! `WGSL_VARIANTS_REQUIRE_GPU=1`, in which case they fail. `WGSL_VARIANTS_ADAPTER=<substring>`
 //! selects an adapter by name.
 //!
-//! The full spaces take a few minutes on lavapipe with a cold Mesa shader cache (compiling 4608
+//! The full spaces take a few minutes on lavapipe with a cold Mesa shader cache (compiling 6144
 //! pipelines dominates) and well under a minute with a warm one. For a quick local look,
 //! `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th variant only (keyword coverage is then not
 //! judged).
@@ -95,11 +95,11 @@ fn forward_base_every_variant_matches_the_reference() {
     let Some(report) = run(&lib, Some("standard"), Some("ForwardBase"), n) else {
         return;
     };
-    let variants = 1536usize.div_ceil(n);
+    let variants = 3072usize.div_ceil(n);
     assert_pass(&report, "standard", "ForwardBase", variants);
     let p = &report.passes[0];
     assert_eq!(p.pixels_compared, variants * 256);
-    assert_eq!(p.keywords.len(), 12, "every keyword of the pass is covered");
+    assert_eq!(p.keywords.len(), 13, "every keyword of the pass is covered");
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 
@@ -238,6 +238,6 @@ fn shards_of_the_gpu_check_add_up_to_the_whole() {
         .iter()
         .map(|s| variants(Some(s)).unwrap_or(0))
         .sum();
-    assert_eq!(whole, 1536 / 128);
+    assert_eq!(whole, 3072 / 128);
     assert_eq!(parts, whole);
 }

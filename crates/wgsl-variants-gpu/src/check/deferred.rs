@@ -31,7 +31,7 @@ use wgsl_variants::reference::surface::{
     Keywords, SmoothnessSource, final_ldr, reflection_probe_pixel, reflections_add,
     view_and_reflection,
 };
-use wgsl_variants::reference::tolerance::f16_within;
+use wgsl_variants::reference::tolerance::{f16_blend_error, f16_store_error};
 use wgsl_variants::variants::Choice;
 
 /// The keywords of the G-buffers the deferred chain starts from (with
@@ -160,15 +160,9 @@ pub(crate) fn compare_texel(
     index: usize,
     width: u32,
     expected: Vec4,
-    rgb_only: bool,
 ) {
     let (raw, got) = pixel(format, bytes, index);
-    let ok = if rgb_only {
-        // The reflection buffer's alpha is not part of the contract; compare rgb.
-        (0..3).all(|c| f16_within(raw[c] as u16, expected[c]))
-    } else {
-        texel_within(format, raw, expected)
-    };
+    let ok = texel_within(format, raw, expected);
     let (shader, pass) = (report.shader.clone(), report.pass.clone());
     report.record(ok, || Mismatch {
         shader,
@@ -176,11 +170,7 @@ pub(crate) fn compare_texel(
         keywords: keywords.to_owned(),
         target: target.to_owned(),
         pixel: [index as u32 % width, index as u32 / width],
-        expected: if rgb_only {
-            expected.truncate().to_array().to_vec()
-        } else {
-            expected.to_array().to_vec()
-        },
+        expected: expected.to_array().to_vec(),
         got: got.to_vec(),
         got_raw: raw.to_vec(),
     });
@@ -347,18 +337,24 @@ fn run_reflections(
                 };
                 let sample =
                     reflection_probe_pixel(&g, pos, scene.scene.camera_position, probe, cube);
-                let want = composite(prev, &[(sample.truncate(), sample.w)]);
-                compare_texel(
-                    report,
-                    &input,
-                    &format!("{target}{edge_note}"),
-                    TargetFormat::Rgba16Float,
-                    &out,
-                    i,
-                    w,
-                    want.extend(0.0),
-                    true,
-                );
+                let (src, a) = (sample.truncate(), sample.w);
+                let want = composite(prev, &[(src, a)]);
+                let (raw, got) = pixel(TargetFormat::Rgba16Float, &out, i);
+                let ok = (0..3).all(|c| {
+                    let allowed = f16_store_error(want[c]) + f16_blend_error(src[c], a, prev[c]);
+                    (got[c] - want[c]).abs() <= allowed
+                });
+                let (shader, pass) = (report.shader.clone(), report.pass.clone());
+                report.record(ok, || Mismatch {
+                    shader,
+                    pass,
+                    keywords: input.clone(),
+                    target: format!("{target}{edge_note}"),
+                    pixel: [x, y],
+                    expected: want.to_array().to_vec(),
+                    got: got.to_vec(),
+                    got_raw: raw.to_vec(),
+                });
             }
         }
         previous = Some(out);
@@ -428,7 +424,7 @@ fn run_add(
             let rt3 = gbuffer.texel(i).rt3.to_vec4();
             let refl = Vec3::from_slice(&pixel(TargetFormat::Rgba16Float, refl, i).1[..3]);
             let want = reflections_add(rt3.truncate(), refl, gbuffer.hdr).extend(rt3.w);
-            compare_texel(report, &input, &target, format, &out, i, w, want, false);
+            compare_texel(report, &input, &target, format, &out, i, w, want);
         }
     }
     Ok(out)
@@ -474,7 +470,6 @@ fn run_final(
                 i,
                 width,
                 want,
-                false,
             );
         }
     }

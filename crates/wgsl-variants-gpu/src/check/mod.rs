@@ -13,7 +13,7 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (1536) and `standard/ForwardAdd` (5376, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (3072; `SHADOWS_SCREEN` over the directional light's mask) and `standard/ForwardAdd` (6144, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps and the directional lights' masks) on [`scene::TestScene`] (one render job: [`standard_job`]) |
 //! | [`lights`] | `deferred_shading/Lighting` (all 32 variants) over LDR and HDR G-buffers, positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
 //! | [`screen_shadows`] | `screen_space_shadows/Collect` (both variants): the directional lights' maps (`standard/ShadowCaster`, orthographic) turned into masks of the camera view, every pixel against the reference over the read-back map |
 //! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
@@ -60,8 +60,9 @@ pub use passes::standard_job;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
 pub use scene::TestScene;
 
-use super::{CheckError, GpuContext, GpuError, GpuResources};
+use super::{BoundResource, CheckError, GpuContext, GpuError, GpuResources};
 use wgsl_variants::Library;
+use wgsl_variants::reference::light::LightType;
 
 /// What to check.
 #[derive(Clone, Debug, Default)]
@@ -239,12 +240,14 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         rig.render_shadows(&ctx, lib)?;
     }
     let forward_selected = selected.contains(&("universal_lit", "UniversalForward"));
+    // The masks: the lighting passes' SHADOWS_SCREEN, and the forward passes' (ForwardBase's
+    // main light, ForwardAdd's directional lights).
     if forward_selected
-        || selected.iter().any(|&(s, _)| {
+        || selected.iter().any(|&(s, p)| {
             matches!(
                 s,
                 "deferred_shading" | "screen_space_shadows" | "stencil_deferred"
-            )
+            ) || matches!(p, "ForwardBase" | "ForwardAdd")
         })
     {
         rig.render_screen_shadows(&ctx, lib, &scene)?;
@@ -265,7 +268,16 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
         }
     }
     if !standard.is_empty() {
-        let workers = upload_workers(&ctx, &contexts, &scene.standard_resources(), "test scene")?;
+        let mut resources = scene.standard_resources();
+        // ForwardBase's SHADOWS_SCREEN: the main light's mask (the rig's directional light's).
+        if let Some(mask) = rig
+            .screen_shadows
+            .as_ref()
+            .and_then(|s| s.lighting_mask(LightType::Directional))
+        {
+            resources.push(BoundResource::new(0, 15, mask));
+        }
+        let workers = upload_workers(&ctx, &contexts, &resources, "test scene")?;
         for pass in standard {
             let pass = lib
                 .pass("standard", pass)

@@ -80,11 +80,13 @@ fn is_deferred(pass: &Pass) -> bool {
 }
 
 /// The reference outputs of a standard pass at pixel `(x, y)`, one per target; `None` where
-/// the pixel is discarded.
+/// the pixel is discarded. `main_shadow` scales ForwardBase's main light (its
+/// `SHADOWS_SCREEN` factor; 1 without).
 pub fn reference_outputs(
     scene: &TestScene,
     deferred: bool,
     kw: &Keywords,
+    main_shadow: f32,
     x: u32,
     y: u32,
 ) -> Option<Vec<Vec4>> {
@@ -94,7 +96,8 @@ pub fn reference_outputs(
         shade_deferred(kw, &scene.material, &texels, &geometry, &scene.scene)
             .map(|g| vec![g.rt0, g.rt1, g.rt2, g.rt3])
     } else {
-        shade_forward(kw, &scene.material, &texels, &geometry, &scene.scene).map(|c| vec![c])
+        let lit = scene.scene.with_main_shadow(main_shadow);
+        shade_forward(kw, &scene.material, &texels, &geometry, &lit).map(|c| vec![c])
     }
 }
 
@@ -313,7 +316,7 @@ pub fn check_standard_pass(
                     // The shadow interval's two ends; the GPU value is held to the interval
                     // (a point wherever no shadow tap is within a hair of flipping).
                     let p = scene.world_position(x, y);
-                    let (lo, hi) = rig.shadow_factor(light, shadows[v], p);
+                    let (lo, hi) = rig.lighting_shadow_factor(light, shadows[v], p, i);
                     let ends = [lo, hi].map(|f| forward_add_output(scene, rig, kw, light, f, x, y));
                     match ends {
                         [Some(a), Some(b)] => {
@@ -323,7 +326,15 @@ pub fn check_standard_pass(
                         _ => None,
                     }
                 }
-                None => reference_outputs(scene, deferred, kw, x, y),
+                None => {
+                    // ForwardBase's main light reads the directional light's mask.
+                    let main_shadow = if shadows[v].screen {
+                        rig.screen_factor(LightType::Directional, i)
+                    } else {
+                        1.0
+                    };
+                    reference_outputs(scene, deferred, kw, main_shadow, x, y)
+                }
             };
             if expected.is_none() {
                 report.discarded_compared += targets.len();

@@ -36,7 +36,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
-pub use shadow::{FrameShadow, ShadowSpec, render_shadows};
+pub use shadow::{FrameShadow, FrameShadows, ShadowSpec, render_shadows};
 
 use super::compare::pixel;
 use super::deferred::{final_pass, rt3_blend, texture};
@@ -55,7 +55,7 @@ use wgsl_variants::reference::surface::{
     view_and_reflection,
 };
 use wgsl_variants::reference::tolerance::{
-    SUBPIXEL_WINDOW, f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error,
+    f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error, window_offsets,
     window_range,
 };
 
@@ -154,28 +154,36 @@ impl<'a> Drawer<'a> {
         Ok(text)
     }
 
-    /// Every object's draw of `pass` (ForwardBase, Deferred) with the opaque depth test.
-    fn opaque(&mut self, pass: &'static str) -> Result<Vec<Draw>, GpuError> {
+    /// Every object's draw of `pass` (ForwardBase, with the main light's `shadow`; Deferred)
+    /// with the opaque depth test.
+    fn opaque(
+        &mut self,
+        pass: &'static str,
+        shadow: Option<&FrameShadow>,
+    ) -> Result<Vec<Draw>, GpuError> {
         (0..self.frame.objects.len())
-            .map(|o| Ok(self.object(o, pass, None)?.with_depth(DepthTest::OPAQUE)))
+            .map(|o| {
+                Ok(self
+                    .object(o, pass, None, shadow)?
+                    .with_depth(DepthTest::OPAQUE))
+            })
             .collect()
     }
 
-    /// Object `o`'s draw of a `standard` pass (with the bindings of `light` and its shadow for
-    /// ForwardAdd).
+    /// Object `o`'s draw of a `standard` pass, with the bindings of `light` (ForwardAdd) and
+    /// of `shadow` (ForwardAdd's light's, or ForwardBase's main light's).
     fn object(
         &mut self,
         o: usize,
         pass: &'static str,
-        light: Option<(&FrameLight, Option<&FrameShadow>)>,
+        light: Option<&FrameLight>,
+        shadow: Option<&FrameShadow>,
     ) -> Result<Draw, GpuError> {
         let object = &self.frame.objects[o];
-        let mut names = object_keywords(object, pass, light.map(|l| l.0.light_type), self.hdr);
-        let shadow = light.and_then(|l| l.1);
+        let mut names = object_keywords(object, pass, light.map(|l| l.light_type), self.hdr);
         names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
         let (label, wgsl) = self.text("standard", pass, names)?;
-        let mut resources =
-            light.map_or_else(Vec::new, |l| self.frame.light_resources(&l.0.params));
+        let mut resources = light.map_or_else(Vec::new, |l| self.frame.light_resources(&l.params));
         resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
         Ok(Draw::fullscreen(
             &format!("{} {label}", object.name),
@@ -204,12 +212,14 @@ const ADD: wgpu::BlendState = wgpu::BlendState {
 };
 
 /// Renders the forward path: ForwardBase per object, then ForwardAdd per light and object
-/// (with the light's shadow keywords and `shadows`' maps).
+/// (with the light's shadow keywords and `shadows`' maps). Where a directional light has a
+/// shadow, first a depth pre-pass (every object's `ShadowCaster` with the camera's view) and
+/// its screen-space masks ([`FrameShadows::with_masks`]).
 pub fn render_forward(
     ctx: &GpuContext,
     lib: &Library,
     frame: &FrameScene,
-    shadows: &[Option<FrameShadow>],
+    shadows: &FrameShadows,
     hdr: bool,
 ) -> Result<PathImage, GpuError> {
     let format = if hdr {
@@ -225,18 +235,35 @@ pub fn render_forward(
     );
     pass.depth = true;
     let mut drawer = Drawer::new(lib, frame, hdr);
-    pass.draws = drawer.opaque("ForwardBase")?;
-    for (light, shadow) in frame.lights.iter().zip(shadows) {
+    let mut draws = 0;
+    let masked;
+    let shadows = if shadows.needs_masks() {
+        let mut prepass = DrawPass::new("frame: depth pre-pass", frame.width, frame.height, vec![]);
+        prepass.depth = true;
+        let camera = frame.scene.camera_position.extend(0.0);
+        prepass.draws =
+            shadow::caster_draws(&mut drawer, "SHADOWS_DEPTH", frame.view_proj, camera)?;
+        draws += prepass.draws.len();
+        let depth = render_pass(ctx, &prepass)?.depth.unwrap_or_default();
+        let collects;
+        (masked, collects) = shadows.with_masks(ctx, lib, frame, &depth)?;
+        draws += collects;
+        &masked
+    } else {
+        shadows
+    };
+    pass.draws = drawer.opaque("ForwardBase", shadows.main.as_ref())?;
+    for (light, shadow) in frame.lights.iter().zip(&shadows.lights) {
         for o in 0..frame.objects.len() {
             pass.draws.push(
                 drawer
-                    .object(o, "ForwardAdd", Some((light, shadow.as_ref())))?
+                    .object(o, "ForwardAdd", Some(light), shadow.as_ref())?
                     .with_blend(ADD)
                     .with_depth(DepthTest::SAME_SURFACE),
             );
         }
     }
-    let draws = pass.draws.len();
+    draws += pass.draws.len();
     let bytes = render_pass(ctx, &pass)?.targets.remove(0);
     Ok(PathImage {
         bytes,
@@ -255,15 +282,16 @@ pub struct GBufferFrame {
     pub depth: Vec<f32>,
 }
 
-/// Renders the deferred path: the G-buffer pass over every object, one Lighting draw per light
-/// (the main light first, full screen; the others as their volumes where
-/// [`light_draw`] allows, else full screen; with the light's shadow keywords and `shadows`'
-/// maps), and in LDR the final pass.
+/// Renders the deferred path: the G-buffer pass over every object, the screen-space masks of
+/// the directional lights' shadows over its depth ([`FrameShadows::with_masks`]), one
+/// Lighting draw per light (the main light first, full screen; the others as their volumes
+/// where [`light_draw`] allows, else full screen; with the light's shadow keywords and
+/// `shadows`' maps), and in LDR the final pass.
 pub fn render_deferred(
     ctx: &GpuContext,
     lib: &Library,
     frame: &FrameScene,
-    shadows: &[Option<FrameShadow>],
+    shadows: &FrameShadows,
     hdr: bool,
 ) -> Result<PathImage, GpuError> {
     let (w, h) = (frame.width, frame.height);
@@ -287,12 +315,13 @@ pub fn render_deferred(
     );
     gbuffer.depth = true;
     let mut drawer = Drawer::new(lib, frame, hdr);
-    gbuffer.draws = drawer.opaque("Deferred")?;
+    gbuffer.draws = drawer.opaque("Deferred", None)?;
     let out = render_pass(ctx, &gbuffer)?;
     let g = GBufferFrame {
         depth: out.depth.unwrap_or_default(),
         targets: out.targets,
     };
+    let (shadows, collects) = shadows.with_masks(ctx, lib, frame, &g.depth)?;
 
     // The lighting pass tests the G-buffer's depth: a first draw writes it into the pass's
     // depth buffer (no colour), then each light draws its volume's back faces where the scene
@@ -327,11 +356,16 @@ pub fn render_deferred(
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
     ]);
     let mut volumes = 0;
-    let main = (LightType::Directional, frame.main_light, None, None);
+    let main = (
+        LightType::Directional,
+        frame.main_light,
+        None,
+        shadows.main.as_ref(),
+    );
     let lights = frame
         .lights
         .iter()
-        .zip(shadows)
+        .zip(&shadows.lights)
         .map(|(l, s)| (l.light_type, l.params, Some(&l.light), s.as_ref()));
     for (light_type, params, light, shadow) in std::iter::once(main).chain(lights) {
         let mut names = vec![light_type.keyword()];
@@ -362,7 +396,7 @@ pub fn render_deferred(
         });
     }
     // The depth fill is this harness's way to hand the G-buffer's depth to the next pass.
-    let mut draws = gbuffer.draws.len() + lighting.draws.len() - 1;
+    let mut draws = gbuffer.draws.len() + collects + lighting.draws.len() - 1;
     let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
     if hdr {
         return Ok(PathImage {
@@ -385,8 +419,11 @@ pub fn render_deferred(
 /// tolerance needs.
 #[derive(Clone, Debug)]
 struct Terms {
-    /// ForwardBase's rgb: ambient, probes, emission and the main light.
+    /// ForwardBase's rgb: ambient, probes, emission and the main light (with its shadow
+    /// factor's upper end).
     base: Vec3,
+    /// The same with the main light's shadow factor's lower end.
+    base_lo: Vec3,
     /// The light each ForwardAdd draw adds (with the shadow factor's upper end).
     adds: Vec<Vec3>,
     /// The same with the shadow factor's lower end (an uncertain shadow tap may go either
@@ -406,14 +443,14 @@ impl Terms {
     }
 
     fn total_lo(&self) -> Vec3 {
-        self.base + self.adds_lo.iter().copied().sum::<Vec3>()
+        self.base_lo + self.adds_lo.iter().copied().sum::<Vec3>()
     }
 }
 
 /// The reference terms of `object` at `geo`, the lights shadowed by `shadows`.
 fn terms(
     frame: &FrameScene,
-    shadows: &[Option<FrameShadow>],
+    shadows: &FrameShadows,
     object: &FrameObject,
     geo: &Geometry,
 ) -> Terms {
@@ -430,17 +467,22 @@ fn terms(
         texture: &cookie,
         cube,
     });
-    // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
-    let base =
-        shade_forward(&kw, mat, &tex, geo, &frame.scene).map_or(Vec3::ZERO, |c| c.truncate());
     let p = geo.world_position;
+    // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
+    let main_factor = shadows.main.as_ref().map_or((1.0, 1.0), |s| s.received(p));
+    let base_with = |f: f32| {
+        shade_forward(&kw, mat, &tex, geo, &frame.scene.with_main_shadow(f))
+            .map_or(Vec3::ZERO, |c| c.truncate())
+    };
+    let (base, base_lo) = (base_with(main_factor.1), base_with(main_factor.0));
     // One factor per light (a light without a shadow, or without a map, keeps all of it).
     let factors: Vec<(f32, f32)> = (0..frame.lights.len())
         .map(|i| {
             shadows
+                .lights
                 .get(i)
                 .and_then(Option::as_ref)
-                .map_or((1.0, 1.0), |s| s.factor(p))
+                .map_or((1.0, 1.0), |s| s.received(p))
         })
         .collect();
     let add = |l: &FrameLight, factor: f32| {
@@ -486,7 +528,10 @@ fn terms(
             params.color * attenuation,
         )
     };
-    let mut bounds = vec![bound(&frame.main_light, LightType::Directional)];
+    let mut bounds = vec![bound(
+        &shadowed(&frame.main_light, main_factor.1),
+        LightType::Directional,
+    )];
     bounds.extend(
         frame
             .lights
@@ -497,6 +542,7 @@ fn terms(
     Terms {
         main: base - c0,
         base,
+        base_lo,
         adds,
         adds_lo,
         c0,
@@ -507,12 +553,7 @@ fn terms(
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
 /// centre sees, lit by the forward formulas and shadowed by `shadows`; `None` on the
 /// background.
-pub fn reference_rgb(
-    frame: &FrameScene,
-    shadows: &[Option<FrameShadow>],
-    x: u32,
-    y: u32,
-) -> Option<Vec3> {
+pub fn reference_rgb(frame: &FrameScene, shadows: &FrameShadows, x: u32, y: u32) -> Option<Vec3> {
     let hit = frame.cast(f64::from(x) + 0.5, f64::from(y) + 0.5)?;
     Some(terms(frame, shadows, &frame.objects[hit.object], &hit.geometry).total())
 }
@@ -722,7 +763,7 @@ pub fn check_frame(
 /// maps both paths were given), pixel by pixel.
 pub fn compare(
     frame: &FrameScene,
-    shadows: &[Option<FrameShadow>],
+    shadows: &FrameShadows,
     forward: &PathImage,
     deferred: &PathImage,
     hdr: bool,
@@ -747,23 +788,13 @@ pub fn compare(
     let forward_stores = 1 + frame.lights.len();
     // The main light and each per-pixel light.
     let deferred_lights = 1 + frame.lights.len();
-    let w = f64::from(SUBPIXEL_WINDOW);
     for (i, (x, y)) in frame.pixels().enumerate() {
         let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
         let centre = frame.cast(cx, cy);
-        let window: Vec<Option<Hit>> = [
-            (-w, -w),
-            (0.0, -w),
-            (w, -w),
-            (-w, 0.0),
-            (w, 0.0),
-            (-w, w),
-            (0.0, w),
-            (w, w),
-        ]
-        .iter()
-        .map(|(dx, dy)| frame.cast(cx + dx, cy + dy))
-        .collect();
+        let window: Vec<Option<Hit>> = window_offsets()[1..]
+            .iter()
+            .map(|&(dx, dy)| frame.cast(cx + f64::from(dx), cy + f64::from(dy)))
+            .collect();
         let same = |h: &Option<Hit>| h.map(|h| h.object) == centre.map(|h| h.object);
         if !window.iter().all(same) {
             report.edges += 1;
@@ -794,7 +825,6 @@ pub fn compare(
         let t = terms(frame, shadows, object, &hit.geometry);
         let factors: Vec<(f32, f32)> = shadows
             .iter()
-            .flatten()
             .map(|s| s.factor(hit.geometry.world_position))
             .collect();
         report.shadowed += usize::from(factors.iter().any(|f| f.0.min(f.1) < 1.0));

@@ -1,8 +1,9 @@
 //! The frame's scene, made by code: a floor, two spheres and two boxes, each with its own
 //! keyword set and material, seen by a perspective camera; the ambient light, the directional
-//! main light and the two reflection probes of [`Scene`]; and four per-pixel lights (a
-//! directional light with a 2D cookie, a point light with a cube shadow, a point light with a
-//! cube cookie, a spot with a soft shadow).
+//! main light (with a hard screen-space shadow) and the two reflection probes of [`Scene`];
+//! and four per-pixel lights (a directional light with a 2D cookie and a soft screen-space
+//! shadow, a point light with a cube shadow, a point light with a cube cookie, a spot with a
+//! soft shadow).
 //!
 //! Every map of an object is one texel (`Rgba8Unorm`, exact in 8 bits), so a sample does not
 //! depend on the uv the rasterizer interpolates: the keywords still change the surface (a
@@ -161,6 +162,14 @@ pub struct FrameScene {
     pub scene: Scene,
     /// The main light as a `DIRECTIONAL` light (the deferred path's first Lighting draw).
     pub main_light: LightParams,
+    /// The main light as a renderer describes it (for its shadow map).
+    pub main_light_source: Light,
+    /// The main light's shadow (`SHADOWS_SCREEN`: ForwardBase and the deferred path's first
+    /// Lighting draw read its screen-space mask).
+    pub main_shadow: Option<ShadowSpec>,
+    /// The sphere (centre, radius) a directional light's one cascade covers: every surface
+    /// the camera sees.
+    pub shadow_region: (Vec3, f32),
     /// The per-pixel lights.
     pub lights: Vec<FrameLight>,
     /// The objects, drawn in this order.
@@ -360,7 +369,8 @@ impl FrameScene {
                 ]),
             ],
         };
-        let main_light = Light::directional(-to_main, main_color)
+        let main_light_source = Light::directional(-to_main, main_color);
+        let main_light = main_light_source
             .params()
             .expect("the main light's parameters are valid");
         let light = |name, light_type, light: Light| {
@@ -388,7 +398,12 @@ impl FrameScene {
                     },
                     color: Vec3::new(0.22, 0.2, 0.26),
                 },
-            ),
+            )
+            .with_shadow(ShadowSpec {
+                strength: 0.8,
+                bias: 0.004,
+                soft: true,
+            }),
             light(
                 "cool point (cube cookie)",
                 LightType::PointCookie,
@@ -553,6 +568,13 @@ impl FrameScene {
             view_proj,
             scene,
             main_light,
+            main_light_source,
+            main_shadow: Some(ShadowSpec {
+                strength: 1.0,
+                bias: 0.004,
+                soft: false,
+            }),
+            shadow_region: (Vec3::new(0.3, 0.5, -0.3), 7.5),
             lights,
             objects,
             cookie,
@@ -560,12 +582,13 @@ impl FrameScene {
         }
     }
 
-    /// The frame with `n` point lights instead of its three per-pixel lights (the main light
-    /// stays): the benchmark's light count. They are placed by a fixed pseudo-random sequence
+    /// The frame with `n` point lights instead of its four per-pixel lights (the main light
+    /// stays, unshadowed, so that both paths' cost is the lights'): the benchmark's light count. They are placed by a fixed pseudo-random sequence
     /// over the floor in view, 0.6 to 1.8 above it, with ranges of 1.2 to 2.2 (so each is drawn
     /// as its volume in the deferred path) and varied colours.
     pub fn with_point_lights(mut self, n: usize) -> FrameScene {
         let mut rng = Rng::new(0x1167_5EED);
+        self.main_shadow = None;
         self.lights = (0..n)
             .map(|_| {
                 let position = Vec3::new(
