@@ -233,3 +233,29 @@ fn render_frame_writes_the_seven_pictures() {
         .expect("run render");
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `render standard ForwardBase --keywords SHADOWS_SCREEN` binds the main light's screen-space
+/// mask (the check's directional light's), and the shadow darkens some pixels.
+#[test]
+fn render_forward_base_with_the_main_light_shadow() {
+    let tmp = tempfile::tempdir().unwrap();
+    let render = |keywords: &str, dir: &str| -> Vec<u8> {
+        let out_dir = tmp.path().join(dir);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args(["render", "standard", "ForwardBase", "--keywords", keywords])
+            .arg("--out")
+            .arg(&out_dir)
+            .env("NODEVICE_SELECT", "1")
+            .output()
+            .expect("run render");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::read(out_dir.join("final.png")).expect("final.png")
+    };
+    let lit = render("_NORMAL_MAP", "lit");
+    let shadowed = render("_NORMAL_MAP,SHADOWS_SCREEN", "shadowed");
+    assert_ne!(lit, shadowed, "the mask changes the picture");
+}

@@ -299,6 +299,16 @@ impl LightRig {
             .map_or(1.0, |s| s.lighting_factor(t, i))
     }
 
+    /// ForwardBase's `SHADOWS_SCREEN` binding: the `Directional` light's hard mask at group 0,
+    /// binding 15 (`None` before [`LightRig::render_screen_shadows`]).
+    pub fn main_light_mask(&self) -> Option<BoundResource> {
+        let mask = self
+            .screen_shadows
+            .as_ref()?
+            .lighting_mask(LightType::Directional)?;
+        Some(BoundResource::new(0, 15, mask))
+    }
+
     /// The reference shadow factor interval at `p` for light `t` under `keywords` (`(1, 1)`
     /// without shadow keywords or maps).
     pub fn shadow_factor(&self, t: LightType, keywords: ShadowKeywords, p: Vec3) -> (f32, f32) {

@@ -60,9 +60,8 @@ pub use passes::standard_job;
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
 pub use scene::TestScene;
 
-use super::{BoundResource, CheckError, GpuContext, GpuError, GpuResources};
+use super::{CheckError, GpuContext, GpuError, GpuResources};
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::LightType;
 
 /// What to check.
 #[derive(Clone, Debug, Default)]
@@ -270,13 +269,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     if !standard.is_empty() {
         let mut resources = scene.standard_resources();
         // ForwardBase's SHADOWS_SCREEN: the main light's mask (the rig's directional light's).
-        if let Some(mask) = rig
-            .screen_shadows
-            .as_ref()
-            .and_then(|s| s.lighting_mask(LightType::Directional))
-        {
-            resources.push(BoundResource::new(0, 15, mask));
-        }
+        resources.extend(rig.main_light_mask());
         let workers = upload_workers(&ctx, &contexts, &resources, "test scene")?;
         for pass in standard {
             let pass = lib

@@ -286,6 +286,12 @@ pub fn render_pictures(
                 .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
             let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), false, false);
             job.resources = scene.standard_resources();
+            if keywords.contains(&"SHADOWS_SCREEN") {
+                // The main light's screen-space shadow: the check's directional mask.
+                let mut rig = LightRig::new(scene);
+                rig.render_screen_shadows(ctx, lib, scene)?;
+                job.resources.extend(rig.main_light_mask());
+            }
             let out = render(ctx, &job)?.remove(0);
             let rgba8 = TargetFormat::Rgba8Unorm;
             Ok(vec![
