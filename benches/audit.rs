@@ -87,7 +87,7 @@ fn main() {
         ),
         ("64 keywords, dead and coupled ones", synthetic(64, true)),
         (
-            "bundled standard/Deferred (3072 variants)",
+            "bundled standard/Deferred (6144 variants)",
             Library::bundled().unwrap(),
         ),
     ];

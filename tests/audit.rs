@@ -30,14 +30,14 @@ fn bundled_library_counts_match_the_hand_computed_ones() {
     let lib = Library::bundled().unwrap();
     let o = AuditOptions::default();
     // Deferred: _RENDERING_CUTOUT 2 · _METALLIC_MAP 2 · smoothness 3 · six maps 2^6 ·
-    // UNITY_HDR_ON 2 · UNITY_ENABLE_REFLECTION_BUFFERS 2 = 3072, and every keyword guards code
-    // of its own (bindings, surface functions, G-buffer packing, reflection probes), so every
-    // variant is distinct.
+    // UNITY_HDR_ON 2 · UNITY_ENABLE_REFLECTION_BUFFERS 2 · SHADOWS_SHADOWMASK 2 = 6144, and
+    // every keyword guards code of its own (bindings, surface functions, G-buffer packing,
+    // reflection probes, RT4), so every variant is distinct.
     let d = audit_of(&lib, "standard", "Deferred", &o);
-    assert_eq!(d.full_space, big(3072));
-    assert_eq!(d.after_filtering, big(3072));
-    assert_eq!(d.build_set, big(3072));
-    assert_eq!(d.distinct.count, big(3072));
+    assert_eq!(d.full_space, big(6144));
+    assert_eq!(d.after_filtering, big(6144));
+    assert_eq!(d.build_set, big(6144));
+    assert_eq!(d.distinct.count, big(6144));
     assert!(d.distinct.exact);
     assert_eq!(d.distinct.method, Method::Components);
     assert!(d.dead_keywords.is_empty(), "{:?}", d.dead_keywords);
@@ -109,11 +109,11 @@ keywords = []
     let mut o = AuditOptions::default();
     o.materials = Some(m);
     let d = audit_of(&lib, "standard", "Deferred", &o);
-    // Two shader_feature combinations × the multi_compile sets (2 · 2).
-    assert_eq!(d.build_set, big(8));
-    assert_eq!(d.after_stripping, big(8));
-    assert_eq!(d.distinct.count, big(8));
-    assert_eq!(d.distinct_full_space.count, big(3072));
+    // Two shader_feature combinations × the multi_compile sets (2 · 2 · 2).
+    assert_eq!(d.build_set, big(16));
+    assert_eq!(d.after_stripping, big(16));
+    assert_eq!(d.distinct.count, big(16));
+    assert_eq!(d.distinct_full_space.count, big(6144));
     // No material uses the internal shaders: they build nothing.
     assert_eq!(
         audit_of(&lib, "deferred_reflections", "Add", &o).build_set,

@@ -250,17 +250,17 @@ fn every_target_for_the_selection_of_the_bundled_library() {
     }
 }
 
-/// The acceptance test over the full space: every variant of the bundled library (116815, which
+/// The acceptance test over the full space: every variant of the bundled library (119983, which
 /// is also the build set without materials) through every target. About 9 minutes on 2 cores:
 /// `cargo test --release --test emit -- --ignored`.
 #[test]
-#[ignore = "the full space (116815 variants x 8 targets): cargo test --release --test emit -- --ignored"]
+#[ignore = "the full space (119983 variants x 8 targets): cargo test --release --test emit -- --ignored"]
 fn every_target_for_every_variant_of_the_bundled_library() {
     let lib = Library::bundled().unwrap();
     let mut options = wgsl_variants::plan::PlanOptions::default();
     options.all = true;
     let plan = wgsl_variants::plan::plan(&lib, &options).unwrap();
-    assert_eq!(every_target_for(&lib, &plan), 116815);
+    assert_eq!(every_target_for(&lib, &plan), 119983);
 }
 
 /// glslang compiles the GLSL of the covering set of every pass (each keyword alone, all
@@ -421,11 +421,12 @@ fn bake_writes_a_strict_lookup_table_and_rerun_lines() {
         .write_to(out.path())
         .unwrap();
     // standard: ForwardBase 1 × 2 (SHADOWS_SCREEN) + ForwardAdd 1 × 16 light and shadow
-    // combinations + Deferred 1 × 4 + ShadowCaster 2; deferred_final/Final 1;
-    // deferred_reflections and deferred_shading have no material, so they are not baked.
-    assert_eq!(baked.variants, 25);
-    // 22 distinct texts: SHADOWS_SOFT without a shadow keyword repeats 3 of ForwardAdd's.
-    assert_eq!(baked.outputs, 44);
+    // combinations + Deferred 1 × 8 (HDR, reflection buffers, shadowmask) + ShadowCaster 2;
+    // deferred_final/Final 1; deferred_reflections and deferred_shading have no material, so
+    // they are not baked.
+    assert_eq!(baked.variants, 29);
+    // 26 distinct texts: SHADOWS_SOFT without a shadow keyword repeats 3 of ForwardAdd's.
+    assert_eq!(baked.outputs, 52);
     assert!(baked.rerun_if_changed.contains(&root));
     assert!(baked.rerun_if_changed.contains(&materials));
     assert!(
@@ -440,25 +441,25 @@ fn bake_writes_a_strict_lookup_table_and_rerun_lines() {
     assert!(code.contains("pub fn variant("));
     assert!(code.contains("keywords: &[\"_NORMAL_MAP\", \"UNITY_HDR_ON\"]"));
     assert!(code.contains("spirv_words::<"));
-    assert_eq!(code.matches("    Variant {\n").count(), 25);
+    assert_eq!(code.matches("    Variant {\n").count(), 29);
     // deferred_reflections is listed as a pass with nothing baked: lookups say "not baked".
     assert!(code.contains("shader: \"deferred_reflections\""));
     let blobs = std::fs::read_dir(out.path().join("wgsl_variants"))
         .unwrap()
         .count();
-    assert_eq!(blobs, 44);
+    assert_eq!(blobs, 52);
 
     // Rebaking with fewer outputs removes the stale ones, and an unchanged file keeps its time.
     let again = Bake::new(&root)
         .materials(&materials)
         .write_to(out.path())
         .unwrap();
-    assert_eq!(again.outputs, 22);
+    assert_eq!(again.outputs, 26);
     assert_eq!(
         std::fs::read_dir(out.path().join("wgsl_variants"))
             .unwrap()
             .count(),
-        22
+        26
     );
     let modified = std::fs::metadata(&again.file).unwrap().modified().unwrap();
     Bake::new(&root)
@@ -512,10 +513,11 @@ fn bake_fails_with_rendered_diagnostics() {
 }
 
 /// `Bake::cover(2)` bakes each pass's pairwise covering set: 167 variants of the bundled
-/// library (10 of Deferred's 3072, 12 of ForwardBase's 3072, 64 of ForwardAdd's 6144, 4 of
-/// each ShadowCaster's 8, 10 of UniversalGBuffer's 49152, 12 of UniversalForward's 55296, 4 of PunctualLit's 8, 8 of
-/// DirectionalLit's 16, the smallest passes whole); with `cover_above(1600)` the ShadowCasters
-/// and URP's lighting passes are baked whole and the larger passes are still covered.
+/// library (10 of Deferred's 6144, 12 of ForwardBase's 3072, 64 of ForwardAdd's 6144, 4 of
+/// each ShadowCaster's 8, 10 of UniversalGBuffer's 49152, 12 of UniversalForward's 55296, 4 of
+/// PunctualLit's 8, 8 of DirectionalLit's 16, 32 of Lighting's 128, the smallest passes whole);
+/// with `cover_above(1600)` the ShadowCasters, URP's lighting passes and the built-in lighting
+/// pass are baked whole and the larger passes are still covered.
 #[test]
 fn bake_cover_bakes_the_covering_sets() {
     let out = tempfile::tempdir().unwrap();
@@ -534,5 +536,8 @@ fn bake_cover_bakes_the_covering_sets() {
         .target(BakeTarget::Wgsl)
         .write_to(tempfile::tempdir().unwrap().path())
         .unwrap();
-    assert_eq!(mixed.variants, 167 - 4 - 4 - 4 - 8 + 8 + 8 + 8 + 16);
+    assert_eq!(
+        mixed.variants,
+        167 - 4 - 4 - 4 - 8 - 32 + 8 + 8 + 8 + 16 + 128
+    );
 }

@@ -1,7 +1,7 @@
 #shader standard
 // Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow:
 // a forward base pass (3072 variants), a forward add pass for each extra per-pixel light (6144),
-// a G-buffer pass for the deferred path (3072 variants) and the shadow caster (8). The program is
+// a G-buffer pass for the deferred path (6144 variants) and the shadow caster (8). The program is
 // standard/my_lighting; the lit passes differ only in their keyword sets and in which of
 // FORWARD_BASE_PASS / FORWARD_ADD_PASS / DEFERRED_PASS they define. The caster is
 // standard/shadow_caster.
@@ -69,6 +69,9 @@
 #pragma shader_feature _DETAIL_NORMAL_MAP
 #pragma multi_compile _ UNITY_HDR_ON
 #pragma multi_compile _ UNITY_ENABLE_REFLECTION_BUFFERS
+// Unity's multi_compile_prepassfinal shadowmask keyword (the Shadowmask and Distance Shadowmask
+// lighting modes): a fifth target, RT4, holds the object's baked occlusion of up to four lights.
+#pragma multi_compile _ SHADOWS_SHADOWMASK
 #define DEFERRED_PASS
 #import standard/my_lighting
 #endpass

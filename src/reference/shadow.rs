@@ -617,7 +617,8 @@ impl ShadowCube {
 }
 
 /// The shadow keywords of a variant: `SHADOWS_DEPTH`, `SHADOWS_CUBE`, `SHADOWS_SCREEN`,
-/// `SHADOWS_SOFT`.
+/// `SHADOWS_SOFT`, and the Shadowmask lighting modes' `SHADOWS_SHADOWMASK` and
+/// `LIGHTMAP_SHADOW_MIXING`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ShadowKeywords {
     /// `SHADOWS_DEPTH`: a 2D map (spot).
@@ -629,6 +630,12 @@ pub struct ShadowKeywords {
     pub screen: bool,
     /// `SHADOWS_SOFT`: the filtered footprint.
     pub soft: bool,
+    /// `SHADOWS_SHADOWMASK`: the G-buffer pass writes the baked occlusion to RT4 and the
+    /// lighting pass reads the light's channel of it ([`baked_occlusion`]).
+    pub shadowmask: bool,
+    /// `LIGHTMAP_SHADOW_MIXING`: the Shadowmask mode's mix of realtime and baked shadows
+    /// (without it, Distance Shadowmask's; [`mix_realtime_and_baked`]).
+    pub mixing: bool,
 }
 
 impl ShadowKeywords {
@@ -649,6 +656,8 @@ impl ShadowKeywords {
                 "SHADOWS_CUBE" => kw.cube = true,
                 "SHADOWS_SCREEN" => kw.screen = true,
                 "SHADOWS_SOFT" => kw.soft = true,
+                "SHADOWS_SHADOWMASK" => kw.shadowmask = true,
+                "LIGHTMAP_SHADOW_MIXING" => kw.mixing = true,
                 _ => rest.push(name),
             }
         }
@@ -658,6 +667,49 @@ impl ShadowKeywords {
     /// Whether the variant reads a shadow map (or the screen-space mask) at all.
     pub fn any(&self) -> bool {
         self.depth || self.cube || self.screen
+    }
+}
+
+/// A light's baked occlusion from the G-buffer's RT4 (Unity's `UnityDeferredSampleShadowMask`):
+/// `saturate(dot(rt4, selector))`, where `selector` is the light's channel, one-hot
+/// (docs/shading.md §13).
+///
+/// ```
+/// use glam::Vec4;
+/// use wgsl_variants::reference::shadow::baked_occlusion;
+/// let rt4 = Vec4::new(0.2, 0.4, 0.6, 0.8);
+/// assert_eq!(baked_occlusion(rt4, Vec4::new(0.0, 0.0, 1.0, 0.0)), 0.6);
+/// ```
+pub fn baked_occlusion(rt4: Vec4, selector: Vec4) -> f32 {
+    rt4.dot(selector).clamp(0.0, 1.0)
+}
+
+/// Unity's `UnityMixRealtimeAndBakedShadows` with no shadow fade (docs/shading.md §13): the
+/// factor a light's colour is scaled by, from its realtime shadow factor and its baked
+/// occlusion (1 without `SHADOWS_SHADOWMASK`).
+///
+/// - no realtime shadow keyword (`SHADOWS_DEPTH`, `SHADOWS_CUBE`, `SHADOWS_SCREEN`): `baked`;
+/// - `LIGHTMAP_SHADOW_MIXING` (the Shadowmask mode): `min(saturate(realtime + fade), baked)`,
+///   fade 0: `min(realtime, baked)`;
+/// - else (Distance Shadowmask, or no shadowmask): `lerp(realtime, baked, fade)`, fade 0:
+///   `realtime`.
+///
+/// ```
+/// use wgsl_variants::reference::shadow::{ShadowKeywords, mix_realtime_and_baked};
+/// let mut kw = ShadowKeywords { screen: true, shadowmask: true, ..Default::default() };
+/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5), 0.75);
+/// kw.mixing = true;
+/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5), 0.5);
+/// kw.screen = false;
+/// assert_eq!(mix_realtime_and_baked(kw, 1.0, 0.25), 0.25);
+/// ```
+pub fn mix_realtime_and_baked(keywords: ShadowKeywords, realtime: f32, baked: f32) -> f32 {
+    if !keywords.any() {
+        baked
+    } else if keywords.mixing {
+        realtime.min(baked)
+    } else {
+        realtime
     }
 }
 

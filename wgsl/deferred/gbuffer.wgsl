@@ -4,9 +4,13 @@
 //   RT1 Rgba8Unorm    specular colour rgb, smoothness a
 //   RT2 Rgb10a2Unorm  world normal · 0.5 + 0.5, a = 1
 //   RT3 Rgb10a2Unorm  exp2(-c) (LDR), or Rgba16Float c with UNITY_HDR_ON; a = 1
+//   RT4 Rgba8Unorm    baked occlusion of up to four lights, one per channel (SHADOWS_SHADOWMASK
+//                     only: the Shadowmask lighting modes; the writer fills it, gbuffer_pack
+//                     does not)
 //
 // Provides (no bindings):
-//   struct GBufferOutput { rt0, rt1, rt2, rt3: vec4f at @location(0..3) }
+//   struct GBufferOutput { rt0, rt1, rt2, rt3: vec4f at @location(0..3);
+//                          rt4 at @location(4) with SHADOWS_SHADOWMASK }
 //   fn gbuffer_encode_normal(n: vec3f) -> vec3f   normalize(n) · 0.5 + 0.5; zero or non-finite -> (0.5, 0.5, 1)
 //   fn gbuffer_decode_normal(rgb: vec3f) -> vec3f normalize(rgb · 2 - 1)
 //   fn gbuffer_pack(diffuse: vec3f, occlusion: f32, specular: vec3f, smoothness: f32,
@@ -20,6 +24,9 @@ struct GBufferOutput {
     @location(1) rt1: vec4f,
     @location(2) rt2: vec4f,
     @location(3) rt3: vec4f,
+#if defined(SHADOWS_SHADOWMASK)
+    @location(4) rt4: vec4f,
+#endif
 }
 
 // normalize(n) · 0.5 + 0.5. The normal is first scaled by the power of two that brings its

@@ -3,7 +3,10 @@
 // its direct light to RT3, read from the G-buffer and the depth buffer.
 //   group 0: 0 rt0, 1 rt1, 2 rt2 (the G-buffer, read with textureLoad),
 //            3 depth (the depth buffer's depth aspect, or an R32Float copy, read with textureLoad),
-//            4 camera (DeferredCamera), 6-15 the light and its shadow (lighting/light_bindings)
+//            4 camera (DeferredCamera), 5 rt4 (the baked occlusion, SHADOWS_SHADOWMASK),
+//            6-15 the light and its shadow (lighting/light_bindings),
+//            16 occlusion_mask_selector (vec4f: the light's RT4 channel, one-hot;
+//               SHADOWS_SHADOWMASK; Unity's unity_OcclusionMaskSelector)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
@@ -21,7 +24,7 @@
 // Shadows as Unity pairs them with the light types (lighting/light_bindings): a 2D map for
 // spots, a cube for points, SHADOWS_SOFT for either (with no shadow keyword it changes nothing:
 // those 6 variants are duplicates, as in Unity), the screen-space mask for directional lights
-// (SHADOWS_SCREEN; its SHADOWS_SOFT is the mask pass's). 32 variants, 26 distinct.
+// (SHADOWS_SCREEN; its SHADOWS_SOFT is the mask pass's).
 #pragma multi_compile _ SHADOWS_DEPTH SHADOWS_CUBE SHADOWS_SCREEN
 #pragma multi_compile _ SHADOWS_SOFT
 #pragma exclude SHADOWS_SCREEN POINT
@@ -36,6 +39,14 @@
 #pragma exclude SHADOWS_CUBE DIRECTIONAL_COOKIE
 #pragma exclude SHADOWS_SOFT DIRECTIONAL
 #pragma exclude SHADOWS_SOFT DIRECTIONAL_COOKIE
+// The Shadowmask lighting modes (the rest of multi_compile_lightpass): SHADOWS_SHADOWMASK reads
+// the light's baked occlusion from RT4; LIGHTMAP_SHADOW_MIXING (the Shadowmask mode, without
+// it Distance Shadowmask) decides how it mixes with a realtime shadow (light_mix_shadows).
+// Without SHADOWS_SHADOWMASK, LIGHTMAP_SHADOW_MIXING changes nothing, as in Unity. 128
+// variants, 84 distinct: LIGHTMAP_SHADOW_MIXING leaves the text alone without a realtime
+// shadow keyword.
+#pragma multi_compile _ SHADOWS_SHADOWMASK
+#pragma multi_compile _ LIGHTMAP_SHADOW_MIXING
 #pragma multi_compile _ UNITY_HDR_ON
 #import internal/fullscreen
 #import deferred/gbuffer
@@ -48,6 +59,10 @@
 @group(0) @binding(2) var rt2: texture_2d<f32>;
 @group(0) @binding(3) var depth_tex: texture_2d<f32>;
 @group(0) @binding(4) var<uniform> deferred_camera: DeferredCamera;
+#if defined(SHADOWS_SHADOWMASK)
+@group(0) @binding(5) var rt4: texture_2d<f32>;
+@group(0) @binding(16) var<uniform> occlusion_mask_selector: vec4f;
+#endif
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
@@ -74,7 +89,13 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
 
     let n = gbuffer_decode_normal(gbuffer2.rgb);
     let v = brdf_view_dir(deferred_camera.position.xyz, p);
-    let s = light_at_pixel(p, pixel);
+#if defined(SHADOWS_SHADOWMASK)
+    // Unity's UnityDeferredSampleShadowMask: the light's channel of RT4.
+    let baked = saturate(dot(textureLoad(rt4, pixel, 0), occlusion_mask_selector));
+#else
+    let baked = 1.0;
+#endif
+    let s = light_at_pixel(p, pixel, baked);
     let c = light_direct(gbuffer0.rgb, gbuffer1.rgb, gbuffer1.a, n, v, light, s);
 #if UNITY_HDR_ON
     // One / One: RT3 += c (alpha 0 leaves RT3's a = 1).

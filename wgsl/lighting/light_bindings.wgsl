@@ -21,12 +21,15 @@
 // passes' exclude pragmas drop every other pairing.
 //
 // Provides:
-//   fn light_at(p: vec3f) -> LightSample   the light at world position p; exactly one of
-//       DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light),
-//       times the shadow with SHADOWS_DEPTH or SHADOWS_CUBE
+//   fn light_unshadowed(p: vec3f) -> LightSample   the light at world position p; exactly
+//       one of DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light)
 //   fn light_shadow(p: vec3f) -> f32       the shadow factor in [1 - strength, 1] (1 without one)
-//   fn light_at_pixel(p: vec3f, pixel: vec2i) -> LightSample   light_at(p), times the
-//       SHADOWS_SCREEN mask at the pixel (the factor, strength included)
+//   fn light_at_pixel(p: vec3f, pixel: vec2i, baked: f32) -> LightSample   the light at p
+//       shadowed by light_mix_shadows(realtime, baked): realtime is light_shadow(p), or the
+//       SHADOWS_SCREEN mask at the pixel (the factor, strength included); baked is the light's
+//       baked occlusion (1 where there is none)
+//   fn light_mix_shadows(realtime: f32, baked: f32) -> f32   Unity's
+//       UnityMixRealtimeAndBakedShadows with no shadow fade (docs/shading.md §13)
 
 #import lighting/light
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
@@ -58,26 +61,33 @@
 @group(0) @binding(14) var shadow_cube_sampler: sampler;
 #endif
 
-// light_at(p) at the pixel `pixel`: with SHADOWS_SCREEN also the screen-space mask there.
-fn light_at_pixel(p: vec3f, pixel: vec2i) -> LightSample {
-    var s = light_at(p);
+// The light at p (at the pixel `pixel`), its realtime shadow (the maps, or with SHADOWS_SCREEN
+// the screen-space mask there) mixed with the baked occlusion `baked`.
+fn light_at_pixel(p: vec3f, pixel: vec2i, baked: f32) -> LightSample {
+    var s = light_unshadowed(p);
 #if defined(SHADOWS_SCREEN)
-    s.attenuation *= light_screen_shadow(pixel);
+    let realtime = light_screen_shadow(pixel);
+#else
+    let realtime = light_shadow(p);
 #endif
+    s.attenuation *= light_mix_shadows(realtime, baked);
     return s;
 }
 
-#if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
-fn light_at(p: vec3f) -> LightSample {
-    var s = light_unshadowed(p);
-    s.attenuation *= light_shadow(p);
-    return s;
-}
+// Unity's UnityMixRealtimeAndBakedShadows with the shadow fade at 0 (we do not fade shadows):
+// without a realtime shadow keyword the baked value alone; the Shadowmask mode
+// (LIGHTMAP_SHADOW_MIXING) takes the darker, min(saturate(realtime + fade), baked); Distance
+// Shadowmask lerps from realtime to baked by the fade, so realtime here. Without
+// SHADOWS_SHADOWMASK baked is 1 and every branch gives the realtime factor.
+fn light_mix_shadows(realtime: f32, baked: f32) -> f32 {
+#if !defined(SHADOWS_DEPTH) && !defined(SHADOWS_CUBE) && !defined(SHADOWS_SCREEN)
+    return baked;
+#elif defined(LIGHTMAP_SHADOW_MIXING)
+    return min(realtime, baked);
 #else
-fn light_at(p: vec3f) -> LightSample {
-    return light_unshadowed(p);
-}
+    return realtime;
 #endif
+}
 
 fn light_shadow(p: vec3f) -> f32 {
 #if defined(SHADOWS_DEPTH)

@@ -11,7 +11,8 @@
 //            4 normal_map (_NORMAL_MAP), 5 occlusion_map (_OCCLUSION_MAP),
 //            6 emission_map (_EMISSION_MAP), 7 detail_mask (_DETAIL_MASK),
 //            8 detail_albedo (_DETAIL_ALBEDO_MAP), 9 detail_normal (_DETAIL_NORMAL_MAP)
-//   group 2: 0 object
+//   group 2: 0 object, 1 shadowmask_map (Deferred with SHADOWS_SHADOWMASK: the object's baked
+//            occlusion, Unity's unity_ShadowMask, sampled with material_sampler at the uv)
 
 #import deferred/probe
 
@@ -85,3 +86,6 @@ struct Object {
 #endif
 
 @group(2) @binding(0) var<uniform> object: Object;
+#if defined(DEFERRED_PASS) && defined(SHADOWS_SHADOWMASK)
+@group(2) @binding(1) var shadowmask_map: texture_2d<f32>;
+#endif

@@ -4,7 +4,8 @@
 //
 // Provides the entry points:
 //   @vertex   vs_main(VertexInput) -> VertexOutput
-//   @fragment fs_main(VertexOutput) -> GBufferOutput        (DEFERRED_PASS: RT0..RT3)
+//   @fragment fs_main(VertexOutput) -> GBufferOutput        (DEFERRED_PASS: RT0..RT3, and RT4
+//                                                            with SHADOWS_SHADOWMASK)
 //   @fragment fs_main(VertexOutput) -> @location(0) vec4f   (FORWARD_BASE_PASS, FORWARD_ADD_PASS)
 
 #import standard/bindings
@@ -92,7 +93,9 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
 #if defined(FORWARD_ADD_PASS)
     // One per-pixel light, nothing else: the same lighting code as the deferred lighting pass.
     let pixel = vec2i(in.clip_position.xy);
-    let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, light_at_pixel(in.world_position, pixel));
+    // No baked occlusion here (1): the forward passes do not model the Shadowmask modes.
+    let s = light_at_pixel(in.world_position, pixel, 1.0);
+    let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, s);
 #else
     let indirect_diffuse = brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b) * occlusion;
 #if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS
@@ -108,7 +111,13 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
 
 #if defined(DEFERRED_PASS)
     // No direct light here: the deferred light passes add it to RT3.
-    return gbuffer_pack(diffuse, occlusion, setup.spec_color, smoothness, n, c);
+    var g = gbuffer_pack(diffuse, occlusion, setup.spec_color, smoothness, n, c);
+#if defined(SHADOWS_SHADOWMASK)
+    // RT4: the baked occlusion as stored (Unity's UnityGetRawBakedOcclusions); the lighting
+    // pass picks the light's channel.
+    g.rt4 = textureSample(shadowmask_map, material_sampler, uv);
+#endif
+    return g;
 #elif defined(FORWARD_ADD_PASS)
 #if defined(_RENDERING_FADE) || defined(_RENDERING_TRANSPARENT)
     return vec4f(c, out_alpha);

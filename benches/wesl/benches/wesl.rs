@@ -1,4 +1,4 @@
-//! Build + validate of the bundled `standard/Deferred` pass's whole space (3072 variants):
+//! Build + validate of the bundled `standard/Deferred` pass's whole space (6144 variants):
 //! this crate vs the naga floor vs WESL (`wesl` 0.4.0) composing a hand-written WESL dialect
 //! copy of the same module tree (`benches/wesl/wesl/`).
 //!

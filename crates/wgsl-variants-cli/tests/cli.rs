@@ -36,9 +36,9 @@ fn validate_all_json_covers_the_full_space_of_both_standard_passes() {
     let report = json(&["validate", "--all", "--json"]);
     let deferred = pass(&report, "standard", "Deferred");
     for (key, value) in [
-        ("full_space", 3072),
-        ("built", 3072),
-        ("valid", 3072),
+        ("full_space", 6144),
+        ("built", 6144),
+        ("valid", 6144),
         ("invalid", 0),
     ] {
         assert_eq!(deferred[key], value, "Deferred {key}");
@@ -97,13 +97,13 @@ fn list_reports_tags_sets_and_counts() {
         .iter()
         .find(|p| p["name"] == "Deferred")
         .expect("Deferred");
-    assert_eq!(deferred["full_space"], 3072);
+    assert_eq!(deferred["full_space"], 6144);
     assert_eq!(
         deferred["tags"][0],
         serde_json::json!(["LightMode", "Deferred"])
     );
     assert_eq!(deferred["exclude_renderers"], serde_json::json!(["nomrt"]));
-    assert_eq!(deferred["keyword_sets"].as_array().unwrap().len(), 11);
+    assert_eq!(deferred["keyword_sets"].as_array().unwrap().len(), 12);
 }
 
 #[test]
@@ -111,7 +111,7 @@ fn audit_json_has_the_stage_counts() {
     let audit = json(&["audit", "--json"]);
     let deferred = pass(&audit, "standard", "Deferred");
     for key in ["full_space", "after_filtering", "build_set", "distinct"] {
-        assert_eq!(deferred[key], 3072, "{key}");
+        assert_eq!(deferred[key], 6144, "{key}");
     }
 }
 
@@ -164,9 +164,9 @@ fn materials_restrict_the_build_set() {
     let path = dir.path().join("materials.toml");
     std::fs::write(&path, "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAP\", \"_METALLIC_MAP\"]\n").unwrap();
     let report = json(&["validate", "--json", "--materials", path.to_str().unwrap()]);
-    // One shader_feature combination × the 4 multi_compile combinations of Deferred, × the 2
+    // One shader_feature combination × the 8 multi_compile combinations of Deferred, × the 2
     // (SHADOWS_SCREEN) of ForwardBase.
-    assert_eq!(pass(&report, "standard", "Deferred")["built"], 4);
+    assert_eq!(pass(&report, "standard", "Deferred")["built"], 8);
     assert_eq!(pass(&report, "standard", "ForwardBase")["built"], 2);
     std::fs::write(
         &path,
@@ -257,7 +257,7 @@ fn the_cache_changes_speed_not_output() {
     );
     assert_eq!(
         wgsl_variants::cache::ValidCache::open(dir.path()).len(),
-        3072
+        6144
     );
     let second = run(&args);
     assert_eq!(first.stdout, second.stdout);

@@ -134,12 +134,12 @@ fn validate_cover_2_of_the_urp_pass_and_cover_above() {
     ]);
     assert!(
         mixed.contains(
-            "standard/Deferred: built whole: its 3072-variant space is at most --cover-above"
+            "standard/Deferred: built whole: its 6144-variant space is at most --cover-above"
         ),
         "{mixed}"
     );
     assert!(
-        mixed.contains("standard/Deferred: 3072 built (3072 full space)"),
+        mixed.contains("standard/Deferred: 6144 built (6144 full space)"),
         "{mixed}"
     );
     assert!(

@@ -90,7 +90,8 @@ fn check_gpu_shards_merge_to_the_counts_of_one_run() {
 }
 
 /// `check-gpu --cover 2` renders the pairwise covering sets of the standard passes (10 of
-/// Deferred's 3072 variants, 12 of ForwardBase's 3072) and compares them with the reference.
+/// Deferred's 6144 variants, 12 of ForwardBase's 3072), each with a partner per keyword (13
+/// each) so keyword coverage is judged, and compares them with the reference.
 #[test]
 fn check_gpu_cover_renders_the_covering_sets() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
@@ -105,14 +106,18 @@ fn check_gpu_cover_renders_the_covering_sets() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(
-        stdout.contains("ok   standard/Deferred: 10 variants"),
+        stdout.contains("ok   standard/Deferred: 23 variants"),
         "{stdout}"
     );
     assert!(
-        stdout.contains("ok   standard/ForwardBase: 12 variants"),
+        stdout.contains("ok   standard/ForwardBase: 25 variants"),
         "{stdout}"
     );
-    assert!(stdout.contains("2-wise covering set"), "{stdout}");
+    assert!(
+        stdout.contains("2-wise covering set of 10 variants")
+            && stdout.contains("plus 13 partners"),
+        "{stdout}"
+    );
 }
 
 /// A sample step that shares a factor with the shard count still splits the sample evenly:

@@ -12,9 +12,15 @@ use wgsl_variants::Library;
 use wgsl_variants::reference::surface::Keywords;
 use wgsl_variants_gpu::check::TestScene;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
-use wgsl_variants_gpu::check::standard_job;
+use wgsl_variants_gpu::check::{StandardOutput, standard_job};
 use wgsl_variants_gpu::{
     BoundResource, GpuContext, GpuResources, RenderJob, Resource, render, render_with,
+};
+
+/// The G-buffer both draws write: LDR, no RT4.
+const LDR_GBUFFER: StandardOutput = StandardOutput::GBuffer {
+    hdr: false,
+    shadowmask: false,
 };
 
 const CONSTANTS: &str = "
@@ -94,9 +100,9 @@ fn main() {
     let mut scene = TestScene::new(DEFAULT_SEED);
     scene.width = 1920;
     scene.height = 1080;
-    let mut deferred = standard_job(&scene, &variant.label(), &lib.wgsl(&variant), true, false);
+    let mut deferred = standard_job(&scene, &variant.label(), &lib.wgsl(&variant), LDR_GBUFFER);
     deferred.resources = scene.standard_resources();
-    let mut floor = standard_job(&scene, "constants", CONSTANTS, true, false);
+    let mut floor = standard_job(&scene, "constants", CONSTANTS, LDR_GBUFFER);
     floor.resources = Vec::new();
     // Interleaved, so that a slow moment of the machine slows both alike.
     let times = common::interleaved(

@@ -1,4 +1,4 @@
-//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (28) and
+//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (128) and
 //! of `standard/ForwardAdd` (6144), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
 //! with the CPU reference (`wgsl_variants::reference::light`), each keyword proven to change at
 //! least one pixel; and a library with a wrong falloff is caught.
@@ -42,21 +42,30 @@ fn deferred_shading_every_variant_matches_the_reference() {
     );
     assert!(p.passed(), "{report}");
     assert_eq!(p.mismatches, 0, "{report}");
-    assert_eq!(p.variants_run, 32);
-    // Every variant over two G-buffers of its HDR mode, 16 × 16 pixels each.
-    assert_eq!((p.draws, p.pixels_compared), (64, 64 * 256));
+    assert_eq!(p.variants_run, 128);
+    // Every variant over two G-buffers of its HDR mode (with RT4 for SHADOWS_SHADOWMASK),
+    // 16 × 16 pixels each.
+    assert_eq!((p.draws, p.pixels_compared), (256, 256 * 256));
     // Four light keywords against POINT (the set's first), SHADOWS_DEPTH, SHADOWS_CUBE,
-    // SHADOWS_SCREEN, SHADOWS_SOFT and UNITY_HDR_ON.
-    assert_eq!(p.keywords.len(), 9, "{report}");
+    // SHADOWS_SCREEN, SHADOWS_SOFT, SHADOWS_SHADOWMASK, LIGHTMAP_SHADOW_MIXING and
+    // UNITY_HDR_ON.
+    assert_eq!(p.keywords.len(), 11, "{report}");
     for k in &p.keywords {
         eprintln!(
             "  {}: {} of {} pairs changed",
             k.keyword, k.pairs_changed, k.pairs
         );
         if k.keyword == "SHADOWS_SOFT" {
-            // Only with a shadow keyword: without one it changes nothing (those 6 variants are
-            // duplicates, as in Unity); with one, every pair changes.
-            assert_eq!((k.pairs, k.pairs_changed), (12, 6), "{report}");
+            // Only with a shadow keyword: without one it changes nothing (those 24 variants
+            // are duplicates, as in Unity); with one, every pair changes.
+            assert_eq!((k.pairs, k.pairs_changed), (48, 24), "{report}");
+        } else if k.keyword == "SHADOWS_SHADOWMASK" {
+            // Distance Shadowmask with a realtime shadow keeps the realtime factor (no fade):
+            // those 16 pairs are alike; every other pair reads the baked occlusion.
+            assert_eq!((k.pairs, k.pairs_changed), (64, 48), "{report}");
+        } else if k.keyword == "LIGHTMAP_SHADOW_MIXING" {
+            // Only with SHADOWS_SHADOWMASK and a realtime shadow: min(realtime, baked).
+            assert_eq!((k.pairs, k.pairs_changed), (64, 16), "{report}");
         } else {
             assert!(k.pairs_changed == k.pairs && k.pairs > 0, "{report}");
         }
@@ -91,7 +100,21 @@ fn forward_add_every_variant_matches_the_reference() {
     }
 }
 
-/// The check is not vacuous: a falloff of 1/(1 + 24t) instead of 1/(1 + 25t) fails it.
+/// Runs the lighting pass's check on a mutated `lib` and asserts that it fails, every listed
+/// mismatch passing `expected`; returns how many mismatches there were (`None`: skipped).
+fn lighting_check_fails(
+    lib: &Library,
+    expected: impl Fn(&check::Mismatch) -> bool,
+) -> Option<usize> {
+    let report = run(lib, "deferred_shading", "Lighting", 1)?;
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0 && !report.passed());
+    assert!(p.first_mismatches.iter().all(expected), "{report}");
+    Some(p.mismatches)
+}
+
+/// The check is not vacuous: a falloff of 1/(1 + 24t) instead of 1/(1 + 25t) fails it, in the
+/// point and spot variants.
 #[test]
 fn a_wrong_falloff_fails_the_check() {
     let lib = common::mutate::bundled_with(
@@ -99,20 +122,12 @@ fn a_wrong_falloff_fails_the_check() {
         "/ (1.0 + 25.0 * t)",
         "/ (1.0 + 24.0 * t)",
     );
-    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
-        return;
-    };
-    let p = &report.passes[0];
-    assert!(p.mismatches > 0 && !report.passed());
-    let m = &p.first_mismatches[0];
-    assert!(
-        m.keywords.contains("POINT") || m.keywords.contains("SPOT"),
-        "{m}"
-    );
-    eprintln!(
-        "a wrong falloff is caught: {} mismatches, e.g. {m}",
-        p.mismatches
-    );
+    let caught = lighting_check_fails(&lib, |m| {
+        m.keywords.contains("POINT") || m.keywords.contains("SPOT")
+    });
+    if let Some(n) = caught {
+        eprintln!("a wrong falloff is caught: {n} mismatches");
+    }
 }
 
 /// The shadow check is not vacuous: a PCF tent whose centre weighs 3/16 instead of 4/16 fails
@@ -124,18 +139,33 @@ fn a_wrong_pcf_weight_fails_the_check() {
         "4.0 * textureSampleCompareLevel",
         "3.0 * textureSampleCompareLevel",
     );
-    let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
-        return;
-    };
-    let p = &report.passes[0];
-    assert!(p.mismatches > 0 && !report.passed());
-    assert!(
-        p.first_mismatches
-            .iter()
-            .all(|m| m.keywords.contains("SHADOWS_SOFT") && m.keywords.contains("SPOT")),
-        "{report}"
+    let caught = lighting_check_fails(&lib, |m| {
+        m.keywords.contains("SHADOWS_SOFT") && m.keywords.contains("SPOT")
+    });
+    if let Some(n) = caught {
+        eprintln!("a wrong PCF weight is caught: {n} mismatches");
+    }
+}
+
+/// The shadowmask check is not vacuous: a Shadowmask mode that takes the lighter of the
+/// realtime and baked shadows fails it, in the mixing variants with a realtime shadow only
+/// (without SHADOWS_SHADOWMASK too: baked is 1 there, so `max` drops the realtime shadow).
+#[test]
+fn a_wrong_shadowmask_mix_fails_the_check() {
+    let lib = common::mutate::bundled_with(
+        "lighting/light_bindings.wgsl",
+        "return min(realtime, baked);",
+        "return max(realtime, baked);",
     );
-    eprintln!("a wrong PCF weight is caught: {} mismatches", p.mismatches);
+    let caught = lighting_check_fails(&lib, |m| {
+        m.keywords.contains("LIGHTMAP_SHADOW_MIXING")
+            && ["SHADOWS_DEPTH", "SHADOWS_CUBE", "SHADOWS_SCREEN"]
+                .iter()
+                .any(|k| m.keywords.contains(k))
+    });
+    if let Some(n) = caught {
+        eprintln!("a wrong shadowmask mix is caught: {n} mismatches");
+    }
 }
 
 /// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every

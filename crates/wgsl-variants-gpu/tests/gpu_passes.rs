@@ -1,16 +1,20 @@
-//! The GPU proof of the bundled passes: every variant of `standard/Deferred` (3072) and
-//! `standard/ForwardBase` (3072) rendered on the test scene and compared pixel by pixel with the
-//! CPU reference, then the deferred reflection, add and final passes (`check::run`).
+//! The GPU proof of the bundled passes: `standard/Deferred` (6144 variants; a 3-wise covering
+//! set with keyword partners here, every variant in the `--ignored` test) and
+//! `standard/ForwardBase` (3072, every variant) rendered on the test scene and compared pixel by
+//! pixel with the CPU reference, then the deferred reflection, add and final passes
+//! (`check::run`).
 //!
 //! They need a wgpu adapter (Mesa's lavapipe is enough: `apt-get install mesa-vulkan-drivers`).
 //! Without one they print a loud SKIPPED line and pass, unless `CI=true` or
 //! `WGSL_VARIANTS_REQUIRE_GPU=1`, in which case they fail. `WGSL_VARIANTS_ADAPTER=<substring>`
 //! selects an adapter by name.
 //!
-//! The full spaces take a few minutes on lavapipe with a cold Mesa shader cache (compiling 6144
-//! pipelines dominates) and well under a minute with a warm one. For a quick local look,
-//! `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th variant only (keyword coverage is then not
-//! judged).
+//! The full spaces take minutes on lavapipe with a cold Mesa shader cache (compiling a pipeline
+//! per variant dominates) and much less with a warm one; CI runs Deferred's covering set, and
+//! `cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored` (or
+//! `wgsl-variants check-gpu --shader standard --pass Deferred`) checks all 6144. For a quick
+//! local look, `WGSL_VARIANTS_GPU_SAMPLE=N` checks every N-th variant only (keyword coverage is
+//! then not judged).
 
 mod common;
 
@@ -44,13 +48,25 @@ fn run_shard(
     sample: usize,
     shard: Option<wgsl_variants::variants::Shard>,
 ) -> Option<CheckReport> {
+    run_options(lib, shader, pass, |options| {
+        options.sample = sample;
+        options.shard = shard;
+    })
+}
+
+/// Runs the check of `shader`/`pass` with the options `set` chooses.
+fn run_options(
+    lib: &Library,
+    shader: Option<&str>,
+    pass: Option<&str>,
+    set: impl FnOnce(&mut CheckOptions),
+) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
     options.shader = shader.map(str::to_owned);
     options.pass = pass.map(str::to_owned);
     options.adapter = common::gpu::adapter_filter();
     options.threads = 0;
-    options.sample = sample;
-    options.shard = shard;
+    set(&mut options);
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
 
@@ -71,20 +87,56 @@ fn assert_pass(report: &CheckReport, shader: &str, pass: &str, variants: usize) 
     assert!(p.pixels_compared > 0 && p.draws > 0, "{report}");
 }
 
+/// Every variant of `standard/Deferred` (6144; minutes on lavapipe with a cold shader cache,
+/// so CI runs [`deferred_covering_set_matches_the_reference`] instead).
 #[test]
+#[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
 fn deferred_every_variant_matches_the_reference() {
     let lib = Library::bundled().unwrap();
     let n = sample();
     let Some(report) = run(&lib, Some("standard"), Some("Deferred"), n) else {
         return;
     };
-    let variants = 3072usize.div_ceil(n);
+    let variants = 6144usize.div_ceil(n);
     assert_pass(&report, "standard", "Deferred", variants);
     let p = &report.passes[0];
-    // 16 × 16 pixels × 4 targets per variant; cutout discards some pixels.
-    assert_eq!(p.pixels_compared, variants * 256 * 4);
+    // 16 × 16 pixels × 4 targets per variant, 5 for the half with SHADOWS_SHADOWMASK (RT4);
+    // cutout discards some pixels.
+    if n == 1 {
+        assert_eq!(p.pixels_compared, (6144 * 4 + 3072) * 256);
+    }
     assert!(p.discarded_compared > 0);
-    assert_eq!(p.keywords.len(), 12, "every keyword of the pass is covered");
+    assert_eq!(p.keywords.len(), 13, "every keyword of the pass is covered");
+    assert!(p.untested_keywords.is_empty(), "{report}");
+}
+
+/// A 3-wise covering set of `standard/Deferred` plus, for each keyword, a partner pair whose
+/// reference says the keyword matters: every keyword is judged to change pixels (CI's form of
+/// the full-space test above).
+#[test]
+fn deferred_covering_set_matches_the_reference() {
+    let lib = Library::bundled().unwrap();
+    let Some(report) = run_options(&lib, Some("standard"), Some("Deferred"), |o| {
+        o.cover = Some(3)
+    }) else {
+        return;
+    };
+    let p = &report.passes[0];
+    let pass = lib.pass("standard", "Deferred").unwrap();
+    let covering = wgsl_variants::Space::full(pass).covering(3).unwrap().len();
+    assert!(
+        p.variants_run > covering && p.variants_run <= covering + 13,
+        "{report}"
+    );
+    assert_pass(&report, "standard", "Deferred", p.variants_run);
+    // 4 targets per variant, 5 with RT4; some of each.
+    let v = p.variants_run * 256;
+    assert!(
+        p.pixels_compared > 4 * v && p.pixels_compared < 5 * v,
+        "{report}"
+    );
+    assert!(p.discarded_compared > 0);
+    assert_eq!(p.keywords.len(), 13, "every keyword of the pass is covered");
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 

@@ -13,7 +13,7 @@ use glam::{Vec3, Vec4};
 
 use super::compare::{format_name, pixel, texel_within};
 use super::lights::{LightingCamera, depth_camera_resources};
-use super::passes::{keyword_coverage, standard_job};
+use super::passes::{StandardOutput, keyword_coverage, standard_job};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource, push_probe};
 use super::volumes::{depth_fill_draw, over_volume};
@@ -60,7 +60,7 @@ pub struct GBufferImage {
     pub keywords: Vec<String>,
     /// Whether RT3 is `Rgba16Float` (`UNITY_HDR_ON`).
     pub hdr: bool,
-    /// Tightly packed RT0, RT1, RT2, RT3.
+    /// Tightly packed RT0, RT1, RT2, RT3, and RT4 with `SHADOWS_SHADOWMASK`.
     pub targets: Vec<Vec<u8>>,
 }
 
@@ -79,6 +79,16 @@ impl GBufferImage {
             rt2: [0; 4],
             rt3: Rt3Texel::Ldr([0; 4]),
         })
+    }
+
+    /// RT4's stored texel of pixel `i` (the baked occlusion; `SHADOWS_SHADOWMASK`), `None`
+    /// without RT4.
+    pub fn shadowmask(&self, i: usize) -> Option<Vec4> {
+        let rt4 = self.targets.get(4)?;
+        let b = &rt4[i * 4..i * 4 + 4];
+        Some(Vec4::from_array(
+            [b[0], b[1], b[2], b[3]].map(|c| unorm_to_f32(u32::from(c), 8)),
+        ))
     }
 
     /// RT3's format.
@@ -101,8 +111,9 @@ pub fn render_gbuffer(
     let variant = lib
         .variant("standard", "Deferred", keywords)
         .map_err(|e| CheckError::lookup(format!("standard/Deferred {keywords:?}"), e))?;
+    let output = StandardOutput::gbuffer_of(keywords);
     let hdr = keywords.contains(&"UNITY_HDR_ON");
-    let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), true, hdr);
+    let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), output);
     job.resources = scene.standard_resources();
     Ok(GBufferImage {
         keywords: keywords.iter().map(|k| (*k).to_owned()).collect(),

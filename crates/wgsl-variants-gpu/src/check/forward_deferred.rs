@@ -13,7 +13,7 @@ use glam::{Mat4, Vec3, Vec4};
 use super::compare::pixel;
 use super::deferred::render_gbuffer;
 use super::lights::{LightRig, LightingCamera, render_lighting};
-use super::passes::standard_job;
+use super::passes::{StandardOutput, standard_job};
 use super::scene::TestScene;
 use crate::{CheckError, ColorTarget, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
@@ -67,7 +67,12 @@ pub fn forward_vs_deferred(
     let variant = lib
         .variant("standard", "ForwardAdd", &names)
         .map_err(|e| CheckError::lookup(format!("standard/ForwardAdd {names:?}"), e))?;
-    let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), false, false);
+    let mut job = standard_job(
+        scene,
+        &variant.label(),
+        &lib.wgsl(&variant),
+        StandardOutput::Forward,
+    );
     job.targets = vec![ColorTarget::new(TargetFormat::Rgba16Float)];
     job.resources = scene.standard_resources();
     job.resources.extend(rig.resources(light));

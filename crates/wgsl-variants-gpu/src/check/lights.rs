@@ -34,7 +34,7 @@ use wgsl_variants::reference::light::{
     perspective_rh, world_from_depth,
 };
 use wgsl_variants::reference::quantize::unorm_to_f32;
-use wgsl_variants::reference::shadow::ShadowKeywords;
+use wgsl_variants::reference::shadow::{ShadowKeywords, baked_occlusion, mix_realtime_and_baked};
 use wgsl_variants::reference::surface::{Keywords, reflections_add};
 
 /// The smallest distance, in texels (2D cookie) or [`face_margin`] units (cube cookie), between
@@ -317,6 +317,18 @@ impl LightRig {
             .map_or((1.0, 1.0), |s| s.factor(t, keywords, p))
     }
 
+    /// The light's channel of RT4 (Unity's `unity_OcclusionMaskSelector`, one-hot): each of
+    /// the rig's four lights its own, so every channel is read (`POINT_COOKIE` is the point
+    /// light's).
+    pub fn occlusion_mask(t: LightType) -> Vec4 {
+        match t {
+            LightType::Directional => Vec4::X,
+            LightType::DirectionalCookie => Vec4::Y,
+            LightType::Point | LightType::PointCookie => Vec4::Z,
+            LightType::Spot => Vec4::W,
+        }
+    }
+
     /// What the full-screen deferred passes see of the rig's camera over `scene`.
     pub(crate) fn camera<'a>(&'a self, scene: &TestScene) -> LightingCamera<'a> {
         LightingCamera {
@@ -355,18 +367,25 @@ impl LightRig {
             ),
         ];
         out.extend(shadows.into_iter().flatten());
-        let light_type = if *params == self.directional {
-            Some(LightType::Directional)
-        } else if *params == self.directional_cookie {
-            Some(LightType::DirectionalCookie)
-        } else {
-            None
-        };
+        let light_type = [
+            LightType::Directional,
+            LightType::DirectionalCookie,
+            LightType::Point,
+            LightType::Spot,
+        ]
+        .into_iter()
+        .find(|&t| self.params(t) == params);
         if let Some(mask) = light_type
+            .filter(|t| t.is_directional())
             .zip(self.screen_shadows.as_ref())
             .and_then(|(t, s)| s.lighting_mask(t))
         {
             out.push(BoundResource::new(0, 15, mask));
+        }
+        if let Some(t) = light_type {
+            let mut selector = Vec::new();
+            push_vec4(&mut selector, LightRig::occlusion_mask(t));
+            out.push(BoundResource::new(0, 16, Resource::Uniform(selector)));
         }
         out
     }
@@ -450,6 +469,14 @@ pub(crate) fn lighting_resources(
             texture(TargetFormat::Rgb10a2Unorm, w, h, &gbuffer.targets[2]),
         ),
     ];
+    if let Some(rt4) = gbuffer.targets.get(4) {
+        // SHADOWS_SHADOWMASK: the baked occlusion.
+        resources.push(BoundResource::new(
+            0,
+            5,
+            texture(TargetFormat::Rgba8Unorm, w, h, rt4),
+        ));
+    }
     resources.extend(depth_camera_resources((scene.width, scene.height), camera));
     resources.extend(rig.resources_for(light));
     resources
@@ -526,6 +553,10 @@ fn run_lighting(
         let rt3 = stored.rt3.to_vec4();
         let p = rig.deferred_position(scene, x, y);
         let (lo, hi) = rig.lighting_shadow_factor(light, shadow, p, i);
+        // The baked occlusion as stored in RT4 (1 without it), mixed with each end of the
+        // realtime interval (the mix is monotonic in the realtime factor).
+        let baked = stored_baked(gbuffer, shadow, light, i);
+        let [lo, hi] = [lo, hi].map(|f| mix_realtime_and_baked(shadow, f, baked));
         let [want_lo, want_hi] = [lo, hi].map(|f| {
             let c = deferred_light(
                 &stored.to_gbuffer(),
@@ -551,6 +582,15 @@ fn run_lighting(
         .collect())
 }
 
+/// Light `light`'s baked occlusion at pixel `i` as the lighting pass reads it from `gbuffer`'s
+/// RT4 with `SHADOWS_SHADOWMASK` (1 without the keyword).
+fn stored_baked(gbuffer: &GBufferImage, shadow: ShadowKeywords, light: LightType, i: usize) -> f32 {
+    match gbuffer.shadowmask(i) {
+        Some(rt4) if shadow.shadowmask => baked_occlusion(rt4, LightRig::occlusion_mask(light)),
+        _ => 1.0,
+    }
+}
+
 /// Checks every variant of `deferred_shading/Lighting` over the LDR and HDR G-buffers of each
 /// `CHAIN_INPUTS` keyword set of the deferred chain check, and that each keyword changes the
 /// result.
@@ -563,15 +603,21 @@ pub fn check_deferred_shading(
     let start = Instant::now();
     let (pass, choices) = small_pass(lib, "deferred_shading", "Lighting")?;
     let mut report = PassReport::new("deferred_shading", "Lighting");
-    // The G-buffers, rendered once per input and HDR mode.
-    let mut gbuffers: HashMap<(usize, bool), GBufferImage> = HashMap::new();
+    // The G-buffers, rendered once per input, HDR mode and shadowmask (RT4 or not).
+    let mut gbuffers: HashMap<(usize, bool, bool), GBufferImage> = HashMap::new();
     for (n, keywords) in CHAIN_INPUTS.iter().enumerate() {
         for hdr in [false, true] {
-            let mut kw: Vec<&str> = keywords.names();
-            if hdr {
-                kw.push("UNITY_HDR_ON");
+            for shadowmask in [false, true] {
+                let mut kw: Vec<&str> = keywords.names();
+                if hdr {
+                    kw.push("UNITY_HDR_ON");
+                }
+                if shadowmask {
+                    kw.push("SHADOWS_SHADOWMASK");
+                }
+                let gbuffer = render_gbuffer(ctx, lib, scene, &kw)?;
+                gbuffers.insert((n, hdr, shadowmask), gbuffer);
             }
-            gbuffers.insert((n, hdr), render_gbuffer(ctx, lib, scene, &kw)?);
         }
     }
     // outputs[v][n]: variant v over input n.
@@ -593,7 +639,7 @@ pub fn check_deferred_shading(
         let keywords = choice.label(pass);
         let mut per_input = Vec::new();
         for n in 0..CHAIN_INPUTS.len() {
-            let gbuffer = &gbuffers[&(n, hdr)];
+            let gbuffer = &gbuffers[&(n, hdr, shadow.shadowmask)];
             per_input.push(run_lighting(
                 ctx,
                 scene,
@@ -612,8 +658,8 @@ pub fn check_deferred_shading(
     report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
     report.judge_keywords();
     report.notes.push(format!(
-        "full-screen draws over {} G-buffers (LDR and HDR); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
-        CHAIN_INPUTS.len() * 2
+        "full-screen draws over {} G-buffers (LDR and HDR, with RT4 for SHADOWS_SHADOWMASK and without); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
+        gbuffers.len()
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)

@@ -13,8 +13,8 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (3072 variants), `standard/ForwardBase` (3072; `SHADOWS_SCREEN` over the directional light's mask) and `standard/ForwardAdd` (6144, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps and the directional lights' masks) on [`scene::TestScene`] (one render job: [`standard_job`]) |
-//! | [`lights`] | `deferred_shading/Lighting` (all 32 variants) over LDR and HDR G-buffers, positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
+//! | passes | `standard/Deferred` (6144 variants; RT4 with `SHADOWS_SHADOWMASK`), `standard/ForwardBase` (3072; `SHADOWS_SCREEN` over the directional light's mask) and `standard/ForwardAdd` (6144, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps and the directional lights' masks) on [`scene::TestScene`] (one render job: [`standard_job`]) |
+//! | [`lights`] | `deferred_shading/Lighting` (all 128 variants) over LDR and HDR G-buffers (with RT4 for `SHADOWS_SHADOWMASK`), positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
 //! | [`screen_shadows`] | `screen_space_shadows/Collect` (both variants): the directional lights' maps (`standard/ShadowCaster`, orthographic) turned into masks of the camera view, every pixel against the reference over the read-back map |
 //! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
 //! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test) |
@@ -56,7 +56,7 @@ pub use deferred::{
 };
 pub use lights::LightRig;
 use passes::Worker;
-pub use passes::standard_job;
+pub use passes::{StandardOutput, standard_job};
 pub use report::{CheckReport, KernelReport, KeywordCoverage, Mismatch, PassReport};
 pub use scene::TestScene;
 

@@ -4,7 +4,7 @@
 //! pixel with the CPU reference of its keyword set; then, per keyword, whether toggling it
 //! changed any output.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
@@ -29,48 +29,79 @@ use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Space};
 use wgsl_variants::{Library, Variant};
 
-/// The clear colours of the G-buffer targets RT0..RT3 (and of the forward target: RT0's):
+/// The clear colours of the G-buffer targets RT0..RT4 (and of the forward target: RT0's):
 /// values no lit pixel of the scene produces, so a discarded pixel that was written shows.
-pub const CLEAR: [[f64; 4]; 4] = [
+pub const CLEAR: [[f64; 4]; 5] = [
     [0.25, 0.5, 0.75, 0.125],
     [0.875, 0.625, 0.375, 0.25],
     [0.125, 0.25, 0.375, 0.0],
     [0.0625, 0.75, 0.5, 0.0],
+    [0.375, 0.125, 0.625, 0.875],
 ];
 
 /// The most variants any check enumerates in one pass.
 pub(crate) const MAX_VARIANTS: u64 = 100_000;
 
-/// The colour targets a standard pass renders into for a keyword set: RT0..RT3 for
-/// `Deferred` (RT3 `Rgba16Float` with `UNITY_HDR_ON`, else `Rgb10a2Unorm`), one
-/// `Rgba8Unorm` for `ForwardBase`.
-pub fn standard_targets(deferred: bool, hdr: bool) -> Vec<(String, ColorTarget)> {
-    if deferred {
-        let rt3 = if hdr {
-            TargetFormat::Rgba16Float
-        } else {
-            TargetFormat::Rgb10a2Unorm
+/// What a standard pass's variant writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StandardOutput {
+    /// `ForwardBase` / `ForwardAdd`: one `Rgba8Unorm` colour.
+    Forward,
+    /// `Deferred`: the G-buffer.
+    GBuffer {
+        /// `UNITY_HDR_ON`: RT3 is `Rgba16Float` (else `Rgb10a2Unorm`).
+        hdr: bool,
+        /// `SHADOWS_SHADOWMASK`: RT4 (`Rgba8Unorm`, the baked occlusion) too.
+        shadowmask: bool,
+    },
+}
+
+impl StandardOutput {
+    /// The G-buffer a `Deferred` variant with these keywords writes.
+    pub fn gbuffer_of(keywords: &[&str]) -> StandardOutput {
+        StandardOutput::GBuffer {
+            hdr: keywords.contains(&"UNITY_HDR_ON"),
+            shadowmask: keywords.contains(&"SHADOWS_SHADOWMASK"),
+        }
+    }
+
+    /// The colour targets, named: RT0..RT3 (and RT4) of the G-buffer, or the forward colour.
+    pub fn targets(self) -> Vec<(String, ColorTarget)> {
+        let formats = match self {
+            StandardOutput::Forward => {
+                return vec![(
+                    String::from("out Rgba8Unorm"),
+                    ColorTarget::new(TargetFormat::Rgba8Unorm).with_clear(CLEAR[0]),
+                )];
+            }
+            StandardOutput::GBuffer { hdr, shadowmask } => {
+                let rt3 = if hdr {
+                    TargetFormat::Rgba16Float
+                } else {
+                    TargetFormat::Rgb10a2Unorm
+                };
+                let mut formats = vec![
+                    TargetFormat::Rgba8Unorm,
+                    TargetFormat::Rgba8Unorm,
+                    TargetFormat::Rgb10a2Unorm,
+                    rt3,
+                ];
+                if shadowmask {
+                    formats.push(TargetFormat::Rgba8Unorm);
+                }
+                formats
+            }
         };
-        [
-            TargetFormat::Rgba8Unorm,
-            TargetFormat::Rgba8Unorm,
-            TargetFormat::Rgb10a2Unorm,
-            rt3,
-        ]
-        .into_iter()
-        .enumerate()
-        .map(|(i, format)| {
-            (
-                format!("RT{i} {}", format_name(format)),
-                ColorTarget::new(format).with_clear(CLEAR[i]),
-            )
-        })
-        .collect()
-    } else {
-        vec![(
-            String::from("out Rgba8Unorm"),
-            ColorTarget::new(TargetFormat::Rgba8Unorm).with_clear(CLEAR[0]),
-        )]
+        formats
+            .into_iter()
+            .enumerate()
+            .map(|(i, format)| {
+                (
+                    format!("RT{i} {}", format_name(format)),
+                    ColorTarget::new(format).with_clear(CLEAR[i]),
+                )
+            })
+            .collect()
     }
 }
 
@@ -79,12 +110,12 @@ fn is_deferred(pass: &Pass) -> bool {
     pass.name == "Deferred"
 }
 
-/// The reference outputs of a standard pass at pixel `(x, y)`, one per target; `None` where
-/// the pixel is discarded. `main_shadow` scales ForwardBase's main light (its
+/// The reference outputs of a standard pass at pixel `(x, y)`, one per target of `output`;
+/// `None` where the pixel is discarded. `main_shadow` scales ForwardBase's main light (its
 /// `SHADOWS_SCREEN` factor; 1 without).
 pub fn reference_outputs(
     scene: &TestScene,
-    deferred: bool,
+    output: StandardOutput,
     kw: &Keywords,
     main_shadow: f32,
     x: u32,
@@ -92,9 +123,15 @@ pub fn reference_outputs(
 ) -> Option<Vec<Vec4>> {
     let texels = scene.texels(x, y);
     let geometry = scene.geometry(x, y);
-    if deferred {
-        shade_deferred(kw, &scene.material, &texels, &geometry, &scene.scene)
-            .map(|g| vec![g.rt0, g.rt1, g.rt2, g.rt3])
+    if let StandardOutput::GBuffer { shadowmask, .. } = output {
+        shade_deferred(kw, &scene.material, &texels, &geometry, &scene.scene).map(|g| {
+            let mut targets = vec![g.rt0, g.rt1, g.rt2, g.rt3];
+            if shadowmask {
+                // RT4 stores the baked occlusion texel as it is (docs/shading.md §13).
+                targets.push(scene.maps.shadowmask.get(x, y));
+            }
+            targets
+        })
     } else {
         let lit = scene.scene.with_main_shadow(main_shadow);
         shade_forward(kw, &scene.material, &texels, &geometry, &lit).map(|c| vec![c])
@@ -136,16 +173,12 @@ pub fn standard_job(
     scene: &TestScene,
     label: &str,
     wgsl: &str,
-    deferred: bool,
-    hdr: bool,
+    output: StandardOutput,
 ) -> RenderJob {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
     job.width = scene.width;
     job.height = scene.height;
-    job.targets = standard_targets(deferred, hdr)
-        .into_iter()
-        .map(|(_, t)| t)
-        .collect();
+    job.targets = output.targets().into_iter().map(|(_, t)| t).collect();
     job.vertex_buffers = vec![scene.quad()];
     job.vertex_count = 6;
     job
@@ -216,8 +249,81 @@ pub fn render_all(
     }
 }
 
+/// A standard pass's variant as the reference sees it.
+#[derive(Clone, Copy, Debug)]
+struct Parsed {
+    /// The material and output keywords.
+    kw: Keywords,
+    /// ForwardAdd's light keyword.
+    light: Option<LightType>,
+    /// The shadow keywords (SHADOWS_SHADOWMASK included).
+    shadow: ShadowKeywords,
+}
+
+impl Parsed {
+    /// Splits the keywords of `choice`.
+    fn of(pass: &Pass, choice: &Choice) -> Result<Parsed, GpuError> {
+        let names = choice.keywords(pass);
+        let (light, names) = LightType::split(&names);
+        let (shadow, names) = ShadowKeywords::split(&names);
+        let kw = Keywords::from_names(&names).map_err(|e| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: choice.label(pass),
+                message: e.to_string(),
+            })
+        })?;
+        Ok(Parsed { kw, light, shadow })
+    }
+
+    /// What the variant writes.
+    fn output(&self, deferred: bool) -> StandardOutput {
+        if deferred {
+            StandardOutput::GBuffer {
+                hdr: self.kw.hdr,
+                shadowmask: self.shadow.shadowmask,
+            }
+        } else {
+            StandardOutput::Forward
+        }
+    }
+}
+
+/// The reference of a standard pass's variant at pixel `i`, `(x, y)`: one value per target
+/// (`Deferred`, `ForwardBase`), or `ForwardAdd`'s colour at the two ends of the light's shadow
+/// interval (a point wherever no shadow tap is within a hair of flipping); `None` where the
+/// pixel is discarded.
+fn reference_pixel(
+    scene: &TestScene,
+    rig: &LightRig,
+    deferred: bool,
+    v: &Parsed,
+    i: usize,
+    (x, y): (u32, u32),
+) -> Option<Vec<Vec4>> {
+    match v.light {
+        Some(light) => {
+            let p = scene.world_position(x, y);
+            let (lo, hi) = rig.lighting_shadow_factor(light, v.shadow, p, i);
+            let a = forward_add_output(scene, rig, &v.kw, light, lo, x, y)?;
+            let b = forward_add_output(scene, rig, &v.kw, light, hi, x, y)?;
+            Some(vec![a, b])
+        }
+        None => {
+            // ForwardBase's main light reads the directional light's mask.
+            let main_shadow = if v.shadow.screen {
+                rig.screen_factor(LightType::Directional, i)
+            } else {
+                1.0
+            };
+            reference_outputs(scene, v.output(deferred), &v.kw, main_shadow, x, y)
+        }
+    }
+}
+
 /// Checks every variant of a standard pass (`Deferred`, `ForwardBase` or `ForwardAdd`; the
-/// last lit by the rig's light of each variant's light keyword).
+/// last lit by the rig's light of each variant's light keyword), or a `cover`-wise covering
+/// set of it plus, for each keyword, a partner pair whose reference says the keyword matters
+/// ([`add_partners`]), so keyword coverage is judged either way.
 #[allow(clippy::too_many_arguments)]
 pub fn check_standard_pass(
     workers: &[Worker<'_>],
@@ -249,36 +355,40 @@ pub fn check_standard_pass(
     // space would leave a shard empty whenever the sample step and the shard count share a
     // factor (`--sample 64 --shard 2/2`).
     let every = sample.max(1);
-    let choices: Vec<Choice> = all
+    let sampled = every > 1 || shard.is_some();
+    let mut choices: Vec<Choice> = all
         .into_iter()
         .step_by(every)
         .enumerate()
         .filter(|(i, _)| shard.is_none_or(|s| s.contains(*i as u64)))
         .map(|(_, c)| c)
         .collect();
+    let partners = if cover.is_some() && !sampled {
+        let image_of = |choice: &Choice| -> Result<Vec<Option<Vec<Vec4>>>, GpuError> {
+            let v = Parsed::of(pass, choice)?;
+            Ok(scene
+                .pixels()
+                .enumerate()
+                .map(|(i, xy)| reference_pixel(scene, rig, deferred, &v, i, xy))
+                .collect())
+        };
+        add_partners(pass, &mut choices, &image_of)?
+    } else {
+        0
+    };
 
     // Compose every variant; render each distinct text once.
     let mut distinct: HashMap<String, usize> = HashMap::new();
     let mut jobs = Vec::new();
     let mut text_of = Vec::with_capacity(choices.len());
-    let mut keywords = Vec::with_capacity(choices.len());
-    let mut lights = Vec::with_capacity(choices.len());
+    let mut parsed = Vec::with_capacity(choices.len());
     let mut job_light: Vec<Option<LightType>> = Vec::new();
-    let mut shadows = Vec::with_capacity(choices.len());
     for choice in &choices {
         let variant = Variant {
             pass,
             choice: choice.clone(),
         };
-        let (light, names) = LightType::split(&variant.keywords());
-        let (shadow, names) = ShadowKeywords::split(&names);
-        shadows.push(shadow);
-        let kw = Keywords::from_names(&names).map_err(|e| {
-            GpuError::from(CheckError::UnknownToReference {
-                variant: variant.label(),
-                message: e.to_string(),
-            })
-        })?;
+        let v = Parsed::of(pass, choice)?;
         let text = lib.wgsl(&variant);
         let index = match distinct.get(&text) {
             Some(&index) => index,
@@ -288,17 +398,15 @@ pub fn check_standard_pass(
                     scene,
                     &variant.label(),
                     &text,
-                    deferred,
-                    kw.hdr,
+                    v.output(deferred),
                 ));
-                job_light.push(light);
+                job_light.push(v.light);
                 distinct.insert(text, index);
                 index
             }
         };
         text_of.push(index);
-        keywords.push(kw);
-        lights.push(light);
+        parsed.push(v);
     }
     report.distinct_shaders = jobs.len();
     report.draws = jobs.len();
@@ -306,35 +414,18 @@ pub fn check_standard_pass(
 
     // Compare every variant with its own reference.
     for (v, choice) in choices.iter().enumerate() {
-        let kw = &keywords[v];
         let label = choice.label(pass);
-        let targets = standard_targets(deferred, kw.hdr);
+        let targets = parsed[v].output(deferred).targets();
         let bytes = &outputs[text_of[v]];
         for (i, (x, y)) in scene.pixels().enumerate() {
-            let expected = match lights[v] {
-                Some(light) => {
-                    // The shadow interval's two ends; the GPU value is held to the interval
-                    // (a point wherever no shadow tap is within a hair of flipping).
-                    let p = scene.world_position(x, y);
-                    let (lo, hi) = rig.lighting_shadow_factor(light, shadows[v], p, i);
-                    let ends = [lo, hi].map(|f| forward_add_output(scene, rig, kw, light, f, x, y));
-                    match ends {
-                        [Some(a), Some(b)] => {
-                            let (_, got) = pixel(targets[0].1.format, &bytes[0], i);
-                            Some(vec![within(got, a, b)])
-                        }
-                        _ => None,
-                    }
+            let reference = reference_pixel(scene, rig, deferred, &parsed[v], i, (x, y));
+            let expected = match reference {
+                // ForwardAdd: the GPU value is held to the shadow interval.
+                Some(ends) if parsed[v].light.is_some() => {
+                    let (_, got) = pixel(targets[0].1.format, &bytes[0], i);
+                    Some(vec![within(got, ends[0], ends[1])])
                 }
-                None => {
-                    // ForwardBase's main light reads the directional light's mask.
-                    let main_shadow = if shadows[v].screen {
-                        rig.screen_factor(LightType::Directional, i)
-                    } else {
-                        1.0
-                    };
-                    reference_outputs(scene, deferred, kw, main_shadow, x, y)
-                }
+                other => other,
             };
             if expected.is_none() {
                 report.discarded_compared += targets.len();
@@ -380,24 +471,29 @@ pub fn check_standard_pass(
     report.keywords = keyword_coverage(pass, &choices, |a, b| {
         decoded[text_of[a]] != decoded[text_of[b]]
     });
+    if sampled {
+        report.notes.push(format!(
+            "sampled every {every}th variant{}: keyword coverage is judged on the full space or a covering set only",
+            shard.map(|s| format!(" of shard {s}")).unwrap_or_default()
+        ));
+    } else {
+        report.judge_keywords();
+    }
     if let Some(t) = cover {
         report.notes.push(format!(
-            "{t}-wise covering set: {} variants contain every {t}-way combination of keyword options; keyword coverage is judged on the full space only",
-            choices.len()
-        ));
-    } else if every == 1 && shard.is_none() {
-        report.judge_keywords();
-    } else {
-        report.notes.push(format!(
-            "sampled every {every}th variant{}: keyword coverage is judged on the full space only",
-            shard.map(|s| format!(" of shard {s}")).unwrap_or_default()
+            "{t}-wise covering set of {} variants (every {t}-way combination of keyword options), plus {partners} partners: for each keyword, the first covering variant with it on whose reference changes with it off is rendered with it off too",
+            choices.len() - partners
         ));
     }
     report.notes.push(format!(
         "{}x{} pixels, {} targets per variant; discarded pixels compared with the clear colour",
         scene.width,
         scene.height,
-        if deferred { 4 } else { 1 }
+        if deferred {
+            "4 (5 with SHADOWS_SHADOWMASK)"
+        } else {
+            "1"
+        }
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
@@ -477,6 +573,42 @@ pub fn keyword_coverage(
         }
     }
     out
+}
+
+/// For each keyword: the first variant with it on whose reference changes when it is turned
+/// off, and that partner added to `choices` unless already there. Returns how many were
+/// added. With these, a covering set's keyword coverage can be judged: each keyword has a
+/// pair whose reference says it matters.
+pub(crate) fn add_partners<T: PartialEq>(
+    pass: &Pass,
+    choices: &mut Vec<Choice>,
+    image_of: &impl Fn(&Choice) -> Result<T, GpuError>,
+) -> Result<usize, GpuError> {
+    let mut present: HashSet<Choice> = choices.iter().cloned().collect();
+    let original = choices.len();
+    for (s, set) in pass.sets.iter().enumerate() {
+        for (o, name) in set.options.iter().enumerate().skip(1) {
+            if name.is_none() {
+                continue;
+            }
+            for v in 0..original {
+                if usize::from(choices[v].0[s]) != o {
+                    continue;
+                }
+                let mut partner = choices[v].0.clone();
+                partner[s] = 0;
+                let partner = Choice(partner);
+                if image_of(&partner)? == image_of(&choices[v])? {
+                    continue;
+                }
+                if present.insert(partner.clone()) {
+                    choices.push(partner);
+                }
+                break;
+            }
+        }
+    }
+    Ok(choices.len() - original)
 }
 
 /// `shader/pass` and every variant of its full space (at most 1000: the small passes the

@@ -9,7 +9,7 @@ use super::compare::pixel;
 use super::deferred::{final_pass, render_chain, render_gbuffer};
 use super::frame::{FrameScene, reference_rgb, render_deferred, render_forward, render_shadows};
 use super::lights::LightRig;
-use super::passes::standard_job;
+use super::passes::{StandardOutput, standard_job};
 use super::scene::TestScene;
 use super::urp::{DEFAULT_SEED, UrpColorPass, UrpScene};
 use super::urp_forward::UrpForwardScene;
@@ -209,7 +209,7 @@ fn light(format: TargetFormat, bytes: &[u8], i: usize) -> [f32; 4] {
 ///
 /// `standard/Deferred`: `albedo` (RT0 rgb), `occlusion` (RT0 a), `specular` (RT1 rgb),
 /// `smoothness` (RT1 a), `normal` (RT2 rgb), `emission` (the light the G-buffer pass wrote to
-/// RT3, decoded), and `final`: with `UNITY_ENABLE_REFLECTION_BUFFERS` after the reflection
+/// RT3, decoded), `shadowmask` (RT4 rgb, with `SHADOWS_SHADOWMASK`), and `final`: with `UNITY_ENABLE_REFLECTION_BUFFERS` after the reflection
 /// probes (also `reflections`, the reflection buffer) and the add pass, then (LDR) the final
 /// pass; without, the final pass (LDR) or RT3 (HDR) directly. `standard/ForwardBase`: `final`
 /// (rgb) and `alpha`. `universal_lit/UniversalGBuffer`: URP's G-buffer views and its lighting
@@ -254,6 +254,15 @@ pub fn render_pictures(
                     |i| light(rt3_format, &t[3], i),
                 ),
             ];
+            if let Some(rt4) = t.get(4) {
+                pictures.push(Picture::from_fn(
+                    "shadowmask",
+                    "RT4 rgba: baked occlusion of four lights (SHADOWS_SHADOWMASK; rgb shown)",
+                    w,
+                    h,
+                    |i| rgb(read(rgba8, rt4, i)),
+                ));
+            }
             let (frame, refl) = if keywords.contains(&"UNITY_ENABLE_REFLECTION_BUFFERS") {
                 let chain = render_chain(ctx, lib, scene, &g)?;
                 let frame = match &chain.frame {
@@ -284,7 +293,12 @@ pub fn render_pictures(
             let variant = lib
                 .variant(shader, pass, keywords)
                 .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
-            let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), false, false);
+            let mut job = standard_job(
+                scene,
+                &variant.label(),
+                &lib.wgsl(&variant),
+                StandardOutput::Forward,
+            );
             job.resources = scene.standard_resources();
             if keywords.contains(&"SHADOWS_SCREEN") {
                 // The main light's screen-space shadow: the check's directional mask.

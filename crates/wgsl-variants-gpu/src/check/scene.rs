@@ -158,6 +158,9 @@ pub struct Maps {
     pub detail_albedo: MapTexture,
     /// `detail_normal` (sampled at the detail uv).
     pub detail_normal: MapTexture,
+    /// `shadowmask_map`: the object's baked occlusion of up to four lights, one per channel
+    /// (the Deferred pass's `SHADOWS_SHADOWMASK` variants copy it to RT4).
+    pub shadowmask: MapTexture,
 }
 
 /// The whole test scene: geometry, material, textures, lighting and probes.
@@ -296,6 +299,16 @@ impl TestScene {
             ]
         });
         let detail_normal = MapTexture::new(w, h, |_, _| normal_texel(&mut rng, 0.35));
+        // Fully lit, fully occluded and partial texels in every channel; its own generator, so
+        // the other maps stay what they were.
+        let mut baked = Rng::new(seed ^ 0x5ad0_4a5c);
+        let shadowmask = MapTexture::new(w, h, |_, _| {
+            [0; 4].map(|_| match baked.pick(&[0u8, 1, 2, 3]) {
+                0 => 255,
+                1 => 0,
+                _ => baked.byte(0.0, 1.0),
+            })
+        });
 
         let scene = Scene {
             camera_position: Vec3::new(0.75, -0.5, 6.0),
@@ -459,6 +472,7 @@ impl TestScene {
                 detail_mask,
                 detail_albedo,
                 detail_normal,
+                shadowmask,
             },
             scene,
             deferred_probes,
@@ -757,6 +771,7 @@ impl StandardBindings<'_> {
             BoundResource::new(1, 8, maps.detail_albedo.resource()),
             BoundResource::new(1, 9, maps.detail_normal.resource()),
             BoundResource::new(2, 0, Resource::Uniform(object)),
+            BoundResource::new(2, 1, maps.shadowmask.resource()),
         ]
     }
 }

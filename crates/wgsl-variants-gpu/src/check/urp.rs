@@ -18,13 +18,13 @@
 //! rendered (and compared with its own reference, like every other variant); the keyword is
 //! proven when the two GPU renderings differ in at least one texel.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::time::Instant;
 
 use glam::{Vec3, Vec4};
 
 use super::compare::format_name;
-use super::passes::{CLEAR, Worker, keyword_coverage, render_all};
+use super::passes::{CLEAR, Worker, add_partners, keyword_coverage, render_all};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MapTexture, Rng, TestScene, cube_resource, push_mat4, push_vec4};
 use crate::urp::writes_shadow_mask;
@@ -558,39 +558,4 @@ pub(crate) fn check_urp_color_pass(
     report.notes.push(spec.note());
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
-}
-
-/// For each keyword: the first variant with it on whose reference changes when it is turned
-/// off, and that partner added to `choices` unless already there. Returns how many were
-/// added.
-fn add_partners(
-    pass: &Pass,
-    choices: &mut Vec<Choice>,
-    image_of: &impl Fn(&Choice) -> Result<Vec<Option<Vec<UrpTexel>>>, GpuError>,
-) -> Result<usize, GpuError> {
-    let mut present: HashSet<Choice> = choices.iter().cloned().collect();
-    let original = choices.len();
-    for (s, set) in pass.sets.iter().enumerate() {
-        for (o, name) in set.options.iter().enumerate().skip(1) {
-            if name.is_none() {
-                continue;
-            }
-            for v in 0..original {
-                if usize::from(choices[v].0[s]) != o {
-                    continue;
-                }
-                let mut partner = choices[v].0.clone();
-                partner[s] = 0;
-                let partner = Choice(partner);
-                if image_of(&partner)? == image_of(&choices[v])? {
-                    continue;
-                }
-                if present.insert(partner.clone()) {
-                    choices.push(partner);
-                }
-                break;
-            }
-        }
-    }
-    Ok(choices.len() - original)
 }

@@ -116,6 +116,7 @@ impl UrpForwardScene {
                 cube: false,
                 screen: false,
                 soft: k.shadows_soft,
+                ..ShadowKeywords::default()
             },
             ShadowMaps {
                 map: Some(&self.shadow.map),

@@ -297,6 +297,7 @@ pub fn check_stencil_deferred(
                                 cube: false,
                                 screen: false,
                                 soft: k.soft,
+                                ..ShadowKeywords::default()
                             },
                             ShadowMaps {
                                 map: Some(&main_shadow.map),

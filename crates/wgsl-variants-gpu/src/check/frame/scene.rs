@@ -90,6 +90,8 @@ impl FrameObject {
             detail_mask: map(5),
             detail_albedo: map(6),
             detail_normal: map(7),
+            // Unoccluded: the frame's materials do not use the Shadowmask modes.
+            shadowmask: MapTexture::new(1, 1, |_, _| [255; 4]),
         }
     }
 

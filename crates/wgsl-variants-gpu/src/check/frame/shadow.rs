@@ -125,14 +125,6 @@ pub struct FrameShadows {
 }
 
 impl FrameShadows {
-    /// No shadows for a frame with `lights` per-pixel lights.
-    pub fn none(lights: usize) -> FrameShadows {
-        FrameShadows {
-            main: None,
-            lights: vec![None; lights],
-        }
-    }
-
     /// Every shadow, the main light's first.
     pub fn iter(&self) -> impl Iterator<Item = &FrameShadow> {
         self.main.iter().chain(self.lights.iter().flatten())
@@ -322,6 +314,7 @@ fn render_shadow(
         cube,
         screen: directional,
         soft: spec.soft,
+        ..ShadowKeywords::default()
     };
     if cube {
         let range = 1.0 / params.inv_range;
