@@ -19,7 +19,7 @@
 mod common;
 
 use wgsl_variants::Library;
-use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, PassReport, TestScene, pictures};
+use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, TestScene, pictures};
 
 /// Every n-th variant of the standard passes (`WGSL_VARIANTS_GPU_SAMPLE`, default 1: all).
 fn sample() -> usize {
@@ -110,37 +110,15 @@ fn deferred_every_variant_matches_the_reference() {
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 
-/// Checks a 3-wise covering set of `standard/<pass>` plus, for each of its `keywords`, a
-/// partner pair whose reference says the keyword matters, and asserts that every keyword was
-/// seen to change pixels; returns the report's pass (`None`: skipped).
-fn covering_set_matches(lib: &Library, pass: &str, keywords: usize) -> Option<PassReport> {
-    let report = run_options(lib, Some("standard"), Some(pass), |o| o.cover = Some(3))?;
-    let p = report.passes[0].clone();
-    let space = lib.pass("standard", pass).unwrap();
-    let covering = wgsl_variants::Space::full(space).covering(3).unwrap().len();
-    assert!(
-        p.variants_run > covering && p.variants_run <= covering + keywords,
-        "{report}"
-    );
-    assert_pass(&report, "standard", pass, p.variants_run);
-    assert!(p.discarded_compared > 0);
-    assert_eq!(
-        p.keywords.len(),
-        keywords,
-        "every keyword of the pass is covered"
-    );
-    assert!(p.untested_keywords.is_empty(), "{report}");
-    Some(p)
-}
-
 /// CI's form of the full-space test above: Deferred's covering set with keyword partners.
 #[test]
 fn deferred_covering_set_matches_the_reference() {
     let lib = Library::bundled().unwrap();
-    let Some(p) = covering_set_matches(&lib, "Deferred", 13) else {
+    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "Deferred", 13) else {
         return;
     };
-    // 4 targets per variant, 5 with RT4; some of each.
+    // 4 targets per variant, 5 with RT4; some of each; cutout discards some pixels.
+    assert!(p.discarded_compared > 0);
     let v = p.variants_run * 256;
     assert!(p.pixels_compared > 4 * v && p.pixels_compared < 5 * v);
 }
@@ -149,9 +127,10 @@ fn deferred_covering_set_matches_the_reference() {
 #[test]
 fn forward_base_covering_set_matches_the_reference() {
     let lib = Library::bundled().unwrap();
-    let Some(p) = covering_set_matches(&lib, "ForwardBase", 13) else {
+    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardBase", 13) else {
         return;
     };
+    assert!(p.discarded_compared > 0);
     assert_eq!(p.pixels_compared, p.variants_run * 256);
 }
 
