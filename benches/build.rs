@@ -23,6 +23,70 @@ fn pool(threads: usize) -> rayon::ThreadPool {
         .expect("thread pool")
 }
 
+/// Average sizes per variant before and after reachability (`src/reach`): the lean text (what
+/// is validated), the text `emit` prints (with comments), and the SPIR-V naga writes from each
+/// text as it is (what a renderer that hands the text to wgpu pays), every 8th variant.
+fn sizes(
+    lib: &Library,
+    pass: &wgsl_variants::Pass,
+    choices: &[wgsl_variants::Choice],
+) -> serde_json::Value {
+    let spirv = |text: &str| {
+        let module = naga::front::wgsl::parse_str(text).expect("parses");
+        let info = common::validator().validate(&module).expect("valid");
+        naga::back::spv::write_vec(&module, &info, &naga::back::spv::Options::default(), None)
+            .expect("SPIR-V")
+            .len()
+            * 4
+    };
+    let per: Vec<[usize; 6]> = choices
+        .par_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let v = Variant {
+                pass,
+                choice: c.clone(),
+            };
+            let (lean, lean_all) = (lib.wgsl(&v), lib.compose_unpruned(&v, false).text);
+            let emitted = lib.compose(&v).text.len();
+            let emitted_all = lib.compose_unpruned(&v, true).text.len();
+            let (spv, spv_all) = if i % 8 == 0 {
+                (spirv(&lean), spirv(&lean_all))
+            } else {
+                (0, 0)
+            };
+            [
+                lean.len(),
+                lean_all.len(),
+                emitted,
+                emitted_all,
+                spv,
+                spv_all,
+            ]
+        })
+        .collect();
+    let avg = |k: usize, every: usize| {
+        let n = per.iter().step_by(every).count() as f64;
+        per.iter().step_by(every).map(|p| p[k]).sum::<usize>() as f64 / n / 1024.0
+    };
+    let rows = [
+        ("lean text (validated)", avg(0, 1), avg(1, 1)),
+        ("emitted text (`emit`)", avg(2, 1), avg(3, 1)),
+        ("SPIR-V of the text (every 8th)", avg(4, 8), avg(5, 8)),
+    ];
+    println!("per variant, KB on average: after reachability / before");
+    for (name, after, before) in rows {
+        println!(
+            "  {name:<32} {after:>7.1} / {before:>7.1} ({:.0} %)",
+            100.0 * after / before
+        );
+    }
+    json!(rows
+        .iter()
+        .map(|(name, after, before)| json!({"size": name, "kb_after": after, "kb_before": before}))
+        .collect::<Vec<_>>())
+}
+
 fn main() {
     if common::memory_child() {
         return;
@@ -39,6 +103,8 @@ fn main() {
         choices.len(),
         bytes / 1024.0
     );
+
+    let sizes = sizes(&lib, pass, &choices);
 
     let one = pool(1);
     let two = pool(2);
@@ -180,6 +246,7 @@ fn main() {
         "rounds": rounds,
         "variants": choices.len(),
         "composed_bytes_avg": bytes,
+        "sizes_before_and_after_reachability": sizes,
         "method": "contestants interleaved slice by slice; ratios are medians of per-round ratios",
         "naga_floor_ms_per_variant": per(common::median_of(floor)),
         "ours_ms_per_variant": per(common::median_of(ours)),

@@ -26,7 +26,8 @@
 //! ## The pipeline, one module per stage
 //!
 //! 1. [`source`] reads files; [`preprocess`] splits WGSL lines, parses directives and composes
-//!    a variant; [`library`] loads and links a tree ([`LoadError`] holds every problem, typed).
+//!    a variant; [`library`] loads and links a tree ([`LoadError`] holds every problem, typed);
+//!    [`reach`] leaves out of a variant's text the items its entry points do not reach.
 //! 2. [`keywords`], [`shader`], [`variants`] ([`Space`], [`Choice`]), [`lookup`] and
 //!    [`materials`] model Unity's keyword semantics; [`plan`] chooses what a command builds.
 //! 3. [`validate`] runs naga ([`cache`] remembers valid texts); [`audit`] measures a variant
@@ -57,6 +58,7 @@ pub mod materials;
 pub mod merge;
 pub mod plan;
 pub mod preprocess;
+pub mod reach;
 pub mod reference;
 pub mod reflect;
 pub mod shader;

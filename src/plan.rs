@@ -47,6 +47,10 @@ pub struct PlanOptions {
     /// the others are built whole. This is how the tests and CI treat a library with a few huge
     /// passes: every variant of the small passes, a t-wise covering set of the huge ones.
     pub cover_above: Option<u64>,
+    /// Validation also validates the text of each variant as composed, before reachability
+    /// leaves out the items no entry point reaches ([`crate::Library::compose_unpruned`]), once
+    /// per distinct such text: a broken helper nobody calls is an error too.
+    pub strict: bool,
 }
 
 impl Default for PlanOptions {
@@ -60,6 +64,7 @@ impl Default for PlanOptions {
             shard: None,
             cover: None,
             cover_above: None,
+            strict: false,
         }
     }
 }

@@ -356,7 +356,10 @@ pub fn validate_plan(
                 choices.iter().cloned(),
                 cache,
                 progress,
-                options.shard.is_some(),
+                Keyed {
+                    keep_seen: options.shard.is_some(),
+                    strict: options.strict,
+                },
             );
             let seen = report.seen.take();
             if let Some(shard) = options.shard {
@@ -421,18 +424,27 @@ pub fn validate_pass_with(
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    validate_keyed(lib, pass, choices, cache, progress, false)
+    validate_keyed(lib, pass, choices, cache, progress, Keyed::default())
 }
 
-/// [`validate_pass_with`]; with `keep_seen`, the report keeps the dedup keys of the texts seen
-/// (when they were collected) for a shard's `texts`.
+/// How [`validate_keyed`] runs beyond [`validate_pass_with`].
+#[derive(Clone, Copy, Default)]
+struct Keyed {
+    /// The report keeps the dedup keys of the texts seen (when they were collected) for a
+    /// shard's `texts`.
+    keep_seen: bool,
+    /// Also validate each distinct unpruned text ([`PlanOptions::strict`]).
+    strict: bool,
+}
+
+/// [`validate_pass_with`], with the options of [`Keyed`].
 fn validate_keyed(
     lib: &Library,
     pass: &Pass,
     choices: impl IntoIterator<Item = Choice>,
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
-    keep_seen: bool,
+    how: Keyed,
 ) -> PassReport {
     // Keys (128 bits of the text's hash) of the texts seen; not kept when the audit proves
     // that no two variants share a text, so memory does not grow with the space.
@@ -443,6 +455,9 @@ fn validate_keyed(
     type Failing = (VariantError, u128, Vec<(u64, Choice)>);
     let mut failures: Vec<Failing> = Vec::new();
     let mut failing: HashMap<u128, usize> = HashMap::new();
+    // With `strict`: the keys of the unpruned texts seen (kept whatever the audit proves: a
+    // pruned text can stand for several unpruned ones).
+    let mut seen_unpruned: HashSet<u128> = HashSet::new();
     let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
     let mut choices = choices.into_iter();
     let (mut built, mut distinct) = (0u64, 0u64);
@@ -471,24 +486,11 @@ fn validate_keyed(
         let results: Vec<Option<VariantError>> = fresh
             .par_iter()
             .map_init(validator, |validator, &j| {
-                let (hash, text) = &composed[j];
-                if cache.is_some_and(|c| c.contains(hash)) {
-                    return None;
-                }
                 let variant = Variant {
                     pass,
                     choice: chunk[j].clone(),
                 };
-                let result = match validate_with(text, &variant.label(), validator) {
-                    Ok(_) => None,
-                    Err(_) => {
-                        validate_with(&lib.compose(&variant), &variant.label(), validator).err()
-                    }
-                };
-                if let (None, Some(cache)) = (&result, cache) {
-                    cache.insert(*hash);
-                }
-                result
+                check(&variant, &composed[j], cache, validator, |v| lib.compose(v))
             })
             .collect();
         drop(composed);
@@ -498,10 +500,64 @@ fn validate_keyed(
                 failures.push((error, keys[j], Vec::new()));
             }
         }
+        // The unpruned texts of the variants whose program is valid, each validated once.
+        let mut unpruned_keys: Vec<Option<u128>> = vec![None; chunk.len()];
+        if how.strict {
+            let texts: Vec<Option<(Hash, Composed)>> = (0..chunk.len())
+                .into_par_iter()
+                .map(|j| {
+                    (!failing.contains_key(&keys[j])).then(|| {
+                        let text = lib.compose_unpruned(
+                            &Variant {
+                                pass,
+                                choice: chunk[j].clone(),
+                            },
+                            false,
+                        );
+                        (crate::cache::hash(&text.text), text)
+                    })
+                })
+                .collect();
+            for (j, text) in texts.iter().enumerate() {
+                unpruned_keys[j] = text.as_ref().map(|(h, _)| key(h));
+            }
+            let fresh: Vec<usize> = (0..chunk.len())
+                .filter(|&j| unpruned_keys[j].is_some_and(|k| seen_unpruned.insert(k)))
+                .collect();
+            let results: Vec<Option<VariantError>> = fresh
+                .par_iter()
+                .map_init(validator, |validator, &j| {
+                    let variant = Variant {
+                        pass,
+                        choice: chunk[j].clone(),
+                    };
+                    let text = texts[j].as_ref().expect("composed above");
+                    check(&variant, text, cache, validator, |v| {
+                        lib.compose_unpruned(v, true)
+                    })
+                    .map(|mut e| {
+                        e.notes.push(
+                            "in code no entry point of this variant reaches (--strict)".into(),
+                        );
+                        e
+                    })
+                })
+                .collect();
+            for (&j, result) in fresh.iter().zip(results) {
+                if let Some(error) = result {
+                    let k = unpruned_keys[j].expect("composed above");
+                    failing.insert(k, failures.len());
+                    failures.push((error, k, Vec::new()));
+                }
+            }
+        }
         let first = built - keys.len() as u64;
         if !failing.is_empty() {
             for (j, (choice, k)) in chunk.into_iter().zip(&keys).enumerate() {
-                if let Some(&f) = failing.get(k) {
+                let failure = failing
+                    .get(k)
+                    .or_else(|| unpruned_keys[j].and_then(|u| failing.get(&u)));
+                if let Some(&f) = failure {
                     failures[f].2.push((first + j as u64, choice));
                 }
             }
@@ -534,8 +590,31 @@ fn validate_keyed(
             })
             .collect(),
         texts: None,
-        seen: seen.filter(|_| keep_seen),
+        seen: seen.filter(|_| how.keep_seen),
     }
+}
+
+/// Validates one composed text of `variant` unless `cache` knows it valid (and remembers it
+/// when it is); a failing text is composed again with its line map (`with_map`) to locate the
+/// error.
+fn check(
+    variant: &Variant<'_>,
+    (hash, text): &(Hash, Composed),
+    cache: Option<&ValidCache>,
+    validator: &mut naga::valid::Validator,
+    with_map: impl Fn(&Variant<'_>) -> Composed,
+) -> Option<VariantError> {
+    if cache.is_some_and(|c| c.contains(hash)) {
+        return None;
+    }
+    let result = match validate_with(text, &variant.label(), validator) {
+        Ok(_) => None,
+        Err(_) => validate_with(&with_map(variant), &variant.label(), validator).err(),
+    };
+    if let (None, Some(cache)) = (&result, cache) {
+        cache.insert(*hash);
+    }
+    result
 }
 
 /// The dedup key of a text: 128 bits of its BLAKE3 hash (a collision among 10^12 texts has a

@@ -2,7 +2,8 @@
 //! this crate depends on (naga, naga_oil, wgpu*), plus every `.wgsl` file under the folder named
 //! by `WGSL_VARIANTS_WGSL_CORPUS` if set. A file without directive-looking lines, imported as a
 //! module into a one-pass shader, must compose (full and lean) to a text naga treats exactly
-//! as the file itself: the same module written back to WGSL, or the same error message.
+//! as the file itself: the same module written back to WGSL, or the same error message; and
+//! when naga accepts the file, it accepts the variant's pruned text (`src/reach`) too.
 
 use wgsl_variants_fuzz_checks as checks;
 
@@ -105,9 +106,12 @@ impl Figures {
             }
         };
         let v = lib.variant("t", "P", &[] as &[&str]).expect("the pass");
-        let full = checks::naga_outcome(&lib.compose(&v).text);
-        let lean = checks::naga_outcome(&lib.wgsl(&v));
-        if full == own && lean == own {
+        // The preprocessor's pass-through: the composed text before reachability.
+        let full = checks::naga_outcome(&lib.compose_unpruned(&v, true).text);
+        let lean = checks::naga_outcome(&lib.compose_unpruned(&v, false).text);
+        // Reachability keeps every item an entry point uses: what naga accepts stays accepted.
+        let pruned = checks::naga_outcome(&lib.wgsl(&v));
+        if full == own && lean == own && (own.is_err() || pruned.is_ok()) {
             self.identical += 1;
             self.accepted += own.is_ok() as usize;
         } else {
@@ -116,11 +120,12 @@ impl Figures {
                 Err(e) => format!("rejected: {e}"),
             };
             self.differing.push(format!(
-                "{}: file {}, full {}, lean {}",
+                "{}: file {}, full {}, lean {}, pruned {}",
                 path.display(),
                 show(&own),
                 show(&full),
-                show(&lean)
+                show(&lean),
+                show(&pruned)
             ));
         }
     }

@@ -54,7 +54,12 @@ const DEAD_AND_BROKEN: &str = "#pragma multi_compile _ A
 #ifdef A
 fn f() -> f32 { return missing; }
 #endif
-@fragment fn fs_main() -> @location(0) vec4f { return vec4f(1.0); }";
+@fragment fn fs_main() -> @location(0) vec4f {
+#ifdef A
+    _ = f();
+#endif
+    return vec4f(1.0);
+}";
 
 #[test]
 fn a_shared_failing_text_is_validated_once_and_counted_per_keyword_set() {
@@ -83,17 +88,17 @@ const T: f32 = 1.0;
 const T: f32 = 2.0;
 #endif
 #if defined(HIGH) && defined(B)
-fn f() -> f32 { return missing; }
+@fragment fn f() -> @location(0) vec4f { return missing; }
 #elif defined(MID)
-fn f() -> f32 { return 1.0; }
+@fragment fn f() -> @location(0) vec4f { return vec4f(1.0); }
 #endif
 #ifdef A
-fn g() -> f32 { return 2.0; }
+@fragment fn g() -> @location(0) vec4f { return vec4f(2.0); }
 #endif
 #ifdef B
-fn h() -> f32 { return 3.0; }
+@fragment fn h() -> @location(0) vec4f { return vec4f(3.0); }
 #endif
-@fragment fn fs_main() -> @location(0) vec4f { return vec4f(1.0); }";
+@fragment fn fs_main() -> @location(0) vec4f { return vec4f(T); }";
     let lib = lib(body);
     assert!(proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
     let r = report(&lib, 1);
@@ -103,6 +108,31 @@ fn h() -> f32 { return 3.0; }
     assert_eq!(r.failures.len(), 2);
     assert!(r.failures.iter().all(|f| f.keyword_sets.len() == 1));
     assert_eq!(summary(&r), summary(&report(&lib, 2)));
+}
+
+#[test]
+fn a_keyword_that_changes_only_unreached_code_makes_one_program() {
+    let body = "#pragma multi_compile _ A
+#ifdef A
+fn unused() -> f32 { return missing; }
+#endif
+@fragment fn fs_main() -> @location(0) vec4f { return vec4f(1.0); }";
+    let lib = lib(body);
+    let pass = lib.pass("s", "P").unwrap();
+    // The audit counts two composed texts; reachability leaves one program, valid.
+    let audit = wgsl_variants::audit::audit_pass(&lib, pass, &Default::default()).unwrap();
+    assert_eq!(audit.distinct.count, 2u32.into());
+    assert!(!proves_all_distinct(&lib, pass));
+    let r = report(&lib, 2);
+    assert_eq!((r.built, r.distinct, r.valid, r.invalid), (2, 1, 2, 0));
+    assert_eq!(r.distinct, distinct_by_text(&lib));
+    assert_eq!(
+        wgsl_variants::reach::unreached(&lib, pass),
+        [wgsl_variants::reach::Unreached {
+            module: "s".into(),
+            names: vec!["unused".into()],
+        }]
+    );
 }
 
 #[test]

@@ -138,6 +138,11 @@ pub fn audit_pass(
 /// variants share a text, or the analysis could not certify an exact count within its default
 /// per-component limit.
 ///
+/// The texts are the ones validated: pruned of unreached items ([`crate::reach`]). The static
+/// analysis proves the composed texts distinct, so the proof also needs pruning to leave every
+/// variant as composed ([`crate::reach::prunes_nothing`]): otherwise two variants that differ
+/// only in items no entry point reaches would share a pruned text.
+///
 /// Validation uses this to skip its index of seen texts: when every text is different, each
 /// variant is validated once anyway, and memory stays the same however large the space.
 /// For a tree in another dialect (naga_oil) it is never proved.
@@ -145,8 +150,18 @@ pub fn audit_pass(
 /// ```
 /// use wgsl_variants::{Library, audit};
 ///
+/// // A changes what the entry point returns: two programs.
+/// let lib = Library::from_sources([(
+///     "s.wgsl",
+///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#ifdef A\nconst X = 1.0;\n#else\n\
+///      const X = 0.0;\n#endif\n@fragment fn fs() -> @location(0) vec4f { return vec4f(X); }\n#endpass",
+/// )])
+/// .unwrap();
+/// assert!(audit::proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
+///
+/// // The bundled shadow casters compose the surface functions, and reach none of them.
 /// let lib = Library::bundled().unwrap();
-/// assert!(audit::proves_all_distinct(&lib, lib.pass("standard", "Deferred").unwrap()));
+/// assert!(!audit::proves_all_distinct(&lib, lib.pass("standard", "ShadowCaster").unwrap()));
 ///
 /// // DEAD changes no code: both of its variants compose to the same text.
 /// let lib = Library::from_sources([(
@@ -169,7 +184,7 @@ pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
         whole: 0,
     };
     let full = distinct::analyze(&graph, &ids, pass, Space::full(pass), limits);
-    full.exact && full.distinct == full.count
+    full.exact && full.distinct == full.count && crate::reach::prunes_nothing(lib, pass)
 }
 
 /// Audits several passes (in parallel; the result is in the order given).
@@ -231,7 +246,9 @@ fn audit_with<'p>(
             a.method = Method::Bound;
         }
     }
-    Ok(report::assemble(pass, &full, &after, &build, used))
+    let mut audit = report::assemble(pass, &full, &after, &build, used);
+    audit.unreached = crate::reach::unreached(lib, pass);
+    Ok(audit)
 }
 
 /// Whether a def of one of `pass`'s valued sets (`NAME=VALUE` keywords) reaches code in a

@@ -156,6 +156,11 @@ pub struct PassAudit {
     pub sets: Vec<SetAudit>,
     /// Whether dead keywords and the other findings are complete.
     pub findings_exact: bool,
+    /// Per module, the top-level items no variant of the pass reaches
+    /// ([`crate::reach::unreached()`]): composed into the texts, left out of every program, so
+    /// never validated without `validate --strict`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub unreached: Vec<crate::reach::Unreached>,
     /// Whether materials were given.
     #[serde(skip)]
     pub materials: bool,
@@ -341,6 +346,7 @@ pub(crate) fn assemble(
         together,
         identical_code: groups(pass, build),
         findings_exact,
+        unreached: Vec::new(),
         materials: used.is_some(),
     }
 }

@@ -5,6 +5,7 @@
 use std::collections::BTreeSet;
 
 use crate::library::Library;
+use crate::preprocess::lines::comment_step;
 use crate::preprocess::tree::Node;
 
 /// What a module declares at top level and which identifiers it uses (all branches).
@@ -173,23 +174,4 @@ impl Scanner {
         }
         self.scan.used.insert(word.to_string());
     }
-}
-
-/// Inside a comment or at its start: the bytes to skip (a whole `//` comment, a `/*` or `*/`,
-/// or one character of a block comment), updating the block-comment nesting `depth`; `None`
-/// at code. Steps whole characters, so comments may hold any text.
-pub(crate) fn comment_step(rest: &str, depth: &mut u32) -> Option<usize> {
-    if rest.starts_with("/*") {
-        *depth += 1;
-        return Some(2);
-    }
-    if *depth > 0 {
-        if rest.starts_with("*/") {
-            *depth -= 1;
-            return Some(2);
-        }
-        return Some(rest.chars().next().map_or(1, char::len_utf8));
-    }
-    rest.starts_with("//")
-        .then(|| rest.find('\n').unwrap_or(rest.len()))
 }

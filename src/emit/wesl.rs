@@ -40,8 +40,9 @@ use crate::preprocess::tree::Node;
 
 use super::export::{ExportError, dependency_order, import_closure, library_order, module_index};
 use super::naga_oil::import_path;
-use super::scan::{Scan, comment_step, scan_library, scan_nodes};
+use super::scan::{Scan, scan_library, scan_nodes};
 use crate::keywords::ConstraintKind;
+use crate::preprocess::lines::comment_step;
 use crate::preprocess::tree::SetKind;
 use crate::shader::Pass;
 

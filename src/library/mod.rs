@@ -445,19 +445,27 @@ impl Library {
         Ok(Space::build_set(pass, features))
     }
 
-    /// Composes a variant: the final WGSL text and its map back to the original files.
+    /// Composes a variant: the final WGSL text and its map back to the original files. The text
+    /// keeps only the top-level items the entry points reach ([`crate::reach`]).
     pub fn compose(&self, variant: &Variant<'_>) -> Composed {
-        self.compose_with(variant, true)
+        self.compose_with(variant, true, true)
     }
 
     /// The lean composition of a variant: the same program as [`Library::compose`] without
     /// blank and comment-only lines and without the line map (for hashing and validating;
     /// compose again with the map to locate an error).
     pub fn compose_text(&self, variant: &Variant<'_>) -> Composed {
-        self.compose_with(variant, false)
+        self.compose_with(variant, false, true)
     }
 
-    fn compose_with(&self, variant: &Variant<'_>, with_map: bool) -> Composed {
+    /// The composition of a variant with every item of every module it imports, reached or not
+    /// (what `validate --strict` also validates), lean or `with_map`. For a tree in another
+    /// dialect this is [`Library::compose`]'s text: its composer decides what it keeps.
+    pub fn compose_unpruned(&self, variant: &Variant<'_>, with_map: bool) -> Composed {
+        self.compose_with(variant, with_map, false)
+    }
+
+    fn compose_with(&self, variant: &Variant<'_>, with_map: bool, prune: bool) -> Composed {
         if self.dialect != crate::Dialect::WgslVariants {
             return self.compose_by_engine(variant);
         }
@@ -466,13 +474,18 @@ impl Library {
             resolved: &self.resolved,
             files: &self.files,
         };
-        compose(
+        let composed = compose(
             &graph,
             variant.pass.module,
             &variant.pass.body,
             variant.choice.defines(variant.pass),
             with_map,
-        )
+        );
+        if prune {
+            crate::reach::prune(composed)
+        } else {
+            composed
+        }
     }
 
     /// A naga_oil or WESL tree's variant, composed by naga_oil or the `wesl` crate: its

@@ -239,7 +239,8 @@ mod tests {
              #pragma multi_compile X Y Z\n\
              #ifdef BAD\nfn f() -> f32 { return vec2f(1.0); }\n#endif\n\
              #ifdef WORSE\nfn g() -> i32 { return 1.0; }\n#endif\n\
-             @fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }\n#endpass\n",
+             @fragment fn fs() -> @location(0) vec4f {\n#ifdef BAD\n_ = f();\n#endif\n\
+             #ifdef WORSE\n_ = g();\n#endif\nreturn vec4f(1.0);\n}\n#endpass\n",
         )])
         .unwrap()
     }

@@ -23,6 +23,13 @@ impl LineMap {
         self.entries.len()
     }
 
+    /// Where output line `line` came from: its file and the byte its copy starts at.
+    pub(crate) fn line_source(&self, line: usize) -> Option<(FileId, usize)> {
+        self.entries
+            .get(line)
+            .map(|&(_, file, src)| (file, src as usize))
+    }
+
     /// Whether no line is mapped.
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()

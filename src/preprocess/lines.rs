@@ -150,6 +150,25 @@ fn comment_depth_after(line: &str, mut depth: usize) -> usize {
     depth
 }
 
+/// Inside a comment or at its start: the bytes to skip (a whole `//` comment, a `/*` or `*/`,
+/// or one character of a block comment), updating the block-comment nesting `depth`; `None`
+/// at code. Steps whole characters, so comments may hold any text.
+pub(crate) fn comment_step(rest: &str, depth: &mut u32) -> Option<usize> {
+    if rest.starts_with("/*") {
+        *depth += 1;
+        return Some(2);
+    }
+    if *depth > 0 {
+        if rest.starts_with("*/") {
+            *depth -= 1;
+            return Some(2);
+        }
+        return Some(rest.chars().next().map_or(1, char::len_utf8));
+    }
+    rest.starts_with("//")
+        .then(|| rest.find('\n').unwrap_or(rest.len()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -19,8 +19,8 @@ pub use timing::*;
 pub use workload::*;
 
 /// A synthetic library: one pass with a three-way `multi_compile` set and `keywords` two-way
-/// sets (3 × 2^keywords variants), each keyword guarding a function of its own, so every
-/// variant is distinct. With `dead`, one more two-way set changes no code, so every text is
+/// sets (3 × 2^keywords variants), each keyword guarding an entry point of its own (entry
+/// points are always kept: nothing is pruned), so every variant is distinct. With `dead`, one more two-way set changes no code, so every text is
 /// shared by two variants and validation keeps its index of seen texts.
 pub fn synthetic(keywords: usize, dead: bool) -> Library {
     let mut body = String::from("#pragma multi_compile TIER_LOW TIER_MID TIER_HIGH\n");
@@ -34,7 +34,7 @@ pub fn synthetic(keywords: usize, dead: bool) -> Library {
     body.push_str("const TIER: f32 = 1.0;\n#else\nconst TIER: f32 = 0.0;\n#endif\n");
     for k in 0..keywords {
         body.push_str(&format!(
-            "#ifdef K{k}\nfn f{k}(x: f32) -> f32 {{ return x * {k}.0 + TIER; }}\n#endif\n"
+            "#ifdef K{k}\n@fragment fn f{k}() -> @location(0) vec4f {{ return vec4f({k}.0 + TIER); }}\n#endif\n"
         ));
     }
     body.push_str("@fragment fn fs_main() -> @location(0) vec4f { return vec4f(TIER); }\n");

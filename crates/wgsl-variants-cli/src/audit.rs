@@ -77,7 +77,9 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
             wgsl_variants::Dialect::Wesl => println!(
                 "note: a WESL tree: \"distinct\" counts the texts left by the `@if` conditions, an upper bound on the programs the wesl crate composes (it keeps only the declarations the entry points reach)"
             ),
-            _ => {}
+            _ => println!(
+                "note: \"distinct\" counts composed texts; each variant keeps only the items its entry points reach, so `validate` counts programs (at most as many). Items \"unreachable in every variant\" are in no program: `validate --strict` validates them too"
+            ),
         }
     }
     for v in report.over_budget() {
@@ -166,7 +168,7 @@ fn table(passes: &[AuditedPass]) -> String {
     for a in passes
         .iter()
         .map(|p| &p.audit)
-        .filter(|a| !a.sets.is_empty())
+        .filter(|a| !a.sets.is_empty() || !a.unreached.is_empty())
     {
         out.push('\n');
         out.push_str(&pass_details(a));
@@ -219,7 +221,9 @@ fn pass_details(a: &PassAudit) -> String {
             distinct,
         ]);
     }
-    out.push_str(&columns(&rows, "  ", 2));
+    if !a.sets.is_empty() {
+        out.push_str(&columns(&rows, "  ", 2));
+    }
     let mut notes = Vec::new();
     let mut groups: Vec<Vec<String>> = Vec::new();
     for s in a.sets.iter().filter(|s| !s.coupled_with.is_empty()) {
@@ -279,6 +283,13 @@ fn pass_details(a: &PassAudit) -> String {
     }
     if !a.findings_exact {
         notes.push("findings are incomplete: a group of coupled sets was too large".into());
+    }
+    for u in &a.unreached {
+        notes.push(format!(
+            "unreachable in every variant: {}: {}",
+            u.module,
+            u.names.join(", ")
+        ));
     }
     for n in notes {
         out.push_str("  - ");

@@ -27,6 +27,10 @@ pub struct RunArgs {
     /// Validate everything again; neither read nor write the cache.
     #[arg(long, conflicts_with = "cache")]
     no_cache: bool,
+    /// Also validate each variant's text as composed, before the items no entry point reaches
+    /// are left out (once per distinct such text): a broken helper nobody calls is an error.
+    #[arg(long)]
+    strict: bool,
 }
 
 impl RunArgs {
@@ -40,7 +44,8 @@ impl RunArgs {
 
 pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result<ExitCode, Failed> {
     let cache = run.cache_dir().map(|dir| super::cache::open(&dir));
-    let options = ctx.plan_options(build, all, run.shard)?;
+    let mut options = ctx.plan_options(build, all, run.shard)?;
+    options.strict = run.strict;
     let plan = ctx.plan(&options)?;
     let bar = progress(plan.iter().map(|p| p.1.len() as u64).sum(), "validating");
     let report = validate_plan(&ctx.lib, &plan, &options, cache.as_ref(), &|n| bar.inc(n));
@@ -136,12 +141,17 @@ fn cover_report(
             let failing = &choices[index];
             println!("  failing variant #{index}: {}", failing.label(pass));
             let fails = |c: &wgsl_variants::Choice| {
-                ctx.lib
-                    .naga_module(&Variant {
-                        pass,
-                        choice: c.clone(),
-                    })
-                    .is_err()
+                let v = Variant {
+                    pass,
+                    choice: c.clone(),
+                };
+                ctx.lib.naga_module(&v).is_err()
+                    || (options.strict
+                        && wgsl_variants::validate::validate_composed(
+                            &ctx.lib.compose_unpruned(&v, true),
+                            &v.label(),
+                        )
+                        .is_err())
             };
             let small = shrink(&space, failing, fails);
             // The tuples the shrunk variant shares come first: they name the culprits.
