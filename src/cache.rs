@@ -190,7 +190,7 @@ fn write_segment(folder: &Path, hashes: &[Hash]) -> std::io::Result<PathBuf> {
 pub struct ValidCache {
     folder: PathBuf,
     known: HashSet<Hash>,
-    added: Mutex<Vec<Hash>>,
+    added: Mutex<HashSet<Hash>>,
     /// Segments read at open (removed when a save compacts).
     segments: Vec<PathBuf>,
     corrupt: usize,
@@ -204,11 +204,7 @@ impl ValidCache {
         let folder = dir.join(key());
         let mut cache = ValidCache {
             folder,
-            known: HashSet::new(),
-            added: Mutex::new(Vec::new()),
-            segments: Vec::new(),
-            corrupt: 0,
-            problems: Vec::new(),
+            ..ValidCache::in_memory()
         };
         let mut paths: Vec<PathBuf> = std::fs::read_dir(&cache.folder)
             .map(|entries| {
@@ -250,15 +246,28 @@ impl ValidCache {
         cache
     }
 
-    /// Whether a text with this hash is known to be valid.
+    /// A cache in memory only, which [`save`](Self::save) never writes: what validating
+    /// again and again in one process ([`crate::watch::Session`]) remembers without a folder.
+    pub fn in_memory() -> ValidCache {
+        ValidCache {
+            folder: PathBuf::new(),
+            known: HashSet::new(),
+            added: Mutex::new(HashSet::new()),
+            segments: Vec::new(),
+            corrupt: 0,
+            problems: Vec::new(),
+        }
+    }
+
+    /// Whether a text with this hash is known to be valid (read at open or inserted since).
     pub fn contains(&self, hash: &Hash) -> bool {
-        self.known.contains(hash)
+        self.known.contains(hash) || self.added.lock().is_ok_and(|a| a.contains(hash))
     }
 
     /// Records a text that validated.
     pub fn insert(&self, hash: Hash) {
         if let Ok(mut added) = self.added.lock() {
-            added.push(hash);
+            added.insert(hash);
         }
     }
 
@@ -287,13 +296,18 @@ impl ValidCache {
         &self.problems
     }
 
-    /// The folder of this cache's segments (`DIR/<key>`).
+    /// The folder of this cache's segments (`DIR/<key>`; empty for an
+    /// [in-memory](Self::in_memory) cache).
     pub fn folder(&self) -> &Path {
         &self.folder
     }
 
     fn all(&self) -> Vec<Hash> {
-        let added = self.added.lock().map(|a| a.clone()).unwrap_or_default();
+        let added: Vec<Hash> = self
+            .added
+            .lock()
+            .map(|a| a.iter().copied().collect())
+            .unwrap_or_default();
         let mut all: Vec<Hash> = self.known.iter().copied().chain(added).collect();
         all.sort_unstable();
         all.dedup();
@@ -303,17 +317,22 @@ impl ValidCache {
     /// Writes the hashes added since opening as a new segment (nothing when none is new).
     /// Past [`COMPACT_AFTER`] segments, writes everything as one segment and removes the
     /// segments read at open. Safe with other processes saving into the same folder at once.
+    /// An [in-memory](Self::in_memory) cache writes nothing.
     pub fn save(&self) -> std::io::Result<()> {
+        if self.folder.as_os_str().is_empty() {
+            return Ok(());
+        }
         let mut new: Vec<Hash> = self
             .added
             .lock()
-            .map(|a| a.clone())
-            .unwrap_or_default()
-            .into_iter()
-            .filter(|h| !self.known.contains(h))
-            .collect();
+            .map(|a| {
+                a.iter()
+                    .filter(|h| !self.known.contains(*h))
+                    .copied()
+                    .collect()
+            })
+            .unwrap_or_default();
         new.sort_unstable();
-        new.dedup();
         if self.segments.len() < COMPACT_AFTER {
             if !new.is_empty() {
                 write_segment(&self.folder, &new)?;

@@ -34,7 +34,8 @@
 //!    explosion without building anything.
 //! 4. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
 //!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests.
-//!    [`merge`] puts the outputs of `--shard K/N` runs back together, byte for byte.
+//!    [`merge`] puts the outputs of `--shard K/N` runs back together, byte for byte;
+//!    [`watch`] validates a tree again as it changes (`wgsl-variants watch`, hot reload).
 //! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts, [`reference`](mod@reference) is the
 //!    CPU math of the bundled library.
 //!
@@ -66,6 +67,7 @@ pub mod snapshot;
 pub mod source;
 pub mod validate;
 pub mod variants;
+pub mod watch;
 
 pub use diagnostic::{Diagnostic, Location, Severity, SourceFiles, Span};
 pub use library::{Library, LoadError, LoadOptions, Variant};

@@ -1,6 +1,7 @@
 //! Validating variants with naga, in parallel, with errors mapped to the original modules.
 
 use std::collections::{HashMap, HashSet};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use num_bigint::BigUint;
 use rayon::prelude::*;
@@ -359,8 +360,11 @@ pub fn validate_plan(
                 Keyed {
                     keep_seen: options.shard.is_some(),
                     strict: options.strict,
+                    cancel: None,
                 },
-            );
+                &mut |_, _| {},
+            )
+            .expect("nothing cancels it");
             let seen = report.seen.take();
             if let Some(shard) = options.shard {
                 report.texts = seen.map(|seen| {
@@ -381,6 +385,16 @@ pub fn validate_plan(
             report
         })
         .collect();
+    plan_report(lib, passes, options)
+}
+
+/// The report of a plan made with `options`, from its passes' reports: totals, selection,
+/// shard and fingerprint.
+pub(crate) fn plan_report(
+    lib: &Library,
+    passes: Vec<PassReport>,
+    options: &PlanOptions,
+) -> ValidateReport {
     let selection = if options.all {
         Selection::FullSpace
     } else {
@@ -424,28 +438,41 @@ pub fn validate_pass_with(
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> PassReport {
-    validate_keyed(lib, pass, choices, cache, progress, Keyed::default())
+    validate_keyed(
+        lib,
+        pass,
+        choices,
+        cache,
+        progress,
+        Keyed::default(),
+        &mut |_, _| {},
+    )
+    .expect("nothing cancels it")
 }
 
 /// How [`validate_keyed`] runs beyond [`validate_pass_with`].
 #[derive(Clone, Copy, Default)]
-struct Keyed {
+pub(crate) struct Keyed<'c> {
     /// The report keeps the dedup keys of the texts seen (when they were collected) for a
     /// shard's `texts`.
-    keep_seen: bool,
+    pub keep_seen: bool,
     /// Also validate each distinct unpruned text ([`PlanOptions::strict`]).
-    strict: bool,
+    pub strict: bool,
+    /// Checked between batches: once set, validation stops and gives no report.
+    pub cancel: Option<&'c AtomicBool>,
 }
 
-/// [`validate_pass_with`], with the options of [`Keyed`].
-fn validate_keyed(
+/// [`validate_pass_with`], with the options of [`Keyed`]; `found(key, error)` is called as
+/// each failing text is found. `None` when `how.cancel` stopped it.
+pub(crate) fn validate_keyed(
     lib: &Library,
     pass: &Pass,
     choices: impl IntoIterator<Item = Choice>,
     cache: Option<&ValidCache>,
     progress: &(dyn Fn(u64) + Sync),
-    how: Keyed,
-) -> PassReport {
+    how: Keyed<'_>,
+    found: &mut dyn FnMut(u128, &VariantError),
+) -> Option<PassReport> {
     // Keys (128 bits of the text's hash) of the texts seen; not kept when the audit proves
     // that no two variants share a text, so memory does not grow with the space.
     let mut seen: Option<HashSet<u128>> =
@@ -461,7 +488,18 @@ fn validate_keyed(
     let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
     let mut choices = choices.into_iter();
     let (mut built, mut distinct) = (0u64, 0u64);
+    let mut record = |error: VariantError,
+                      k: u128,
+                      failing: &mut HashMap<u128, usize>,
+                      failures: &mut Vec<Failing>| {
+        found(k, &error);
+        failing.insert(k, failures.len());
+        failures.push((error, k, Vec::new()));
+    };
     loop {
+        if how.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return None;
+        }
         let chunk: Vec<Choice> = choices.by_ref().take(batch).collect();
         if chunk.is_empty() {
             break;
@@ -483,22 +521,12 @@ fn validate_keyed(
             .filter(|&j| seen.as_mut().is_none_or(|s| s.insert(keys[j])))
             .collect();
         distinct += fresh.len() as u64;
-        let results: Vec<Option<VariantError>> = fresh
-            .par_iter()
-            .map_init(validator, |validator, &j| {
-                let variant = Variant {
-                    pass,
-                    choice: chunk[j].clone(),
-                };
-                check(&variant, &composed[j], cache, validator, |v| lib.compose(v))
-            })
-            .collect();
+        let results = validate_fresh(pass, &chunk, &fresh, |variant, j, validator| {
+            check(variant, &composed[j], cache, validator, |v| lib.compose(v))
+        });
         drop(composed);
-        for (&j, result) in fresh.iter().zip(results) {
-            if let Some(error) = result {
-                failing.insert(keys[j], failures.len());
-                failures.push((error, keys[j], Vec::new()));
-            }
+        for (j, error) in results {
+            record(error, keys[j], &mut failing, &mut failures);
         }
         // The unpruned texts of the variants whose program is valid, each validated once.
         let mut unpruned_keys: Vec<Option<u128>> = vec![None; chunk.len()];
@@ -524,31 +552,20 @@ fn validate_keyed(
             let fresh: Vec<usize> = (0..chunk.len())
                 .filter(|&j| unpruned_keys[j].is_some_and(|k| seen_unpruned.insert(k)))
                 .collect();
-            let results: Vec<Option<VariantError>> = fresh
-                .par_iter()
-                .map_init(validator, |validator, &j| {
-                    let variant = Variant {
-                        pass,
-                        choice: chunk[j].clone(),
-                    };
-                    let text = texts[j].as_ref().expect("composed above");
-                    check(&variant, text, cache, validator, |v| {
-                        lib.compose_unpruned(v, true)
-                    })
-                    .map(|mut e| {
-                        e.notes.push(
-                            "in code no entry point of this variant reaches (--strict)".into(),
-                        );
-                        e
-                    })
+            let results = validate_fresh(pass, &chunk, &fresh, |variant, j, validator| {
+                let text = texts[j].as_ref().expect("composed above");
+                check(variant, text, cache, validator, |v| {
+                    lib.compose_unpruned(v, true)
                 })
-                .collect();
-            for (&j, result) in fresh.iter().zip(results) {
-                if let Some(error) = result {
-                    let k = unpruned_keys[j].expect("composed above");
-                    failing.insert(k, failures.len());
-                    failures.push((error, k, Vec::new()));
-                }
+                .map(|mut e| {
+                    e.notes
+                        .push("in code no entry point of this variant reaches (--strict)".into());
+                    e
+                })
+            });
+            for (j, error) in results {
+                let k = unpruned_keys[j].expect("composed above");
+                record(error, k, &mut failing, &mut failures);
             }
         }
         let first = built - keys.len() as u64;
@@ -565,7 +582,7 @@ fn validate_keyed(
         progress(keys.len() as u64);
     }
     let invalid: u64 = failures.iter().map(|(_, _, sets)| sets.len() as u64).sum();
-    PassReport {
+    Some(PassReport {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
         full_space: Space::full(pass).count(),
@@ -591,7 +608,46 @@ fn validate_keyed(
             .collect(),
         texts: None,
         seen: seen.filter(|_| how.keep_seen),
-    }
+    })
+}
+
+/// Validates the variants of `chunk` at the indices `fresh` in parallel (one validator per
+/// worker), with `validate(variant, index, validator)`; the failures, in order.
+fn validate_fresh(
+    pass: &Pass,
+    chunk: &[Choice],
+    fresh: &[usize],
+    validate: impl Fn(&Variant<'_>, usize, &mut naga::valid::Validator) -> Option<VariantError> + Sync,
+) -> Vec<(usize, VariantError)> {
+    let results: Vec<Option<VariantError>> = fresh
+        .par_iter()
+        .map_init(validator, |validator, &j| {
+            let variant = Variant {
+                pass,
+                choice: chunk[j].clone(),
+            };
+            validate(&variant, j, validator)
+        })
+        .collect();
+    fresh
+        .iter()
+        .zip(results)
+        .filter_map(|(&j, r)| r.map(|e| (j, e)))
+        .collect()
+}
+
+/// Composes and validates one variant (unless `cache` knows its text valid): its text's
+/// dedup key and its error.
+pub(crate) fn validate_variant(
+    lib: &Library,
+    variant: &Variant<'_>,
+    cache: Option<&ValidCache>,
+    validator: &mut naga::valid::Validator,
+) -> (u128, Option<VariantError>) {
+    let text = lib.compose_text(variant);
+    let hash = crate::cache::hash(&text.text);
+    let error = check(variant, &(hash, text), cache, validator, |v| lib.compose(v));
+    (key(&hash), error)
 }
 
 /// Validates one composed text of `variant` unless `cache` knows it valid (and remembers it

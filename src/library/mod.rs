@@ -519,6 +519,28 @@ impl Library {
         }
     }
 
+    /// The source files a pass's variants are composed from: its module and every module it
+    /// imports, or, in a naga_oil or WESL tree (whose composer decides what it reads), every
+    /// file. A variant's text can change only when one of them does (or the pass's
+    /// declaration).
+    ///
+    /// ```
+    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// let paths: Vec<&str> = lib.pass_files(pass).iter().map(|&f| lib.files().path(f)).collect();
+    /// assert!(paths.contains(&"standard/surface.wgsl"));
+    /// assert!(!paths.iter().any(|p| p.starts_with("universal/")));
+    /// ```
+    pub fn pass_files(&self, pass: &Pass) -> Vec<crate::diagnostic::FileId> {
+        if self.dialect != crate::Dialect::WgslVariants {
+            return (0..self.files.len()).collect();
+        }
+        crate::preprocess::compose::reach(&self.resolved, pass.module())
+            .into_iter()
+            .map(|m| self.modules[m].file)
+            .collect()
+    }
+
     /// The parsed modules with their imports resolved (module ids index
     /// [`Library::module_paths`]), e.g. to compose or export a module on its own.
     pub(crate) fn module_graph(&self) -> ModuleGraph<'_> {

@@ -204,22 +204,29 @@ pub fn order_shards(inputs: &[ShardInfo]) -> Result<Vec<usize>, MergeError> {
 /// assert_ne!(a, wgsl_variants::merge::fingerprint(&lib, "validate", "build set"));
 /// ```
 pub fn fingerprint(lib: &Library, stage: &str, options: &str) -> String {
+    let files = lib.files();
+    let versions = [
+        env!("CARGO_PKG_VERSION").as_bytes(),
+        env!("WGSL_VARIANTS_NAGA_VERSION").as_bytes(),
+        stage.as_bytes(),
+        options.as_bytes(),
+    ];
+    let sources =
+        (0..files.len()).flat_map(|id| [files.path(id).as_bytes(), files.text(id).as_bytes()]);
+    hash_parts(versions.into_iter().chain(sources))
+        .to_hex()
+        .to_string()
+}
+
+/// The BLAKE3 hash of a list of byte strings, each length-prefixed so that no two lists hash
+/// the same bytes.
+pub(crate) fn hash_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> blake3::Hash {
     let mut h = blake3::Hasher::new();
-    // Each part length-prefixed, so no two lists of parts hash the same bytes.
-    let mut part = |bytes: &[u8]| {
+    for bytes in parts {
         h.update(&(bytes.len() as u64).to_le_bytes());
         h.update(bytes);
-    };
-    part(env!("CARGO_PKG_VERSION").as_bytes());
-    part(env!("WGSL_VARIANTS_NAGA_VERSION").as_bytes());
-    part(stage.as_bytes());
-    part(options.as_bytes());
-    let files = lib.files();
-    for id in 0..files.len() {
-        part(files.path(id).as_bytes());
-        part(files.text(id).as_bytes());
     }
-    h.finalize().to_hex().to_string()
+    h.finalize()
 }
 
 /// Serializes an optional shard as `K/N` (for `#[serde(serialize_with)]`).

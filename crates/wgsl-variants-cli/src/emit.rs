@@ -242,7 +242,7 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let plan_options = ctx.plan_options(&args.build, args.all, args.shard)?;
+    let plan_options = super::plan_options(&args.build, args.all, args.shard)?;
     let selection = ctx.plan(&plan_options)?;
     let origin = set::SetOrigin::new(&ctx.lib, &plan_options, targets, options);
     write_selection(ctx, &selection, &origin, targets, options, dir)

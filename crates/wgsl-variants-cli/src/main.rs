@@ -14,6 +14,7 @@ mod reflect;
 #[cfg(feature = "gpu")]
 mod render;
 mod validate;
+mod watch;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -152,6 +153,10 @@ enum Command {
     /// Variant counts per pass (full space, after skip_variants, build set, distinct), dead
     /// keywords, a multiplier table per keyword set, budgets (--budget) and a chart (--chart).
     Audit(audit::AuditArgs),
+    /// Validate a tree (--root DIR), then validate it again at each change of its files: the
+    /// passes the change touched first (recent failures, then a pairwise covering set, then
+    /// the rest with the cache); diagnostics as found, one status line per verdict.
+    Watch(watch::WatchArgs),
     /// Render every variant of the bundled passes on the GPU (lavapipe is enough) and compare
     /// every pixel, and compute kernels of the library's functions, with the CPU reference.
     #[cfg(feature = "gpu")]
@@ -218,25 +223,6 @@ impl Context {
         Ok(variant)
     }
 
-    /// The plan options of `build` (the full space with `all`, one shard with `shard`).
-    pub fn plan_options(
-        &self,
-        build: &BuildArgs,
-        all: bool,
-        shard: Option<wgsl_variants::variants::Shard>,
-    ) -> Result<wgsl_variants::plan::PlanOptions, Failed> {
-        let mut options = wgsl_variants::plan::PlanOptions::default();
-        options.all = all;
-        options.materials = load_materials(&build.materials)?;
-        options.budget = build.max_variants;
-        options.shader = build.shader.clone();
-        options.pass = build.pass.clone();
-        options.shard = shard;
-        options.cover = build.cover;
-        options.cover_above = build.cover_above;
-        Ok(options)
-    }
-
     /// The plan of `options`. A pass over its budget is reported at its declaration.
     pub fn plan(
         &self,
@@ -268,6 +254,24 @@ impl Context {
         }
         Failed(self.render(&d))
     }
+}
+
+/// The plan options of `build` (the full space with `all`, one shard with `shard`).
+pub fn plan_options(
+    build: &BuildArgs,
+    all: bool,
+    shard: Option<wgsl_variants::variants::Shard>,
+) -> Result<wgsl_variants::plan::PlanOptions, Failed> {
+    let mut options = wgsl_variants::plan::PlanOptions::default();
+    options.all = all;
+    options.materials = load_materials(&build.materials)?;
+    options.budget = build.max_variants;
+    options.shader = build.shader.clone();
+    options.pass = build.pass.clone();
+    options.shard = shard;
+    options.cover = build.cover;
+    options.cover_above = build.cover_above;
+    Ok(options)
 }
 
 /// A command's failure: printed to stderr, exit code 1.
@@ -304,6 +308,11 @@ fn main() -> ExitCode {
         Color::Never => false,
     };
     let options = cli.limits.options();
+    // `watch` loads the tree itself, again at each change (a tree that does not load yet is
+    // waited on, not the end).
+    if let Command::Watch(args) = &cli.command {
+        return watch::run(cli.root.as_deref(), options, cli.json, color, args);
+    }
     let loaded = match &cli.root {
         Some(root) => Library::from_dir_with(root, &options),
         None => Library::from_raw(wgsl_variants::source::bundled_files(), &options),
@@ -338,6 +347,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => merge::run(&ctx, &args),
         Command::Cache(args) => cache::run(&ctx, &args),
         Command::Manifest { summary } => manifest(&ctx, summary),
+        Command::Watch(_) => unreachable!("watch is run before the library is loaded"),
         #[cfg(feature = "gpu")]
         Command::CheckGpu(args) => check_gpu::run(&ctx, &args),
         #[cfg(feature = "gpu")]

@@ -14,12 +14,20 @@ use wgsl_variants::{Space, Variant};
 use super::output::{print_json, progress};
 use super::{BuildArgs, Context, Failed};
 
-/// How `validate` runs: sharding and the cache of valid texts.
+/// How `validate` runs: sharding, the cache of valid texts and strictness.
 #[derive(clap::Args, Debug, Clone)]
 pub struct RunArgs {
     /// Build only shard K of N (variants numbered across passes; `K/N`, 1 <= K <= N).
     #[arg(long, value_name = "K/N")]
     shard: Option<Shard>,
+    #[command(flatten)]
+    check: CheckArgs,
+}
+
+/// How variants are checked (`validate` and `watch`): the cache of valid texts and
+/// strictness.
+#[derive(clap::Args, Debug, Clone)]
+pub struct CheckArgs {
     /// Cache of validated texts, safe to share between processes and machines at once
     /// [default: target/wgsl-variants-cache when ./target or ./Cargo.toml exists].
     #[arg(long, value_name = "DIR")]
@@ -30,11 +38,12 @@ pub struct RunArgs {
     /// Also validate each variant's text as composed, before the items no entry point reaches
     /// are left out (once per distinct such text): a broken helper nobody calls is an error.
     #[arg(long)]
-    strict: bool,
+    pub strict: bool,
 }
 
-impl RunArgs {
-    fn cache_dir(&self) -> Option<PathBuf> {
+impl CheckArgs {
+    /// The cache folder to use, if any.
+    pub fn cache_dir(&self) -> Option<PathBuf> {
         if self.no_cache {
             return None;
         }
@@ -43,9 +52,9 @@ impl RunArgs {
 }
 
 pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result<ExitCode, Failed> {
-    let cache = run.cache_dir().map(|dir| super::cache::open(&dir));
-    let mut options = ctx.plan_options(build, all, run.shard)?;
-    options.strict = run.strict;
+    let cache = run.check.cache_dir().map(|dir| super::cache::open(&dir));
+    let mut options = super::plan_options(build, all, run.shard)?;
+    options.strict = run.check.strict;
     let plan = ctx.plan(&options)?;
     let bar = progress(plan.iter().map(|p| p.1.len() as u64).sum(), "validating");
     let report = validate_plan(&ctx.lib, &plan, &options, cache.as_ref(), &|n| bar.inc(n));

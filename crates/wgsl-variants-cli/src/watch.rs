@@ -1,0 +1,303 @@
+//! `wgsl-variants watch`: validate a tree, then validate it again at each change, with the
+//! library's [`Session`] (what changed first, then the rest in the background).
+//!
+//! Text output: each failure's diagnostic on stderr as it is found, then one status line per
+//! verdict on stdout (a progress bar in between on a terminal). `--json`: one JSON object per
+//! line on stdout, one per event (`started`, `failure`, `verdict`, `cancelled`, `error`).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use notify::Watcher;
+use serde_json::json;
+use wgsl_variants::LoadOptions;
+use wgsl_variants::watch::{Event, Outcome, Session, Verdict, WatchError};
+
+use super::BuildArgs;
+use super::validate::CheckArgs;
+
+/// `wgsl-variants watch` arguments.
+#[derive(clap::Args, Debug, Clone)]
+pub struct WatchArgs {
+    /// Validate the full space, not only the build set.
+    #[arg(long)]
+    all: bool,
+    #[command(flatten)]
+    build: BuildArgs,
+    #[command(flatten)]
+    check: CheckArgs,
+    /// Quiet time after a change before validating, in milliseconds (an editor's save can be
+    /// several writes; a change during a run stops it and starts again anyway).
+    #[arg(long, value_name = "MS", default_value_t = 20)]
+    debounce: u64,
+}
+
+/// How to print, and when the change being validated was first seen.
+struct Printer {
+    json: bool,
+    color: bool,
+    bar: indicatif::ProgressBar,
+    /// When the change this run validates was first seen.
+    since: Instant,
+    /// When its first failure was printed, after `since`.
+    first: Mutex<Option<Duration>>,
+}
+
+impl Printer {
+    fn json_line(&self, value: serde_json::Value) {
+        let mut out = std::io::stdout().lock();
+        // A closed stdout (the reader went away) is not worth a panic; the next change retries.
+        let _ = writeln!(out, "{value}").and_then(|_| out.flush());
+    }
+
+    fn event(&self, event: Event<'_>) {
+        match event {
+            Event::Started {
+                stale,
+                kept,
+                variants,
+                ..
+            } => {
+                if self.json {
+                    self.json_line(json!({
+                        "event": "started", "stale": stale, "kept": kept, "variants": variants,
+                    }));
+                } else {
+                    self.bar.set_length(variants);
+                    self.bar.set_position(0);
+                    self.bar.set_message(format!(
+                        "validating {} pass(es) again, {kept} unchanged",
+                        stale.len()
+                    ));
+                }
+            }
+            Event::Failure { library, error } => {
+                let after = self.since.elapsed();
+                self.first.lock().map(|mut f| *f.get_or_insert(after)).ok();
+                let diagnostic = error.diagnostic();
+                if self.json {
+                    self.json_line(json!({
+                        "event": "failure",
+                        "variant": error.variant,
+                        "stage": error.stage,
+                        "message": error.message,
+                        "location": error.location(library.files()).map(|l| l.to_string()),
+                        "diagnostic": diagnostic.render(library.files(), false),
+                        "after_ms": millis(after),
+                    }));
+                } else {
+                    let text = diagnostic.render(library.files(), self.color);
+                    self.bar.suspend(|| eprint!("{text}"));
+                }
+            }
+            Event::Progress { done, .. } => self.bar.set_position(done),
+            _ => {}
+        }
+    }
+
+    fn verdict(&self, verdict: &Verdict) {
+        self.bar.finish_and_clear();
+        let elapsed = self.since.elapsed();
+        let first = self.first.lock().ok().and_then(|f| *f);
+        let r = &verdict.report;
+        if self.json {
+            self.json_line(json!({
+                "event": "verdict",
+                "ok": r.ok,
+                "validated": verdict.validated,
+                "kept": verdict.kept,
+                "first_diagnostic_ms": first.map(millis),
+                "elapsed_ms": millis(elapsed),
+                "report": r,
+            }));
+            return;
+        }
+        let t = &r.totals;
+        let failing: usize = r.passes.iter().map(|p| p.failures.len()).sum();
+        let head = if r.ok {
+            format!("ok: {} variants valid", t.built)
+        } else {
+            format!(
+                "FAILED: {failing} failing text(s) in {} of {} variants",
+                t.invalid, t.built
+            )
+        };
+        let first = first
+            .map(|f| format!(", first diagnostic after {} ms", millis(f)))
+            .unwrap_or_default();
+        println!(
+            "[{}] {head} ({} pass(es) validated again, {} kept; verdict after {:.2} s{first}); watching",
+            clock(),
+            verdict.validated.len(),
+            verdict.kept,
+            elapsed.as_secs_f64()
+        );
+    }
+
+    fn error(&self, e: &WatchError) {
+        self.bar.finish_and_clear();
+        let render = |color: bool| match e {
+            WatchError::Load(load) => load.render(color),
+            other => format!("error: {other}\n"),
+        };
+        let what = match e {
+            WatchError::Load(_) => "the tree does not load",
+            _ => "no plan",
+        };
+        if self.json {
+            let locations = match e {
+                WatchError::Load(load) => load.locations(),
+                _ => Vec::new(),
+            };
+            self.json_line(json!({
+                "event": "error", "message": e.to_string(), "locations": locations,
+                "diagnostic": render(false), "after_ms": millis(self.since.elapsed()),
+            }));
+        } else {
+            eprint!("{}", render(self.color));
+            println!("[{}] {what}; watching", clock());
+        }
+    }
+}
+
+fn millis(d: Duration) -> u64 {
+    d.as_millis().try_into().unwrap_or(u64::MAX)
+}
+
+/// `HH:MM:SS` (UTC) for status lines.
+fn clock() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    format!(
+        "{:02}:{:02}:{:02}",
+        secs / 3600 % 24,
+        secs / 60 % 60,
+        secs % 60
+    )
+}
+
+/// Whether a file event can change what the tree loads as: a module, a WESL file or the
+/// declaration file created, changed, renamed or removed (not an access, not the cache).
+fn relevant(event: &notify::Event, cache: Option<&Path>) -> bool {
+    use notify::EventKind;
+    if matches!(event.kind, EventKind::Access(_) | EventKind::Other) {
+        return false;
+    }
+    event.paths.iter().any(|p| {
+        let module = p.extension().is_some_and(|e| e == "wgsl" || e == "wesl")
+            || p.file_name()
+                .is_some_and(|n| n == wgsl_variants::declaration::FILE_NAME);
+        module && cache.is_none_or(|c| !p.starts_with(c))
+    })
+}
+
+/// Blocks until a relevant change, then until `quiet` passes without another; the time the
+/// first one was seen. `None` when the watcher is gone.
+fn next_change(changes: &Receiver<Instant>, quiet: Duration) -> Option<Instant> {
+    let first = changes.recv().ok()?;
+    loop {
+        match changes.recv_timeout(quiet) {
+            Ok(_) => {}
+            Err(RecvTimeoutError::Timeout) => return Some(first),
+            Err(RecvTimeoutError::Disconnected) => return None,
+        }
+    }
+}
+
+/// Runs `watch` until interrupted (or the watcher fails).
+pub fn run(
+    root: Option<&Path>,
+    load: LoadOptions,
+    json: bool,
+    color: bool,
+    args: &WatchArgs,
+) -> ExitCode {
+    let Some(root) = root else {
+        eprintln!(
+            "error: watch needs --root DIR: the bundled library is built into the binary (watch a copy of it, e.g. --root wgsl in a checkout)"
+        );
+        return ExitCode::from(1);
+    };
+    match watch(root, load, json, color, args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn watch(
+    root: &Path,
+    load: LoadOptions,
+    json: bool,
+    color: bool,
+    args: &WatchArgs,
+) -> Result<(), String> {
+    if !root.is_dir() {
+        return Err(format!("`{}` is not a folder", root.display()));
+    }
+    let mut options = super::plan_options(&args.build, args.all, None).map_err(|e| e.0)?;
+    options.strict = args.check.strict;
+    let cache_dir = args.check.cache_dir();
+    // Paths in events are absolute: compare the cache folder the same way.
+    let cache_abs: Option<PathBuf> = cache_dir
+        .as_ref()
+        .and_then(|d| std::fs::canonicalize(d).ok());
+    let cancel = Arc::new(AtomicBool::new(false));
+    let (send, changes) = std::sync::mpsc::channel::<Instant>();
+    let stop = Arc::clone(&cancel);
+    let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+        if let Ok(event) = event
+            && relevant(&event, cache_abs.as_deref())
+        {
+            // Stop the run in progress at once: it validates a tree that is no longer there.
+            stop.store(true, Ordering::Relaxed);
+            let _ = send.send(Instant::now());
+        }
+    })
+    .map_err(|e| format!("cannot watch files: {e}"))?;
+    watcher
+        .watch(root, notify::RecursiveMode::Recursive)
+        .map_err(|e| format!("cannot watch `{}`: {e}", root.display()))?;
+    let mut session = Session::new(root, load, options, cache_dir.as_deref());
+    let quiet = Duration::from_millis(args.debounce);
+    let mut since = Instant::now();
+    if !json {
+        println!("[{}] watching {} (Ctrl-C to stop)", clock(), root.display());
+    }
+    loop {
+        cancel.store(false, Ordering::Relaxed);
+        let printer = Printer {
+            json,
+            color,
+            bar: if json {
+                indicatif::ProgressBar::hidden()
+            } else {
+                super::output::progress(0, "validating")
+            },
+            since,
+            first: Mutex::new(None),
+        };
+        match session.run(&cancel, &|e| printer.event(e)) {
+            Ok(Outcome::Verdict(verdict)) => printer.verdict(&verdict),
+            Ok(_) => {
+                printer.bar.finish_and_clear();
+                if json {
+                    printer.json_line(json!({"event": "cancelled"}));
+                }
+            }
+            Err(e) => printer.error(&e),
+        }
+        match next_change(&changes, quiet) {
+            Some(first) => since = first,
+            None => return Err("the file watcher stopped".into()),
+        }
+    }
+}
