@@ -192,6 +192,13 @@ impl Session {
         }
     }
 
+    /// Plans the next runs with `options` (a shard in them is left out), e.g. after a
+    /// materials file changed; a pass whose plan changes is validated again.
+    pub fn set_options(&mut self, mut options: PlanOptions) {
+        options.shard = None;
+        self.options = options;
+    }
+
     /// The tree's root.
     pub fn root(&self) -> &Path {
         &self.root

@@ -140,26 +140,39 @@ impl Printer {
     }
 
     fn error(&self, e: &WatchError) {
-        self.bar.finish_and_clear();
         let render = |color: bool| match e {
             WatchError::Load(load) => load.render(color),
             other => format!("error: {other}\n"),
         };
-        let what = match e {
-            WatchError::Load(_) => "the tree does not load",
-            _ => "no plan",
+        let (locations, what) = match e {
+            WatchError::Load(load) => (load.locations(), "the tree does not load"),
+            _ => (Vec::new(), "no plan"),
         };
+        self.problem(
+            &e.to_string(),
+            (&render(self.color), &render(false)),
+            locations,
+            what,
+        );
+    }
+
+    /// A run that could not start: `message`, the diagnostic `(coloured, plain)`, its
+    /// locations, and `what` for the status line.
+    fn problem(
+        &self,
+        message: &str,
+        (text, plain): (&str, &str),
+        locations: Vec<String>,
+        what: &str,
+    ) {
+        self.bar.finish_and_clear();
         if self.json {
-            let locations = match e {
-                WatchError::Load(load) => load.locations(),
-                _ => Vec::new(),
-            };
             self.json_line(json!({
-                "event": "error", "message": e.to_string(), "locations": locations,
-                "diagnostic": render(false), "after_ms": millis(self.since.elapsed()),
+                "event": "error", "message": message, "locations": locations,
+                "diagnostic": plain, "after_ms": millis(self.since.elapsed()),
             }));
         } else {
-            eprint!("{}", render(self.color));
+            eprint!("{text}");
             println!("[{}] {what}; watching", clock());
         }
     }
@@ -182,9 +195,10 @@ fn clock() -> String {
     )
 }
 
-/// Whether a file event can change what the tree loads as: a module, a WESL file or the
-/// declaration file created, changed, renamed or removed (not an access, not the cache).
-fn relevant(event: &notify::Event, cache: Option<&Path>) -> bool {
+/// Whether a file event can change what the tree loads as: a module, a WESL file, the
+/// declaration file or the materials file created, changed, renamed or removed (not an
+/// access, not the cache).
+fn relevant(event: &notify::Event, cache: Option<&Path>, materials: Option<&Path>) -> bool {
     use notify::EventKind;
     if matches!(event.kind, EventKind::Access(_) | EventKind::Other) {
         return false;
@@ -193,7 +207,7 @@ fn relevant(event: &notify::Event, cache: Option<&Path>) -> bool {
         let module = p.extension().is_some_and(|e| e == "wgsl" || e == "wesl")
             || p.file_name()
                 .is_some_and(|n| n == wgsl_variants::declaration::FILE_NAME);
-        module && cache.is_none_or(|c| !p.starts_with(c))
+        (module && cache.is_none_or(|c| !p.starts_with(c))) || materials.is_some_and(|m| p == m)
     })
 }
 
@@ -243,19 +257,31 @@ fn watch(
     if !root.is_dir() {
         return Err(format!("`{}` is not a folder", root.display()));
     }
-    let mut options = super::plan_options(&args.build, args.all, None).map_err(|e| e.0)?;
-    options.strict = args.check.strict;
+    // Event paths start with the path watched: watch absolute paths, compare absolute paths.
+    let root = std::fs::canonicalize(root).map_err(|e| format!("`{}`: {e}", root.display()))?;
+    let options = |args: &WatchArgs| {
+        super::plan_options(&args.build, args.all, None).map(|mut o| {
+            o.strict = args.check.strict;
+            o
+        })
+    };
+    let planned = options(args).map_err(|e| e.0)?;
     let cache_dir = args.check.cache_dir();
-    // Paths in events are absolute: compare the cache folder the same way.
     let cache_abs: Option<PathBuf> = cache_dir
         .as_ref()
         .and_then(|d| std::fs::canonicalize(d).ok());
+    let materials: Option<PathBuf> = args
+        .build
+        .materials
+        .as_ref()
+        .and_then(|m| std::fs::canonicalize(m).ok());
     let cancel = Arc::new(AtomicBool::new(false));
     let (send, changes) = std::sync::mpsc::channel::<Instant>();
     let stop = Arc::clone(&cancel);
+    let watched_materials = materials.clone();
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
         if let Ok(event) = event
-            && relevant(&event, cache_abs.as_deref())
+            && relevant(&event, cache_abs.as_deref(), watched_materials.as_deref())
         {
             // Stop the run in progress at once: it validates a tree that is no longer there.
             stop.store(true, Ordering::Relaxed);
@@ -264,9 +290,19 @@ fn watch(
     })
     .map_err(|e| format!("cannot watch files: {e}"))?;
     watcher
-        .watch(root, notify::RecursiveMode::Recursive)
+        .watch(&root, notify::RecursiveMode::Recursive)
         .map_err(|e| format!("cannot watch `{}`: {e}", root.display()))?;
-    let mut session = Session::new(root, load, options, cache_dir.as_deref());
+    // A materials file outside the tree: its folder too (an editor's save replaces the file).
+    if let Some(folder) = materials
+        .as_deref()
+        .filter(|m| !m.starts_with(&root))
+        .and_then(Path::parent)
+    {
+        watcher
+            .watch(folder, notify::RecursiveMode::NonRecursive)
+            .map_err(|e| format!("cannot watch `{}`: {e}", folder.display()))?;
+    }
+    let mut session = Session::new(&root, load, planned, cache_dir.as_deref());
     let quiet = Duration::from_millis(args.debounce);
     let mut since = Instant::now();
     if !json {
@@ -285,15 +321,29 @@ fn watch(
             since,
             first: Mutex::new(None),
         };
-        match session.run(&cancel, &|e| printer.event(e)) {
-            Ok(Outcome::Verdict(verdict)) => printer.verdict(&verdict),
-            Ok(_) => {
-                printer.bar.finish_and_clear();
-                if json {
-                    printer.json_line(json!({"event": "cancelled"}));
+        // The materials file is read again at each change (it may be what changed).
+        match materials.as_ref().map(|_| options(args)) {
+            Some(Err(super::Failed(message))) => printer.problem(
+                &message,
+                (&format!("{message}\n"), &format!("{message}\n")),
+                Vec::new(),
+                "the materials file does not load",
+            ),
+            reread => {
+                if let Some(Ok(o)) = reread {
+                    session.set_options(o);
+                }
+                match session.run(&cancel, &|e| printer.event(e)) {
+                    Ok(Outcome::Verdict(verdict)) => printer.verdict(&verdict),
+                    Ok(_) => {
+                        printer.bar.finish_and_clear();
+                        if json {
+                            printer.json_line(json!({"event": "cancelled"}));
+                        }
+                    }
+                    Err(e) => printer.error(&e),
                 }
             }
-            Err(e) => printer.error(&e),
         }
         match next_change(&changes, quiet) {
             Some(first) => since = first,

@@ -223,3 +223,59 @@ fn watch_needs_a_folder() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("is not a folder"), "{stderr}");
 }
+
+/// `--materials FILE` outside the tree is watched and read again: the build set follows it,
+/// and a file that does not load is an error until it is fixed.
+#[test]
+fn the_materials_file_is_watched_too() {
+    let dir = tree();
+    std::fs::write(
+        dir.path().join("a.wgsl"),
+        "#shader a\n#pass P\n#pragma shader_feature RED\n#pragma shader_feature GLOSS\n#import lib/color\n\
+         @fragment fn fs() -> @location(0) vec4f { return tint(); }\n#endpass\n",
+    )
+    .unwrap();
+    let elsewhere = tempfile::tempdir().unwrap();
+    let materials = elsewhere.path().join("materials.toml");
+    let material = |keywords: &str| {
+        format!("[[material]]\nname = \"M\"\nshader = \"a\"\nkeywords = [{keywords}]\n")
+    };
+    std::fs::write(&materials, material("")).unwrap();
+    let (watching, _errors) = Watching::start(
+        dir.path(),
+        &["--json", "--materials", materials.to_str().unwrap()],
+    );
+    let built =
+        |lines: &[String]| event(lines.last().unwrap())["report"]["totals"]["built"].clone();
+    assert_eq!(built(&watching.until(is_verdict)), 1);
+
+    // Another material: the pass is planned again (its build set is now {RED}).
+    save(&materials, &material("\"RED\""));
+    let red = watching.until(is_verdict);
+    assert_eq!(built(&red), 1);
+    assert_eq!(
+        event(red.last().unwrap())["validated"],
+        serde_json::json!(["a/P"])
+    );
+
+    let is_error = |l: &str| event(l)["event"] == "error";
+    save(&materials, &material("\"NOT_A_KEYWORD\""));
+    let error = event(
+        watching
+            .until(|l| is_verdict(l) || is_error(l))
+            .last()
+            .unwrap(),
+    );
+    assert_eq!(error["event"], "error", "{error}");
+    assert!(
+        error["message"].as_str().unwrap().contains("NOT_A_KEYWORD"),
+        "{error}"
+    );
+
+    // Two materials: both shader_feature combinations are built.
+    save(
+        &materials,
+        &(material("\"RED\"") + &material("\"RED\", \"GLOSS\"").replace("\"M\"", "\"N\"")),
+    );
+    assert_eq!(built(&watching.until(is_verdict)), 2);
+}
