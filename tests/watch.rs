@@ -233,3 +233,69 @@ fn a_cache_folder_carries_valid_texts_to_the_next_session() {
     let (verdict, _) = run(&mut new());
     assert!(verdict.unwrap().report.ok);
 }
+
+/// Copies a fixture tree (files and one level of folders) into a temporary folder.
+fn copy_fixture(name: &str) -> tempfile::TempDir {
+    let from = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name);
+    let dir = tempfile::tempdir().unwrap();
+    let copy = |from: &Path, to: &Path| {
+        for entry in std::fs::read_dir(from).unwrap() {
+            let entry = entry.unwrap().path();
+            if entry.is_file() {
+                std::fs::copy(&entry, to.join(entry.file_name().unwrap())).unwrap();
+            }
+        }
+    };
+    copy(&from, dir.path());
+    for entry in std::fs::read_dir(&from).unwrap() {
+        let folder = entry.unwrap().path();
+        if folder.is_dir() {
+            let to = dir.path().join(folder.file_name().unwrap());
+            std::fs::create_dir(&to).unwrap();
+            copy(&folder, &to);
+        }
+    }
+    dir
+}
+
+/// naga_oil and WESL trees (composed by their own engines) are watched the same way: an edit
+/// of an imported module changes the verdict, which stays what `validate` reports.
+#[test]
+fn naga_oil_and_wesl_trees_are_watched_too() {
+    for (fixture, module) in [
+        ("naga_oil", "common/lighting.wgsl"),
+        ("wesl", "common/lighting.wesl"),
+    ] {
+        let dir = copy_fixture(fixture);
+        let mut session = new_session(dir.path());
+        let (verdict, _) = run(&mut session);
+        let verdict = verdict.unwrap();
+        // The fixtures carry a bug in 4 of their 12 variants.
+        assert_eq!(verdict.report.totals.invalid, 4, "{fixture}");
+        assert_eq!(
+            serde_json::to_value(&verdict.report).unwrap(),
+            validate_json(dir.path()),
+            "{fixture}"
+        );
+        let original = std::fs::read_to_string(dir.path().join(module)).unwrap();
+        write(
+            dir.path(),
+            module,
+            &original.replacen("(0.0, 0.0, 1.0)", "(0.0, 0.0, 1.0, 2.0)", 1),
+        );
+        let (verdict, errors) = run(&mut session);
+        let verdict = verdict.unwrap();
+        assert!(verdict.report.totals.invalid > 4, "{fixture}: {errors:?}");
+        assert!(!errors.is_empty());
+        assert_eq!(
+            serde_json::to_value(&verdict.report).unwrap(),
+            validate_json(dir.path()),
+            "{fixture}"
+        );
+        write(dir.path(), module, &original);
+        let (verdict, _) = run(&mut session);
+        assert_eq!(verdict.unwrap().report.totals.invalid, 4, "{fixture}");
+    }
+}
