@@ -316,7 +316,7 @@ fn watch(
             bar: if json {
                 indicatif::ProgressBar::hidden()
             } else {
-                super::output::progress(0, "validating")
+                super::output::progress(0, "loading")
             },
             since,
             first: Mutex::new(None),
