@@ -535,7 +535,8 @@ impl Library {
         if self.dialect != crate::Dialect::WgslVariants {
             return (0..self.files.len()).collect();
         }
-        crate::preprocess::compose::reach(&self.resolved, pass.module())
+        self.module_graph()
+            .reach(pass.module())
             .into_iter()
             .map(|m| self.modules[m].file)
             .collect()
