@@ -49,7 +49,7 @@ fn main() {
     assert_eq!(hashes.len(), 1 << 20);
 
     // Baseline 2: one naga parse + validate of a bundled variant.
-    let bundled = Library::bundled().unwrap();
+    let bundled = wgsl_variants_shaders::library().unwrap();
     let variant = bundled
         .variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])
         .unwrap();
@@ -88,7 +88,7 @@ fn main() {
         ("64 keywords, dead and coupled ones", synthetic(64, true)),
         (
             "bundled standard/Deferred (6144 variants)",
-            Library::bundled().unwrap(),
+            wgsl_variants_shaders::library().unwrap(),
         ),
     ];
     for (name, lib) in &cases {

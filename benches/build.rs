@@ -92,7 +92,7 @@ fn main() {
         return;
     }
     let rounds = common::rounds();
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let pass = lib.pass("standard", "Deferred").expect("Deferred");
     let choices = Space::full(pass).enumerate(1_000_000).expect("enumerable");
     let n = choices.len() as f64;
@@ -163,7 +163,7 @@ fn main() {
 
     let one_variant = &choices[choices.len() / 2];
     let cold = common::median(rounds * 3, || {
-        let lib = Library::bundled().expect("bundled");
+        let lib = wgsl_variants_shaders::library().expect("bundled");
         let pass = lib.pass("standard", "Deferred").expect("Deferred");
         lib.naga_module(&Variant {
             pass,

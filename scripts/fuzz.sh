@@ -23,7 +23,7 @@ for target in preprocess expr pragmas loader lean naga_oil wesl; do
     cp -n fuzz/initial/"$target"/* "$corpus"/ 2>/dev/null || true
     if [ "$target" = preprocess ] || [ "$target" = lean ]; then
         # The bundled modules are initial inputs too (shader files are pass bodies, not modules).
-        for m in $(grep -rL '^#shader' wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
+        for m in $(grep -rL '^#shader' crates/wgsl-variants-shaders/wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
     fi
     log="$(mktemp)"
     cargo fuzz run --release --sanitizer address "$target" "$corpus" -- \

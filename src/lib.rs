@@ -5,22 +5,27 @@
 //! `#import` of modules — and **every** variant validated by naga, with errors that name the
 //! original `file:line:col` and the keyword set of the variant.
 //!
-//! The crate also bundles a deferred-shading library (`wgsl/`: G-buffer pass, LDR `exp2(-c)`
-//! encoding, reflection-probe blending) and a CPU [`reference`](mod@reference) of its math. The
-//! wgpu harness that proves the WGSL against the reference is the `wgsl-variants-gpu` crate, and
-//! the command line is `wgsl-variants-cli`: this crate has no wgpu, clap or image in its tree,
-//! so a `build.rs` can depend on it cheaply.
+//! This crate is the engine. Its shading library (Unity's deferred paths as a WGSL keyword
+//! tree, with a CPU reference of their math) is the `wgsl-variants-shaders` crate; the wgpu
+//! harness that proves that WGSL against the reference is `wgsl-variants-gpu`, and the command
+//! line is `wgsl-variants-cli`. This crate has no wgpu, clap, image or glam in its tree, so a
+//! `build.rs` can depend on it cheaply.
 //!
 //! ```
 //! use wgsl_variants::{Library, variants::Space};
 //!
-//! let lib = Library::bundled().unwrap();
+//! let lib = Library::from_sources([
+//!     ("lib/tint.wgsl", "fn tint() -> vec4f {\n#if RED\n    return vec4f(1.0, 0.0, 0.0, 1.0);\n#else\n    return vec4f(1.0);\n#endif\n}\n"),
+//!     ("unlit.wgsl", "#shader unlit\n#pass Forward\n#pragma multi_compile _ RED\n#import lib/tint\n\
+//!                     @fragment fn fs() -> @location(0) vec4f { return tint(); }\n#endpass\n"),
+//! ])
+//! .unwrap();
 //! for pass in lib.passes() {
 //!     println!("{}/{}: {} variants", pass.shader, pass.name, Space::full(pass).count());
 //! }
-//! let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
+//! let v = lib.variant("unlit", "Forward", &["RED"]).unwrap();
 //! let (module, _info) = lib.naga_module(&v).unwrap();
-//! # let _ = module;
+//! assert_eq!(module.entry_points[0].name, "fs");
 //! ```
 //!
 //! ## The pipeline, one module per stage
@@ -36,8 +41,7 @@
 //!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests.
 //!    [`merge`] puts the outputs of `--shard K/N` runs back together, byte for byte;
 //!    [`watch`] validates a tree again as it changes (`wgsl-variants watch`, hot reload).
-//! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts, [`reference`](mod@reference) is the
-//!    CPU math of the bundled library.
+//! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts.
 //!
 //! `docs/api.md` in the repository lists the main items of each stage.
 
@@ -60,7 +64,6 @@ pub mod merge;
 pub mod plan;
 pub mod preprocess;
 pub mod reach;
-pub mod reference;
 pub mod reflect;
 pub mod shader;
 pub mod snapshot;
@@ -76,3 +79,9 @@ pub use preprocess::Dialect;
 pub use shader::{Pass, Shader};
 pub use validate::VariantError;
 pub use variants::{Choice, Space};
+
+/// `docs/api.md`: its example is compiled and run with the doc tests, so the page cannot drift
+/// from the API.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/api.md")]
+pub struct ApiDoc;

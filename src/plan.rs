@@ -8,7 +8,7 @@
 //! ```
 //! use wgsl_variants::plan::{PlanOptions, plan};
 //!
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let mut options = PlanOptions::default();
 //! options.pass = Some("Deferred".into());
 //! let planned = plan(&lib, &options).unwrap();

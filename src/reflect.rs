@@ -13,7 +13,7 @@
 //!   G-buffer target; samplers are `filtering` or `comparison`.
 //!
 //! ```
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let with = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 //! let without = lib.variant("standard", "Deferred", &[] as &[&str]).unwrap();
 //! let has_normal_map = |r: &wgsl_variants::reflect::Reflection| {

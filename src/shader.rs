@@ -202,7 +202,7 @@ impl Pass {
     /// keywords is given takes its "none" option.
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let pass = lib.pass("standard", "Deferred").unwrap();
     /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
     /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
@@ -230,7 +230,7 @@ impl Pass {
     /// module a declaration file names.
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let pass = lib.pass("standard", "Deferred").unwrap();
     /// assert_eq!(lib.module_paths()[pass.module()], "standard");
     /// ```

@@ -32,7 +32,7 @@ pub struct Snapshot {
 /// The canonical WGSL of a variant: validated, compacted, and written by naga's WGSL back end.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// let text = wgsl_variants::snapshot::canonical_wgsl(&lib, &v).unwrap();
 /// assert!(text.contains("@fragment"));
@@ -166,7 +166,7 @@ pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
 /// manifest` prints the full list to see which.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let summary = wgsl_variants::snapshot::manifest_summary(&lib, 1_000_000).unwrap();
 /// assert!(summary.contains("standard/Deferred: 6144 variants, 5376 distinct"));
 /// ```

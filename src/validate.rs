@@ -152,7 +152,7 @@ fn validate_with(
 /// the module every back end writes and snapshots are made of.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// let (module, _info) = wgsl_variants::validate::compile(&lib, &v).unwrap();
 /// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
@@ -331,7 +331,7 @@ impl ValidateReport {
 /// ```
 /// use wgsl_variants::plan::{PlanOptions, plan};
 ///
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let mut options = PlanOptions::default();
 /// options.pass = Some("Final".into());
 /// let planned = plan(&lib, &options).unwrap();

@@ -22,7 +22,7 @@ impl Choice {
     /// The keywords that are on, in set order (placeholders left out).
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let pass = lib.pass("standard", "Deferred").unwrap();
     /// let choice = pass.resolve(&["_NORMAL_MAP", "UNITY_HDR_ON"]).unwrap();
     /// assert_eq!(choice.keywords(pass), vec!["_NORMAL_MAP", "UNITY_HDR_ON"]);

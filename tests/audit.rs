@@ -27,7 +27,7 @@ fn audit_of(lib: &Library, shader: &str, pass: &str, options: &AuditOptions) -> 
 // The bundled library.
 #[test]
 fn bundled_library_counts_match_the_hand_computed_ones() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let o = AuditOptions::default();
     // Deferred: _RENDERING_CUTOUT 2 · _METALLIC_MAP 2 · smoothness 3 · six maps 2^6 ·
     // UNITY_HDR_ON 2 · UNITY_ENABLE_REFLECTION_BUFFERS 2 · SHADOWS_SHADOWMASK 2 = 6144, and
@@ -90,7 +90,7 @@ fn bundled_library_counts_match_the_hand_computed_ones() {
 
 #[test]
 fn bundled_materials_strip_shader_features() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let m = materials::parse(
         r#"
 [[material]]

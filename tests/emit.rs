@@ -235,7 +235,7 @@ fn every_target_for(lib: &Library, plan: &wgsl_variants::plan::Plan<'_>) -> usiz
 /// set of URP's 49,152-variant `UniversalGBuffer`).
 #[test]
 fn every_target_for_the_selection_of_the_bundled_library() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let plan = test_support::selection::plan_of(&lib);
     let expected: usize = plan.iter().map(|(_, c)| c.len()).sum();
     assert_eq!(every_target_for(&lib, &plan), expected);
@@ -256,7 +256,7 @@ fn every_target_for_the_selection_of_the_bundled_library() {
 #[test]
 #[ignore = "the full space (119983 variants x 8 targets): cargo test --release --test emit -- --ignored"]
 fn every_target_for_every_variant_of_the_bundled_library() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let mut options = wgsl_variants::plan::PlanOptions::default();
     options.all = true;
     let plan = wgsl_variants::plan::plan(&lib, &options).unwrap();
@@ -272,7 +272,7 @@ fn glslang_compiles_the_glsl_of_every_covering_variant() {
     let Some(glslang) = tool("glslangValidator") else {
         return;
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scratch = tempfile::tempdir().unwrap();
     let jobs: Vec<Variant<'_>> = lib
         .passes()
@@ -333,7 +333,7 @@ fn version_flags_parse_and_reject() {
 
 #[test]
 fn outputs_do_not_depend_on_the_build_or_run() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let v = lib
         .variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])
         .unwrap();
@@ -505,7 +505,7 @@ fn bake_fails_with_rendered_diagnostics() {
         "[[material]]\nname = \"X\"\nshader = \"nope\"\n",
     )
     .unwrap();
-    let e = Bake::bundled()
+    let e = wgsl_variants_shaders::bake()
         .materials(&materials)
         .write_to(out.path())
         .unwrap_err();

@@ -39,7 +39,7 @@ fn plain_modules(lib: &Library) -> Vec<String> {
 
 #[test]
 fn every_bundled_module_exports_as_prefixed_self_contained_wgsl() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let modules = plain_modules(&lib);
     assert!(modules.len() >= 8, "{modules:?}");
     for path in &modules {
@@ -93,7 +93,7 @@ fn every_bundled_module_exports_as_prefixed_self_contained_wgsl() {
 
 #[test]
 fn prefixed_exports_from_two_prefixes_live_side_by_side_in_one_shader() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     // Another engine's tree: two exports (each with its own copy of deferred/ldr) and its own
     // entry point using both.
     let gbuffer = export_prefixed(&lib, "deferred/gbuffer", "a_", &["UNITY_HDR_ON"]).unwrap();
@@ -123,7 +123,7 @@ fn main(@builtin(position) p: vec4f) -> a_GBufferOutput {
 
 #[test]
 fn prefixed_export_errors_are_clear() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let unknown = export_prefixed(&lib, "deferred/gbufer", "wv_", &[]).unwrap_err();
     assert_eq!(
         unknown.to_string(),
@@ -181,7 +181,7 @@ fn slots(bindings: &[Binding]) -> BTreeSet<String> {
 
 #[test]
 fn naga_oil_export_composes_standard_variants_like_the_variants_themselves() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let modules = export_all(&lib, Some("wv")).unwrap();
     assert_eq!(modules.len(), plain_modules(&lib).len());
     let lighting = modules
@@ -281,7 +281,7 @@ fn naga_oil_export_composes_standard_variants_like_the_variants_themselves() {
 
 #[test]
 fn naga_oil_export_of_one_module_brings_its_imports_first() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let modules = export(&lib, "internal/fullscreen", None).unwrap();
     assert_eq!(modules.len(), 1);
     assert_eq!(modules[0].import_path, "internal::fullscreen");
@@ -450,7 +450,7 @@ fn wesl_compile(
 /// points, bindings (slot, kind, visibility) and fragment outputs.
 #[test]
 fn wesl_export_compiles_every_covering_variant_of_every_pass_like_ours() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let mut options = wgsl_variants::plan::PlanOptions::default();
     options.all = true;
     options.cover = Some(3);
@@ -534,7 +534,7 @@ fn wesl_export_compiles_every_covering_variant_of_every_pass_like_ours() {
 /// a renderer what our text does (entry points and binding slots).
 #[test]
 fn wesl_export_reads_back_as_a_wesl_tree_with_the_same_variants() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let dir = tempfile::tempdir().unwrap();
     for (path, text) in wgsl_variants::emit::wesl::export_tree(&lib).unwrap() {
         let path = dir.path().join(path);

@@ -45,7 +45,7 @@ fn fuzz_seeds_and_regressions_replay_cleanly() {
         let mut seeds = inputs("initial", name);
         if name == "preprocess" || name == "lean" {
             // The bundled modules are seeds too, as scripts/fuzz.sh gives them to the fuzzer.
-            let lib = wgsl_variants::Library::bundled().expect("bundled library");
+            let lib = wgsl_variants_shaders::library().expect("bundled library");
             let modules = (0..lib.module_paths().len())
                 .filter(|&i| !lib.shaders().iter().any(|s| s.file == i));
             seeds.extend(modules.map(|i| lib.files().text(i).as_bytes().to_vec()));

@@ -78,7 +78,7 @@ fn local_forms_are_the_same_sets() {
 
 #[test]
 fn bundled_standard_shader_counts() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let deferred = lib.pass("standard", "Deferred").unwrap();
     assert_eq!(Space::full(deferred).count(), BigUint::from(6144u32));
     assert_eq!(deferred.tag("LightMode"), Some("Deferred"));

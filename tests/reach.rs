@@ -61,7 +61,7 @@ fn covered(lib: &Library) -> Vec<wgsl_variants::Variant<'_>> {
 
 #[test]
 fn pruning_keeps_every_item_the_program_uses_and_only_removes() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let variants = covered(&lib);
     let sizes: Vec<(usize, usize)> = variants
         .par_iter()
@@ -97,7 +97,7 @@ fn pruning_keeps_every_item_the_program_uses_and_only_removes() {
 
 #[test]
 fn what_the_audit_calls_unreached_is_in_no_variant() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let variants = covered(&lib);
     let mut listed = 0;
     for pass in lib.passes() {

@@ -59,7 +59,7 @@ pub const SNAPSHOTS: [SnapshotVariant; 5] = [
 
 #[test]
 fn reflection_json_snapshots() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     for (name, shader, pass, keywords) in SNAPSHOTS {
         let v = lib.variant(shader, pass, keywords).unwrap();
         let json = serde_json::to_string_pretty(&lib.reflect(&v).unwrap()).unwrap();
@@ -73,7 +73,7 @@ fn reflection_json_snapshots() {
 /// bundled library is loaded inside, so the cache cannot hold another library's result).
 fn reflect_all() -> &'static [Reflection] {
     static ALL: std::sync::OnceLock<Vec<Reflection>> = std::sync::OnceLock::new();
-    ALL.get_or_init(|| compute_all(&Library::bundled().unwrap()))
+    ALL.get_or_init(|| compute_all(&wgsl_variants_shaders::library().unwrap()))
 }
 
 fn compute_all(lib: &Library) -> Vec<Reflection> {
@@ -182,7 +182,7 @@ fn keywords_add_and_remove_bindings() {
 
 #[test]
 fn texture_sample_types_follow_wgpu_rules() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let v = lib
         .variant("deferred_reflections", "Reflections", &[] as &[&str])
         .unwrap();

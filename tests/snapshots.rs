@@ -6,12 +6,11 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use wgsl_variants::Library;
 use wgsl_variants::snapshot::{covering_snapshots, manifest};
 
 #[test]
 fn bundled_library_snapshots() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
         wgsl_variants::assert_variant_snapshots!(&lib);
     });
@@ -19,7 +18,7 @@ fn bundled_library_snapshots() {
 
 #[test]
 fn no_unreferenced_snapshots() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let mut expected: BTreeSet<String> = covering_snapshots(&lib)
         .unwrap()
         .into_iter()
@@ -58,7 +57,7 @@ fn no_unreferenced_snapshots() {
 
 #[test]
 fn canonical_output_is_deterministic_across_thread_counts() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()

@@ -1,11 +1,10 @@
 //! Bakes the bundled library's build set for `materials.toml`: WGSL and SPIR-V. A shader that
 //! does not validate fails this build with naga's diagnostics, pointing at the `.wgsl` file.
 
-use wgsl_variants::bake::{Bake, BakeTarget};
+use wgsl_variants::bake::BakeTarget;
 
 fn main() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../wgsl");
-    let baked = Bake::new(root)
+    let baked = wgsl_variants_shaders::bake()
         .materials("materials.toml")
         .target(BakeTarget::Wgsl)
         .target(BakeTarget::SpirV)

@@ -62,7 +62,7 @@ fn truncate(s: &str, n: usize) -> String {
 ///
 /// ```
 /// use wgsl_variants::{Library, audit};
-/// let lib = Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let passes: Vec<_> = lib.passes().collect();
 /// let audits = audit::audit_passes(&lib, &passes, &audit::AuditOptions::default()).unwrap();
 /// let svg = audit::chart::svg(&audits);

@@ -10,7 +10,7 @@
 //! ```
 //! use wgsl_variants::{Library, audit};
 //!
-//! let lib = Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let pass = lib.pass("standard", "Deferred").unwrap();
 //! let report = audit::audit_pass(&lib, pass, &audit::AuditOptions::default()).unwrap();
 //! assert_eq!(report.full_space, 6144u32.into());
@@ -160,7 +160,7 @@ pub fn audit_pass(
 /// assert!(audit::proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
 ///
 /// // The bundled shadow casters compose the surface functions, and reach none of them.
-/// let lib = Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// assert!(!audit::proves_all_distinct(&lib, lib.pass("standard", "ShadowCaster").unwrap()));
 ///
 /// // DEAD changes no code: both of its variants compose to the same text.

@@ -46,6 +46,7 @@ use rayon::prelude::*;
 use crate::library::{Library, LoadError, Variant};
 use crate::materials::{self, MaterialsError};
 use crate::plan::{PlanError, PlanOptions, plan};
+use crate::source::RawFile;
 
 use crate::emit::backends::{Contents, Options, Target, TranslateError, translate_all};
 use crate::emit::write_if_changed;
@@ -64,7 +65,8 @@ pub enum BakeTarget {
 #[derive(Clone, Debug)]
 enum Source {
     Dir(PathBuf),
-    Bundled,
+    /// Files given by the caller (a tree embedded into a crate), and how to name them.
+    Files(Vec<RawFile>, String),
 }
 
 /// A bake of a library's build set; see the [module docs](self).
@@ -134,9 +136,10 @@ impl Bake {
         Bake::with_source(Source::Dir(root.into()))
     }
 
-    /// Bakes the library bundled with this crate.
-    pub fn bundled() -> Bake {
-        Bake::with_source(Source::Bundled)
+    /// Bakes the library made of `files` (e.g. a tree embedded into a crate, as
+    /// `wgsl_variants_shaders::bake` does); `origin` names it in the generated file.
+    pub fn from_files(files: Vec<RawFile>, origin: impl Into<String>) -> Bake {
+        Bake::with_source(Source::Files(files, origin.into()))
     }
 
     fn with_source(source: Source) -> Bake {
@@ -246,7 +249,7 @@ impl Bake {
         }
         let lib = match &self.source {
             Source::Dir(root) => Library::from_dir(root),
-            Source::Bundled => Library::bundled(),
+            Source::Files(files, _) => Library::from_raw(files.clone(), &Default::default()),
         }
         .map_err(BakeError::Load)?;
         if let Source::Dir(root) = &self.source {
@@ -308,7 +311,7 @@ impl Bake {
         let baked: Vec<BakedVariant> = baked.into_iter().filter_map(Result::ok).collect();
         let origin = match &self.source {
             Source::Dir(root) => root.display().to_string(),
-            Source::Bundled => "the bundled library".to_string(),
+            Source::Files(_, origin) => origin.clone(),
         };
         let outputs = generate(out_dir, &self.file_name, &origin, &selection, &jobs, &baked)?;
         Ok(Baked {

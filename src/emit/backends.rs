@@ -391,7 +391,7 @@ pub struct VariantOutputs {
 /// ```
 /// use wgsl_variants::emit::backends::{Options, Target, translate_all};
 ///
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// # #[cfg(feature = "spv-out")] {
 /// let all = translate_all(&lib, &v, &[Target::Wgsl, Target::SpirV], &Options::default()).unwrap();
@@ -747,7 +747,7 @@ pub struct Translation {
 /// ```
 /// use wgsl_variants::emit::backends::{Options, Target, translate_to_text};
 ///
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// let t = translate_to_text(&lib, &v, &[Target::Wgsl], &Options::default()).unwrap();
 /// assert!(t.outputs[0].text.contains("fn fs_main"));

@@ -7,7 +7,7 @@
 //! locals and parameters are untouched, and nothing in comments or strings can be hit.
 //!
 //! ```
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let wgsl = wgsl_variants::emit::export::export_prefixed(&lib, "deferred/gbuffer", "wv_", &["UNITY_HDR_ON"]).unwrap();
 //! assert!(wgsl.contains("fn wv_gbuffer_pack("));
 //! assert!(wgsl.contains("fn wv_ldr_encode(")); // from the import deferred/ldr

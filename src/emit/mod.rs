@@ -12,7 +12,7 @@
 //! use wgsl_variants::emit::backends::{Target, translate_variant};
 //!
 //! # #[cfg(feature = "spv-out")] {
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 //! let outputs = translate_variant(&lib, &v, &Target::SpirV).unwrap();
 //! assert_eq!(outputs[0].contents.to_bytes()[..4], 0x0723_0203u32.to_le_bytes());
@@ -49,7 +49,7 @@ pub struct VariantSource {
 /// naga_oil could not compose is an error either way: there is no text).
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// let source = wgsl_variants::emit::variant_source(&lib, &v, true).unwrap();
 /// assert_eq!(source.keywords, ["_NORMAL_MAP"]);

@@ -30,7 +30,7 @@
 //! `::`-paths of identifiers. Shader files (`#shader`) are not modules and are refused.
 //!
 //! ```
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let modules = wgsl_variants::emit::naga_oil::export(&lib, "deferred/gbuffer", Some("wv")).unwrap();
 //! assert_eq!(modules[0].import_path, "wv::deferred::ldr"); // imports first
 //! let gbuffer = &modules[1].source;

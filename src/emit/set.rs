@@ -131,19 +131,34 @@ pub enum SetError {
     #[error("{} variant(s) failed", .0.len())]
     Failed(Vec<TranslateError>),
     /// A file could not be written.
-    #[error("cannot write `{path}`: {message}")]
+    #[error("cannot write `{}`: {source}", .path.display())]
     Io {
         /// The path.
         path: PathBuf,
         /// The OS error.
-        message: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Two outputs would be written to the same file: their names differ only in characters
+    /// a file name cannot hold (`a/b` and `a-b` are both `a-b`), or only in case (one file on
+    /// macOS and Windows). Nothing is written.
+    #[error(
+        "`{file}` would be written for both {first} and {second}: rename a shader or pass (file names keep ASCII letters, digits, `_` and `-`, and are compared without case)"
+    )]
+    Collision {
+        /// The file, relative to the output folder.
+        file: String,
+        /// The first variant (`shader/pass {keywords}`) written there.
+        first: String,
+        /// The second.
+        second: String,
     },
 }
 
 fn io_error(path: &Path, e: std::io::Error) -> SetError {
     SetError::Io {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        source: e,
     }
 }
 
@@ -214,9 +229,16 @@ impl SetOrigin {
     }
 }
 
-/// Writes every variant of `selection` through every target into `dir` (created if needed;
-/// existing files are overwritten, others left alone) and `dir/manifest.json`. Returns the
-/// manifest. Nothing is written when any variant fails: every failure is returned.
+/// Writes every variant of `selection` through every target into `dir` (created if needed)
+/// and `dir/manifest.json`. Returns the manifest. Nothing is written when any variant fails
+/// (every failure is returned) or when two outputs would share a file name
+/// ([`SetError::Collision`]).
+///
+/// The manifest always describes exactly the files beside it: an old `manifest.json` is
+/// removed before the first file is written, the new one is written last (to a temporary file
+/// renamed into place), and files the old manifest listed that the new set does not hold are
+/// removed. Other files in `dir` are left alone; files whose contents did not change keep
+/// their modification times.
 pub fn write_set(
     lib: &Library,
     selection: &Plan<'_>,
@@ -276,18 +298,25 @@ pub fn write_set_from(
         return Err(SetError::Failed(failures));
     }
 
-    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    // Every file's path first: a collision is refused before anything is written.
     let mut variants = Vec::with_capacity(jobs.len());
+    let mut contents = Vec::new();
+    let mut taken: std::collections::HashMap<String, String> = std::collections::HashMap::new();
     for (job, result) in jobs.iter().zip(results) {
         let (eps, outputs) = result.expect("failures returned above");
         let keywords = job.choice.keywords(job.pass);
+        let label = format!(
+            "{}/{} {{{}}}",
+            job.pass.shader,
+            job.pass.name,
+            keywords.join(", ")
+        );
         let folder = format!(
             "{}/{}",
             file_safe(&job.pass.shader),
             file_safe(&job.pass.name)
         );
         let stem = variant_stem(&keywords);
-        std::fs::create_dir_all(dir.join(&folder)).map_err(|e| io_error(dir, e))?;
         let mut files = Vec::new();
         for (target, output, slots) in outputs {
             let (entry_point, stage) = match &output.entry_point {
@@ -302,9 +331,19 @@ pub fn write_set_from(
                 ),
                 None => format!("{folder}/{stem}.{}", target.extension(None)),
             };
+            match taken.entry(file.to_lowercase()) {
+                std::collections::hash_map::Entry::Occupied(first) => {
+                    return Err(SetError::Collision {
+                        file,
+                        first: first.get().clone(),
+                        second: label,
+                    });
+                }
+                std::collections::hash_map::Entry::Vacant(slot) => {
+                    slot.insert(label.clone());
+                }
+            }
             let bytes = output.contents.to_bytes();
-            let path = dir.join(&file);
-            write_if_changed(&path, &bytes).map_err(|e| io_error(&path, e))?;
             files.push(ManifestFile {
                 target: target.name().to_string(),
                 entry_point,
@@ -314,6 +353,7 @@ pub fn write_set_from(
                 blake3: blake3::hash(&bytes).to_hex().to_string(),
                 slots,
             });
+            contents.push(bytes);
         }
         variants.push(ManifestVariant {
             shader: job.pass.shader.clone(),
@@ -322,6 +362,24 @@ pub fn write_set_from(
             entry_points: eps,
             files,
         });
+    }
+
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let manifest_path = dir.join("manifest.json");
+    let old_files = listed_files(&manifest_path);
+    match std::fs::remove_file(&manifest_path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(io_error(&manifest_path, e));
+        }
+        _ => {}
+    }
+    let written = variants.iter().flat_map(|v| &v.files);
+    for (file, bytes) in written.clone().zip(&contents) {
+        let path = dir.join(&file.file);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
+        }
+        write_if_changed(&path, bytes).map_err(|e| io_error(&path, e))?;
     }
     let manifest = Manifest {
         generator: format!("wgsl-variants {}", env!("CARGO_PKG_VERSION")),
@@ -336,9 +394,51 @@ pub fn write_set_from(
             .collect(),
         variants,
     };
+    // Files of the old set that the new one does not hold would be described by nothing.
+    let new_files: std::collections::HashSet<&str> = manifest
+        .variants
+        .iter()
+        .flat_map(|v| &v.files)
+        .map(|f| f.file.as_str())
+        .collect();
+    for stale in old_files.iter().filter(|f| !new_files.contains(f.as_str())) {
+        let path = dir.join(stale);
+        match std::fs::remove_file(&path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io_error(&path, e)),
+            _ => {}
+        }
+    }
     let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serializes");
     json.push('\n');
-    let path = dir.join("manifest.json");
-    write_if_changed(&path, json.as_bytes()).map_err(|e| io_error(&path, e))?;
+    let temporary = dir.join(format!(".manifest.json.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, json.as_bytes()).map_err(|e| io_error(&temporary, e))?;
+    std::fs::rename(&temporary, &manifest_path).map_err(|e| io_error(&manifest_path, e))?;
     Ok(manifest)
+}
+
+/// The files an existing manifest lists (relative paths inside its folder only); empty when
+/// there is none or it cannot be read.
+fn listed_files(manifest: &Path) -> Vec<String> {
+    let Ok(text) = std::fs::read_to_string(manifest) else {
+        return Vec::new();
+    };
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return Vec::new();
+    };
+    let inside = |file: &&str| {
+        !file.is_empty()
+            && Path::new(file)
+                .components()
+                .all(|c| matches!(c, std::path::Component::Normal(_)))
+    };
+    value["variants"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|v| v["files"].as_array())
+        .flatten()
+        .filter_map(|f| f["file"].as_str())
+        .filter(inside)
+        .map(str::to_string)
+        .collect()
 }

@@ -24,7 +24,7 @@
 //! crate for the covering set of every bundled pass and compares what naga sees with our text.
 //!
 //! ```
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let modules = wgsl_variants::emit::wesl::export(&lib, "deferred/gbuffer").unwrap();
 //! assert_eq!(modules[0].module_path, "package::deferred::ldr"); // imports first
 //! let gbuffer = &modules[1].source;
@@ -172,7 +172,7 @@ pub struct WeslPass {
 /// keywords enabled.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let pass = lib.pass("standard", "Deferred").unwrap();
 /// let p = wgsl_variants::emit::wesl::export_pass(&lib, pass).unwrap();
 /// assert_eq!(p.root.module_path, "package::standard::my_lighting");
@@ -843,7 +843,7 @@ fn split_body(node: &[Piece]) -> Option<(String, Vec<Piece>, String)> {
 /// the [`declaration`] file, so `wgsl-variants --root DIR` reads it back as a WESL tree.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let files = wgsl_variants::emit::wesl::export_tree(&lib).unwrap();
 /// assert!(files.iter().any(|(p, _)| p == "deferred/ldr.wesl"));
 /// assert_eq!(files.last().unwrap().0, "wgsl-variants.toml");
@@ -871,7 +871,7 @@ pub fn export_tree(lib: &Library) -> Result<Vec<(String, String)>, ExportError> 
 /// variants (`tests/export.rs` validates it).
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let toml = wgsl_variants::emit::wesl::declaration(&lib).unwrap();
 /// assert!(toml.starts_with("# The keywords of"));
 /// assert!(toml.contains("entry = \"standard/my_lighting.wesl\""));

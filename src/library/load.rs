@@ -159,11 +159,30 @@ pub(crate) fn load_declared(
             .strip_suffix(".wgsl")
             .or_else(|| entry.strip_suffix(".wesl"))
             .unwrap_or(entry);
-        let found = paths.iter().position(|p| p == stem);
+        // The module of that name, if it is the very file named: `lit.wesl` is not `lit.wgsl`.
+        let module = paths.iter().position(|p| p == stem);
+        let read = module.map(|m| files.path(modules[m].file));
+        let found = module.filter(|_| stem == entry || read == Some(entry.as_str()));
         if found.is_none() {
-            let hint = suggest(stem, paths.iter().map(String::as_str))
-                .map(|s| format!("; did you mean `{s}.{}`?", extension(dialect)))
-                .unwrap_or_default();
+            let hint = match read {
+                Some(other) => format!(
+                    "; the module `{stem}` of this tree is `{other}` ({} trees read `.{}` files{})",
+                    dialect.name(),
+                    extension(dialect),
+                    if dialect == Dialect::Wesl {
+                        ", and `.wesl` first"
+                    } else {
+                        "; a WESL tree says `dialect = \"wesl\"`"
+                    }
+                ),
+                None if entry.ends_with(".wesl") && dialect != Dialect::Wesl => format!(
+                    "; `.wesl` files are modules of WESL trees only (`dialect = \"wesl\"`), and this tree is read as {}",
+                    dialect.name()
+                ),
+                None => suggest(stem, paths.iter().map(String::as_str))
+                    .map(|s| format!("; did you mean `{s}.{}`?", extension(dialect)))
+                    .unwrap_or_default(),
+            };
             problems.push(
                 LinkError::UnknownEntry {
                     shader: shader.to_string(),

@@ -29,7 +29,7 @@ pub use load::LoadOptions;
 /// ```
 /// use wgsl_variants::Library;
 ///
-/// let lib = Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let pass = lib.pass("standard", "Deferred").unwrap();
 /// assert_eq!(wgsl_variants::variants::Space::full(pass).count(), 6144u32.into());
 /// let variant = lib.variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"]).unwrap();
@@ -137,6 +137,29 @@ fn unlocated(
     }
 }
 
+/// The declaration file's bytes, its size checked before it is read.
+fn read_declaration(path: &Path, limit: usize) -> Result<Vec<u8>, source::DirError> {
+    use std::io::Read;
+    let io = |e| source::DirError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(limit as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() > limit {
+        return Err(source::DirError::TooLarge {
+            root: path.parent().unwrap_or(path).to_path_buf(),
+            path: crate::declaration::FILE_NAME.to_string(),
+            bytes: bytes.len(),
+            limit,
+        });
+    }
+    Ok(bytes)
+}
+
 /// The failure of a variant whose composer (naga_oil, wesl) panicked: the variant fails, the
 /// tool goes on.
 #[cfg(any(feature = "naga-oil", feature = "wesl"))]
@@ -160,16 +183,6 @@ fn composer_panicked(
 }
 
 impl Library {
-    /// The library bundled with this crate (`wgsl/`, embedded at build time).
-    pub fn bundled() -> Result<Library, LoadError> {
-        Library::load(
-            source::bundled_files(),
-            &[],
-            Origin::Bundled,
-            &LoadOptions::default(),
-        )
-    }
-
     /// Loads every `.wgsl` file under `root`.
     pub fn from_dir(root: impl AsRef<Path>) -> Result<Library, LoadError> {
         Library::from_dir_with(root, &LoadOptions::default())
@@ -183,35 +196,51 @@ impl Library {
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
         let root = root.as_ref();
-        let (raw, escaping) =
-            source::read_dir_tree(root, options.max_files).map_err(|e| LoadError {
-                files: SourceFiles::new(),
-                problems: vec![e.into()],
-            })?;
+        let limits = source::DirLimits {
+            max_files: options.max_files,
+            max_total_bytes: options.max_total_bytes,
+        };
+        let tree = source::read_dir_tree(root, limits).map_err(|e| LoadError {
+            files: SourceFiles::new(),
+            problems: vec![e.into()],
+        })?;
+        let skipped: Vec<crate::Diagnostic> = tree
+            .skipped
+            .iter()
+            .map(|(path, why)| {
+                crate::Diagnostic::new(format!("`{path}` is {why}"))
+                    .warning()
+                    .note("only regular files and folders are read from a tree")
+            })
+            .collect();
         let declaration = root.join(crate::declaration::FILE_NAME);
-        if declaration.is_file() {
-            let bytes = std::fs::read(&declaration).map_err(|e| LoadError {
-                files: SourceFiles::new(),
-                problems: vec![
-                    crate::source::DirError::Io {
-                        path: declaration.clone(),
-                        message: e.to_string(),
-                    }
-                    .into(),
-                ],
+        let mut lib = if declaration.is_file() {
+            let bytes = read_declaration(&declaration, options.max_total_bytes).map_err(|e| {
+                LoadError {
+                    files: SourceFiles::new(),
+                    problems: vec![e.into()],
+                }
             })?;
             let declaration = RawFile {
                 path: crate::declaration::FILE_NAME.to_string(),
                 bytes,
             };
-            return Library::load_declared(
-                raw,
+            Library::load_declared(
+                tree.files,
                 declaration,
                 Origin::Dir(root.to_path_buf()),
                 options,
-            );
-        }
-        Library::load(raw, &escaping, Origin::Dir(root.to_path_buf()), options)
+            )?
+        } else {
+            Library::load(
+                tree.files,
+                &tree.escaping,
+                Origin::Dir(root.to_path_buf()),
+                options,
+            )?
+        };
+        lib.warnings.splice(0..0, skipped);
+        Ok(lib)
     }
 
     /// Builds a library from in-memory modules and a [declaration file](crate::declaration)'s
@@ -398,7 +427,7 @@ impl Library {
     /// `materials`).
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let listing = lib.listing(None).unwrap();
     /// let deferred = listing.shaders.iter().flat_map(|s| &s.passes)
     ///     .find(|p| p.pass.name == "Deferred").unwrap();
@@ -525,7 +554,7 @@ impl Library {
     /// declaration).
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let pass = lib.pass("standard", "Deferred").unwrap();
     /// let paths: Vec<&str> = lib.pass_files(pass).iter().map(|&f| lib.files().path(f)).collect();
     /// assert!(paths.contains(&"standard/surface.wgsl"));
@@ -562,7 +591,7 @@ impl Library {
     /// [`validate`](crate::validate)).
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let v = lib.variant("standard", "Deferred", &["UNITY_HDR_ON"]).unwrap();
     /// let (module, _info) = lib.naga_module(&v).unwrap();
     /// assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
@@ -578,7 +607,7 @@ impl Library {
     /// [`reflect`](crate::reflect)).
     ///
     /// ```
-    /// let lib = wgsl_variants::Library::bundled().unwrap();
+    /// let lib = wgsl_variants_shaders::library().unwrap();
     /// let v = lib.variant("deferred_final", "Final", &[] as &[&str]).unwrap();
     /// let r = lib.reflect(&v).unwrap();
     /// assert_eq!(r.bindings[0].name, "rt3");

@@ -209,7 +209,7 @@ mod tests {
     fn write(lib: &crate::Library, shard: Option<&str>, dir: &Path) {
         let options = PlanOptions {
             shard: shard.map(|s| s.parse().unwrap()),
-            shader: Some("deferred_reflections".into()),
+            shader: Some("probe".into()),
             ..PlanOptions::default()
         };
         let targets = [Target::Wgsl];
@@ -240,7 +240,14 @@ mod tests {
 
     #[test]
     fn shard_folders_merge_to_the_whole_folder() {
-        let lib = crate::Library::bundled().unwrap();
+        // Four variants, so that each of the two shards holds some.
+        let lib = crate::Library::from_sources([(
+            "probe.wgsl",
+            "#shader probe\n#pass P\n#pragma multi_compile _ A\n#pragma multi_compile _ B\n\
+             @fragment fn fs() -> @location(0) vec4f {\n\
+             #if A\n    return vec4f(1.0);\n#elif B\n    return vec4f(0.5);\n#else\n    return vec4f(0.0);\n#endif\n}\n#endpass\n",
+        )])
+        .unwrap();
         let tmp = tempfile::tempdir().unwrap();
         write(&lib, None, &tmp.path().join("whole"));
         let shards: Vec<PathBuf> = (1..=2)
@@ -255,7 +262,7 @@ mod tests {
             &tmp.path().join("m"),
         )
         .unwrap();
-        assert_eq!((merged.variants, merged.files), (3, 3));
+        assert_eq!((merged.variants, merged.files), (4, 4));
         assert_eq!(
             files(&tmp.path().join("whole")),
             files(&tmp.path().join("m"))

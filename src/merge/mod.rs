@@ -198,7 +198,7 @@ pub fn order_shards(inputs: &[ShardInfo]) -> Result<Vec<usize>, MergeError> {
 /// same fingerprint come from the same inputs.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let a = wgsl_variants::merge::fingerprint(&lib, "validate", "all");
 /// assert_eq!(a, wgsl_variants::merge::fingerprint(&lib, "validate", "all"));
 /// assert_ne!(a, wgsl_variants::merge::fingerprint(&lib, "validate", "build set"));

@@ -13,6 +13,7 @@ use serde_json::value::RawValue;
 
 use super::{MergeError, ShardInfo, order_shards, parse_shard};
 use crate::validate::{Selection, Stage, ValidateTotals};
+use crate::variants::Shard;
 
 /// A failure as `validate --json` writes it (field order as [`crate::validate::Failure`]).
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -83,6 +84,9 @@ pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), Merg
             })
         })
         .collect::<Result<Vec<_>, MergeError>>()?;
+    for ((name, _), (report, info)) in inputs.iter().zip(reports.iter().zip(&infos)) {
+        self_check(name, report, info.shard)?;
+    }
     let order = order_shards(&infos)?;
     let mut shards: Vec<(String, ReportJson)> = Vec::new();
     let mut reports: Vec<Option<ReportJson>> = reports.into_iter().map(Some).collect();
@@ -159,6 +163,67 @@ fn merge(shards: Vec<(String, ReportJson)>) -> Result<ReportJson, MergeError> {
     merged.ok = totals.invalid == 0;
     merged.totals = totals;
     Ok(merged)
+}
+
+/// Checks that a report agrees with itself: the counts of each pass are those its failures
+/// give (`invalid` = the failing keyword sets, `valid + invalid = built`, no more distinct
+/// texts than variants), its totals are the sums of its passes, and each failing variant's
+/// number lies in its shard. An edited report is refused, not merged into wrong totals.
+fn self_check(name: &str, r: &ReportJson, shard: Option<Shard>) -> Result<(), MergeError> {
+    let mut sums = ValidateTotals {
+        passes: r.passes.len(),
+        ..ValidateTotals::default()
+    };
+    for p in &r.passes {
+        let at = |what: String| mismatch(name, format!("{}/{}: {what}", p.shader, p.pass));
+        let failing: u64 = p.failures.iter().map(|f| f.keyword_sets.len() as u64).sum();
+        if p.invalid != failing {
+            return Err(at(format!(
+                "{} invalid, but its failures list {failing} failing variant(s)",
+                p.invalid
+            )));
+        }
+        if p.valid.checked_add(p.invalid) != Some(p.built) {
+            return Err(at(format!(
+                "{} valid + {} invalid is not the {} built",
+                p.valid, p.invalid, p.built
+            )));
+        }
+        if p.distinct > p.built {
+            return Err(at(format!(
+                "{} distinct texts of {} variants",
+                p.distinct, p.built
+            )));
+        }
+        for f in &p.failures {
+            if !f.numbers.is_empty() && f.numbers.len() != f.keyword_sets.len() {
+                return Err(at(format!(
+                    "a failure lists {} variant number(s) for {} keyword set(s)",
+                    f.numbers.len(),
+                    f.keyword_sets.len()
+                )));
+            }
+            if let Some(shard) = shard
+                && let Some(n) = f.numbers.iter().find(|n| !shard.contains(**n))
+            {
+                return Err(at(format!("variant number {n} is not in shard {shard}")));
+            }
+        }
+        sums.built += p.built;
+        sums.distinct += p.distinct;
+        sums.valid += p.valid;
+        sums.invalid += p.invalid;
+    }
+    if sums != r.totals {
+        return Err(mismatch(
+            name,
+            format!(
+                "its totals ({} built, {} valid, {} invalid) are not the sums of its passes ({} built, {} valid, {} invalid)",
+                r.totals.built, r.totals.valid, r.totals.invalid, sums.built, sums.valid, sums.invalid
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Checks that shard `r` selects what the first shard (`first`) does.
@@ -284,6 +349,51 @@ mod tests {
                 .iter()
                 .all(|f| f.keyword_sets.len() == 3)
         );
+    }
+
+    /// Counts edited by hand (or by an attacker) contradict the shard's own failures: the
+    /// shard is refused, naming what does not add up.
+    #[test]
+    fn a_shard_whose_counts_were_edited_is_refused() {
+        let lib = library();
+        let inputs = |edit: &dyn Fn(&mut serde_json::Value)| -> Vec<(String, String)> {
+            (1..=2)
+                .map(|k| {
+                    let text = report_json(&lib, Some(&format!("{k}/2")));
+                    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+                    if k == 2 {
+                        edit(&mut value);
+                    }
+                    (format!("{k}/2"), serde_json::to_string_pretty(&value).unwrap())
+                })
+                .collect()
+        };
+        assert!(merge_reports(&inputs(&|_| {})).is_ok());
+        let moved = |v: &mut serde_json::Value| {
+            let pass = &mut v["passes"][0];
+            let (valid, invalid) = (pass["valid"].as_u64().unwrap(), pass["invalid"].as_u64().unwrap());
+            pass["valid"] = (valid + 2).into();
+            pass["invalid"] = (invalid - 2).into();
+        };
+        let err = merge_reports(&inputs(&moved)).unwrap_err().to_string();
+        assert!(err.contains("invalid, but its failures list"), "{err}");
+        let built = |v: &mut serde_json::Value| {
+            let b = v["passes"][0]["built"].as_u64().unwrap();
+            v["passes"][0]["built"] = (b + 1).into();
+        };
+        let err = merge_reports(&inputs(&built)).unwrap_err().to_string();
+        assert!(err.contains("is not the"), "{err}");
+        let totals = |v: &mut serde_json::Value| {
+            v["totals"]["valid"] = 100.into();
+        };
+        let err = merge_reports(&inputs(&totals)).unwrap_err().to_string();
+        assert!(err.contains("are not the sums of its passes"), "{err}");
+        // A failing variant's number from the other shard (2/2 holds odd numbers only).
+        let foreign = |v: &mut serde_json::Value| {
+            v["passes"][0]["failures"][0]["numbers"][0] = 0.into();
+        };
+        let err = merge_reports(&inputs(&foreign)).unwrap_err().to_string();
+        assert!(err.contains("variant number 0 is not in shard 2/2"), "{err}");
     }
 
     #[test]

@@ -169,6 +169,44 @@ pub(crate) fn comment_step(rest: &str, depth: &mut u32) -> Option<usize> {
         .then(|| rest.find('\n').unwrap_or(rest.len()))
 }
 
+/// Where nesting first passes `limit`, outside comments: brackets (`(`, `[`, `{`) plus the
+/// run of prefix operators (`!`, `~`, `-`, `*`, `&`) at that point. `None` when it never does.
+///
+/// Parsers that build a tree recursively (wgsl-parse, read for WESL trees) overflow the stack
+/// on deep enough nesting, and a stack overflow aborts the process; this scan runs first, in
+/// constant stack, so such text is refused with a location instead.
+pub(crate) fn nesting_past(text: &str, limit: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut run = 0usize;
+    let mut comment = 0u32;
+    let mut i = 0;
+    while i < text.len() {
+        if let Some(skip) = comment_step(&text[i..], &mut comment) {
+            i += skip;
+            continue;
+        }
+        let b = text.as_bytes()[i];
+        match b {
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                run = 0;
+            }
+            b')' | b']' | b'}' => {
+                depth = depth.saturating_sub(1);
+                run = 0;
+            }
+            b'!' | b'~' | b'-' | b'*' | b'&' => run += 1,
+            b' ' | b'\t' | b'\n' | b'\r' => {}
+            _ => run = 0,
+        }
+        if depth + run > limit {
+            return Some(i);
+        }
+        i += 1;
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,6 +216,15 @@ mod tests {
             .into_iter()
             .filter_map(|l| l.directive.map(|r| &text[r]))
             .collect()
+    }
+
+    #[test]
+    fn nesting_is_measured_outside_comments() {
+        assert_eq!(nesting_past("f((a));", 2), None);
+        assert_eq!(nesting_past("f(((a)));", 2), Some(3));
+        assert_eq!(nesting_past("// ((((\n/* (((( */ f(a);", 2), None);
+        assert_eq!(nesting_past("x = - - -a;", 2), Some(8));
+        assert_eq!(nesting_past("x = a - b - c - d;", 2), None);
     }
 
     #[test]

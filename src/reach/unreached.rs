@@ -29,7 +29,7 @@ pub struct Unreached {
 /// own composer prunes).
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let pass = lib.pass("deferred_final", "Final").unwrap();
 /// for u in wgsl_variants::reach::unreached(&lib, pass) {
 ///     println!("{}: {}", u.module, u.names.join(", "));

@@ -1,4 +1,5 @@
-//! Reading a library's module files: the bundled tree, a folder on disk, or in-memory texts.
+//! Reading a library's module files: a folder on disk, or in-memory texts (e.g. a tree embedded
+//! into a crate, as `wgsl-variants-shaders` embeds its library).
 //!
 //! Loading turns bytes into text once (UTF-8 required; a BOM is dropped, which moves no line
 //! or column) and records every file in [`SourceFiles`]. Line breaks are kept as written: the
@@ -6,12 +7,11 @@
 //! byte offsets stay those of the file. Paths are library-relative with `/` separators and
 //! are sorted, so loading is deterministic.
 
-mod bundled;
 mod dir;
 
 use crate::diagnostic::{Diagnostic, FileId, SourceFiles, Span};
 
-pub use dir::{DirError, read_dir_tree};
+pub use dir::{DirError, DirLimits, DirTree, read_dir_tree};
 
 /// One raw file before decoding: library-relative path and bytes.
 #[derive(Clone, Debug)]
@@ -25,23 +25,10 @@ pub struct RawFile {
 /// Where a library's files come from.
 #[derive(Clone, Debug)]
 pub enum Origin {
-    /// The `wgsl/` tree bundled into this crate.
-    Bundled,
     /// A folder on disk.
     Dir(std::path::PathBuf),
     /// Texts given through the API.
     Memory,
-}
-
-/// The bundled library's raw files.
-pub fn bundled_files() -> Vec<RawFile> {
-    bundled::BUNDLED
-        .iter()
-        .map(|(path, bytes)| RawFile {
-            path: (*path).to_string(),
-            bytes: bytes.to_vec(),
-        })
-        .collect()
 }
 
 /// A file that could not be turned into text.

@@ -419,7 +419,7 @@ impl Check {
 
 fn main() {
     let rounds = timing::rounds();
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let pass = lib.pass("standard", "Deferred").expect("Deferred");
     let choices = Space::full(pass).enumerate(1_000_000).expect("enumerable");
     let n = choices.len() as f64;

@@ -291,8 +291,66 @@ fn load_materials(path: &Option<PathBuf>) -> Result<Option<Vec<Material>>, Faile
     })
 }
 
+/// What a command run with `--json` prints on stdout when it fails, so a caller that reads
+/// stdout (`validate --json > shard.json`) always gets JSON: `{"ok": false, "error": {…}}`.
+#[derive(serde::Serialize)]
+struct JsonFailure {
+    ok: bool,
+    error: JsonError,
+}
+
+#[derive(serde::Serialize)]
+struct JsonError {
+    /// `load` (the tree did not load) or `command` (the command failed).
+    kind: &'static str,
+    /// The one-line summary.
+    message: String,
+    /// Each problem, with its location where it has one.
+    problems: Vec<JsonProblem>,
+}
+
+#[derive(serde::Serialize)]
+struct JsonProblem {
+    message: String,
+    location: Option<String>,
+}
+
+/// Prints a [`JsonFailure`] on stdout.
+fn print_json_failure(kind: &'static str, message: String, problems: Vec<JsonProblem>) {
+    let failure = JsonFailure {
+        ok: false,
+        error: JsonError {
+            kind,
+            message,
+            problems,
+        },
+    };
+    if let Ok(text) = serde_json::to_string_pretty(&failure) {
+        println!("{text}");
+    }
+}
+
+/// The first line of a rendered failure, without its `error: ` prefix.
+fn summary(rendered: &str) -> String {
+    let line = rendered.lines().next().unwrap_or_default();
+    line.strip_prefix("error: ").unwrap_or(line).to_string()
+}
+
+/// A closed pipe ends the process as it ends `cat` or `grep` (killed by SIGPIPE, status 141
+/// in a shell), not with a panic: Rust ignores SIGPIPE by default, so `println!` into a closed
+/// `| head` would panic.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in `main`, before any other thread exists; setting a
+    // signal's disposition to its default has no other effect.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// Parses arguments, runs the command, and returns the process exit code.
 fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = Cli::parse();
     if let Some(n) = cli.threads
         && let Err(e) = rayon::ThreadPoolBuilder::new()
@@ -315,26 +373,39 @@ fn main() -> ExitCode {
     }
     let loaded = match &cli.root {
         Some(root) => Library::from_dir_with(root, &options),
-        None => Library::from_raw(wgsl_variants::source::bundled_files(), &options),
+        None => Library::from_raw(wgsl_variants_shaders::files(), &options),
     };
     let lib = match loaded {
         Ok(lib) => lib,
         Err(e) => {
             eprint!("{}", e.render(color));
-            eprintln!(
-                "error: the library could not be loaded ({} problem{})",
+            let message = format!(
+                "the library could not be loaded ({} problem{})",
                 e.problems.len(),
                 if e.problems.len() == 1 { "" } else { "s" }
             );
+            eprintln!("error: {message}");
+            if cli.json {
+                let problems = e
+                    .diagnostics()
+                    .iter()
+                    .map(|d| JsonProblem {
+                        message: d.message.clone(),
+                        location: d.location(&e.files).map(|l| l.to_string()),
+                    })
+                    .collect();
+                print_json_failure("load", message, problems);
+            }
             return ExitCode::from(1);
         }
     };
     for warning in lib.warnings() {
         eprint!("{}", warning.render(lib.files(), color));
     }
+    let json = cli.json;
     let ctx = Context {
         lib,
-        json: cli.json,
+        json,
         color,
     };
     let result = match cli.command {
@@ -357,6 +428,9 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(Failed(message)) => {
             eprintln!("{message}");
+            if json {
+                print_json_failure("command", summary(&message), Vec::new());
+            }
             ExitCode::from(1)
         }
     }

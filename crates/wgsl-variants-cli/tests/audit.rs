@@ -57,7 +57,7 @@ fn cli_json_has_the_required_fields() {
     assert_eq!(d["distinct_exact"], true);
     assert_eq!(d["sets"].as_array().unwrap().len(), 12);
     // Every pass of the bundled library is audited.
-    let passes = wgsl_variants::Library::bundled().unwrap().passes().count();
+    let passes = wgsl_variants_shaders::library().unwrap().passes().count();
     assert!(passes >= 11);
     assert_eq!(v["totals"]["passes"], passes);
     assert_eq!(v["ok"], true);

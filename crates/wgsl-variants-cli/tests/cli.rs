@@ -182,7 +182,7 @@ fn materials_restrict_the_build_set() {
 fn shards_partition_the_build_exactly() {
     use wgsl_variants::plan::{PlanOptions, variants_to_build};
     use wgsl_variants::variants::Shard;
-    let lib = wgsl_variants::Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let mut options = PlanOptions::default();
     options.all = true;
     let plans: Vec<_> = lib

@@ -6,7 +6,6 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use serde_json::Value;
-use wgsl_variants::Library;
 
 // ---------------------------------------------------------------- emit --out
 fn cli(args: &[&str]) -> Output {
@@ -125,7 +124,7 @@ fn emit_out_writes_a_build_set_with_a_deterministic_manifest() {
     let spv = &a["standard/ForwardBase/none.spv"];
     assert_eq!(spv[..4], 0x0723_0203u32.to_le_bytes());
     // The WGSL file is the canonical WGSL of the variant.
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let v = lib
         .variant("standard", "ForwardBase", &[] as &[&str])
         .unwrap();

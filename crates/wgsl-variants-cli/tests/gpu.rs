@@ -171,7 +171,7 @@ fn check_gpu_universal_gbuffer_default_cover_and_full() {
     let pass = &report["passes"][0];
     assert_eq!(pass["mismatches"], 0);
     let run_count = pass["variants_run"].as_u64().unwrap();
-    let lib = wgsl_variants::Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let urp = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
     let cover = wgsl_variants::Space::full(urp).covering(3).unwrap().len() as u64;
     assert!((cover..=cover + 16).contains(&run_count), "{run_count}");

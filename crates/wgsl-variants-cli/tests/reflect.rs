@@ -3,7 +3,6 @@
 
 use serde_json::Value;
 use std::process::Command;
-use wgsl_variants::Library;
 
 #[test]
 fn reflect_command_line() {
@@ -28,7 +27,7 @@ fn reflect_command_line() {
         "--json",
     ]))
     .unwrap();
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let v = lib
         .variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"])
         .unwrap();

@@ -14,7 +14,6 @@
 use test_support as common;
 
 use serde_json::json;
-use wgsl_variants::Library;
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::{
     FrameScene, render_deferred, render_forward, render_shadows,
@@ -29,7 +28,7 @@ fn main() {
             return;
         }
     };
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let counts: Vec<usize> = std::env::var("FRAME_LIGHTS")
         .ok()
         .map(|s| s.split(',').filter_map(|n| n.trim().parse().ok()).collect())

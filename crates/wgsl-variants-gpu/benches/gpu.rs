@@ -8,14 +8,13 @@
 use test_support as common;
 
 use serde_json::json;
-use wgsl_variants::Library;
-use wgsl_variants::reference::surface::Keywords;
 use wgsl_variants_gpu::check::TestScene;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
 use wgsl_variants_gpu::check::{StandardOutput, standard_job};
 use wgsl_variants_gpu::{
     BoundResource, GpuContext, GpuResources, RenderJob, Resource, render, render_with,
 };
+use wgsl_variants_shaders::reference::surface::Keywords;
 
 /// The G-buffer both draws write: LDR, no RT4.
 const LDR_GBUFFER: StandardOutput = StandardOutput::GBuffer {
@@ -92,7 +91,7 @@ fn main() {
             return;
         }
     };
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let keywords = Keywords::EVERY_MAP.names();
     let variant = lib
         .variant("standard", "Deferred", &keywords)

@@ -11,7 +11,6 @@
 
 use std::error::Error;
 
-use wgsl_variants::Library;
 use wgsl_variants_gpu::check::TestScene;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
 use wgsl_variants_gpu::{
@@ -38,7 +37,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
 
     // 1. The variant, strictly looked up, and its reflection.
-    let lib = Library::bundled()?;
+    let lib = wgsl_variants_shaders::library()?;
     let variant = lib.variant("standard", "ForwardBase", &keywords)?;
     let label = variant.label();
     let wgsl = lib.wgsl(&variant);

@@ -1,13 +1,13 @@
 //! Colour-target formats the harness can render into and decode.
 //!
 //! URP's G-buffer formats (`Rgba8UnormSrgb`, `Rgba8Snorm`, `Rg11b10Ufloat`, `R32Float`,
-//! `R32Uint`) are decoded with [`wgsl_variants::reference::urp`]'s functions, so the harness
+//! `R32Uint`) are decoded with [`wgsl_variants_shaders::reference::urp`]'s functions, so the harness
 //! reads them exactly as a CPU user of the reference would.
 
-use wgsl_variants::reference::quantize::f16_bits_to_f32;
-use wgsl_variants::reference::urp::normal::snorm8_to_f32;
-use wgsl_variants::reference::urp::srgb::srgb8_to_linear;
-use wgsl_variants::reference::urp::ufloat::{split_rg11b10, unpack_rg11b10};
+use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
+use wgsl_variants_shaders::reference::urp::normal::snorm8_to_f32;
+use wgsl_variants_shaders::reference::urp::srgb::srgb8_to_linear;
+use wgsl_variants_shaders::reference::urp::ufloat::{split_rg11b10, unpack_rg11b10};
 
 /// A colour-target format supported by the render harness and its decoders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -208,7 +208,7 @@ impl TargetFormat {
 mod tests {
     use super::*;
     // The harness decodes with the library's converter: these pin it for render targets.
-    use wgsl_variants::reference::quantize::f16_bits_to_f32 as f16_to_f32;
+    use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32 as f16_to_f32;
 
     #[test]
     fn f16_normal_values() {

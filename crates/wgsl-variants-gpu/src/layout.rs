@@ -159,7 +159,7 @@ pub fn layout_entry(binding: &Binding) -> Result<wgpu::BindGroupLayoutEntry, Ref
 /// between is an empty list), ready for `create_bind_group_layout`.
 ///
 /// ```
-/// let lib = wgsl_variants::Library::bundled().unwrap();
+/// let lib = wgsl_variants_shaders::library().unwrap();
 /// let v = lib.variant("standard", "Deferred", &["_NORMAL_MAP"]).unwrap();
 /// let groups = wgsl_variants_gpu::layout_entries(&lib.reflect(&v).unwrap()).unwrap();
 /// assert_eq!(groups.len(), 3);

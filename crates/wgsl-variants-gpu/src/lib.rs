@@ -17,7 +17,7 @@
 //!   one pass over shared targets and a depth buffer: a frame.
 //! - [`check`] is the GPU proof of the bundled library built on these: every variant of the
 //!   standard passes, the deferred reflection and final passes, and compute kernels, compared
-//!   with [`wgsl_variants::reference`] (the `check-gpu` and `render` commands).
+//!   with [`wgsl_variants_shaders::reference`] (the `check-gpu` and `render` commands).
 //! - [`light_volume`] gives the mesh bounding a point or spot light and the rule choosing
 //!   between a light volume with the stencil pre-pass and a full-screen draw.
 //! - Every wgpu error is captured with error scopes and returned as a [`GpuError`]; nothing

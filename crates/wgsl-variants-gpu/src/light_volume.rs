@@ -12,7 +12,7 @@
 //!
 //! ```
 //! use glam::{Mat4, Vec3};
-//! use wgsl_variants::reference::light::{Light, perspective_rh, look_at_rh};
+//! use wgsl_variants_shaders::reference::light::{Light, perspective_rh, look_at_rh};
 //! use wgsl_variants_gpu::light_volume::{FullScreenReason, LightDraw, light_draw};
 //! let view_proj = perspective_rh(1.0, 1.0, 0.5, 50.0)
 //!     * look_at_rh(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y);
@@ -27,8 +27,8 @@
 //! ```
 
 use glam::{Mat4, Vec3};
-use wgsl_variants::reference::light::{Light, LightError, LightShape, light_frame};
-use wgsl_variants::reference::probe::{Probe, ProbeError};
+use wgsl_variants_shaders::reference::light::{Light, LightError, LightShape, light_frame};
+use wgsl_variants_shaders::reference::probe::{Probe, ProbeError};
 
 /// Relative margin between a light's reach and its volume: the mesh lies at least
 /// `VOLUME_MARGIN · range` outside every point the light reaches, so a pixel with a non-zero
@@ -69,7 +69,7 @@ impl LightVolume {
     ///
     /// ```
     /// use glam::Vec3;
-    /// use wgsl_variants::reference::light::Light;
+    /// use wgsl_variants_shaders::reference::light::Light;
     /// use wgsl_variants_gpu::light_volume::light_volume;
     /// let v = light_volume(&Light::point(Vec3::ZERO, 1.0, Vec3::ONE)).unwrap().unwrap();
     /// assert!(v.contains(Vec3::new(0.0, 0.0, 0.99)) && !v.contains(Vec3::new(0.0, 0.0, 1.5)));
@@ -320,7 +320,7 @@ fn inradius(positions: &[[f32; 3]]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use wgsl_variants::reference::light::{LightType, look_at_rh, perspective_rh};
+    use wgsl_variants_shaders::reference::light::{LightType, look_at_rh, perspective_rh};
 
     fn closed_and_outward(v: &LightVolume, inside: Vec3) {
         // Every edge is shared by exactly two triangles, in opposite directions.

@@ -1,12 +1,12 @@
 //! The colour targets of URP's G-buffer (docs/urp.md §1), for pipelines of the bundled
 //! `universal_lit` shader's `UniversalGBuffer` pass.
 
-use wgsl_variants::reference::urp::gbuffer::{URP_KEYWORD_NAMES, UrpKeywords};
+use wgsl_variants_shaders::reference::urp::gbuffer::{URP_KEYWORD_NAMES, UrpKeywords};
 
 /// The colour-target formats a `UniversalGBuffer` variant with these keywords writes, in
 /// location order: GBuffer0–3, then depth as colour (`_RENDER_PASS_ENABLED`), rendering layers
 /// (`_WRITE_RENDERING_LAYERS`) and shadowmask
-/// ([`UrpKeywords::writes_shadow_mask`](wgsl_variants::reference::urp::gbuffer::UrpKeywords::writes_shadow_mask)),
+/// ([`UrpKeywords::writes_shadow_mask`](wgsl_variants_shaders::reference::urp::gbuffer::UrpKeywords::writes_shadow_mask)),
 /// as URP's `UnityGBuffer.hlsl` assigns its optional slots. Names the pass does not declare
 /// are ignored.
 ///

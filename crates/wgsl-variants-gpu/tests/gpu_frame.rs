@@ -5,7 +5,6 @@
 
 mod common;
 
-use wgsl_variants::Library;
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::{
     FrameScene, check_frame, compare, render_deferred, render_forward, render_shadows,
@@ -23,7 +22,7 @@ fn frame_passes(hdr: bool) {
     let Some(ctx) = context() else {
         return;
     };
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let frame = FrameScene::new();
     let report = check_frame(&ctx, &lib, &frame, hdr).expect("the frame renders");
     println!("{report}");
@@ -63,7 +62,7 @@ fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
         return;
     };
-    let lib = Library::bundled().expect("bundled library");
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
     let truth = FrameScene::new();
     let mut main = truth.clone();
     main.scene.light_color *= 1.1;

@@ -9,8 +9,9 @@
 mod common;
 
 use wgsl_variants::Library;
-use wgsl_variants::source::{RawFile, bundled_files};
+use wgsl_variants::source::RawFile;
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, KERNELS, kernels};
+use wgsl_variants_shaders::files as bundled_files;
 
 fn run(lib: &Library, pass: Option<&str>) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
@@ -25,7 +26,7 @@ fn run(lib: &Library, pass: Option<&str>) -> Option<CheckReport> {
 
 #[test]
 fn every_kernel_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(report) = run(&lib, None) else {
         return;
     };

@@ -1,7 +1,7 @@
 //! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (128) and
 //! of `standard/ForwardAdd` (6144; in CI a 3-wise covering set with keyword partners, every
 //! variant with `-- --ignored`), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
-//! with the CPU reference (`wgsl_variants::reference::light`), each keyword proven to change at
+//! with the CPU reference (`wgsl_variants_shaders::reference::light`), each keyword proven to change at
 //! least one pixel; and a library with a wrong falloff is caught.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
@@ -32,7 +32,7 @@ fn sample() -> usize {
 
 #[test]
 fn deferred_shading_every_variant_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(report) = run(&lib, "deferred_shading", "Lighting", 1) else {
         return;
     };
@@ -81,7 +81,7 @@ fn deferred_shading_every_variant_matches_the_reference() {
 /// plus a partner per keyword whose reference says it matters; every keyword is judged.
 #[test]
 fn forward_add_covering_set_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     // 4 light keywords (against DIRECTIONAL), 4 shadow keywords, 10 material keywords.
     let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardAdd", 18) else {
         return;
@@ -94,7 +94,7 @@ fn forward_add_covering_set_matches_the_reference() {
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_lights -- --ignored"]
 fn forward_add_every_variant_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let n = sample();
     let Some(report) = run(&lib, "standard", "ForwardAdd", n) else {
         return;
@@ -189,10 +189,10 @@ fn a_wrong_shadowmask_mix_fails_the_check() {
 /// (`reference::tolerance::gbuffer_light_bound`), for every light type and two keyword sets.
 #[test]
 fn forward_and_deferred_light_agree_per_pixel() {
-    use wgsl_variants::reference::light::LightType;
-    use wgsl_variants::reference::surface::{Keywords, SmoothnessSource};
     use wgsl_variants_gpu::check::forward_deferred::forward_vs_deferred;
     use wgsl_variants_gpu::check::{LightRig, TestScene};
+    use wgsl_variants_shaders::reference::light::LightType;
+    use wgsl_variants_shaders::reference::surface::{Keywords, SmoothnessSource};
 
     let ctx = match wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()) {
         Ok(ctx) => ctx,
@@ -201,7 +201,7 @@ fn forward_and_deferred_light_agree_per_pixel() {
             return;
         }
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let rig = LightRig::new(&scene);
     let inputs = [

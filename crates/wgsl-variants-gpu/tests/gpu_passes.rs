@@ -92,7 +92,7 @@ fn assert_pass(report: &CheckReport, shader: &str, pass: &str, variants: usize) 
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
 fn deferred_every_variant_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let n = sample();
     let Some(report) = run(&lib, Some("standard"), Some("Deferred"), n) else {
         return;
@@ -113,7 +113,7 @@ fn deferred_every_variant_matches_the_reference() {
 /// CI's form of the full-space test above: Deferred's covering set with keyword partners.
 #[test]
 fn deferred_covering_set_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(p) = common::gpu::standard_covering_set_matches(&lib, "Deferred", 13) else {
         return;
     };
@@ -126,7 +126,7 @@ fn deferred_covering_set_matches_the_reference() {
 /// CI's form of the full-space test below: ForwardBase's covering set with keyword partners.
 #[test]
 fn forward_base_covering_set_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardBase", 13) else {
         return;
     };
@@ -139,7 +139,7 @@ fn forward_base_covering_set_matches_the_reference() {
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
 fn forward_base_every_variant_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let n = sample();
     let Some(report) = run(&lib, Some("standard"), Some("ForwardBase"), n) else {
         return;
@@ -154,7 +154,7 @@ fn forward_base_every_variant_matches_the_reference() {
 
 #[test]
 fn deferred_reflections_add_and_final_match_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(report) = run(&lib, Some("deferred_reflections"), None, 1) else {
         return;
     };
@@ -220,7 +220,7 @@ fn pictures_are_written() {
             return;
         }
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let dir = tempfile::tempdir().unwrap();
     let pics = pictures::render_pictures(
@@ -269,7 +269,7 @@ fn pictures_are_written() {
 
 #[test]
 fn shards_of_the_gpu_check_add_up_to_the_whole() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let variants = |shard: Option<&str>| -> Option<u64> {
         let report = run_shard(
             &lib,

@@ -11,13 +11,13 @@ mod common;
 
 use glam::{Mat4, Vec3};
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::LightType;
-use wgsl_variants::reference::shadow::{ShadowKeywords, ShadowParams, cube_face_view_proj};
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::shadows::{
     CUBE_SIZE, MAP_SIZE, ShadowRig, analytic_occlusion, render_caster,
 };
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, LightRig, TestScene};
+use wgsl_variants_shaders::reference::light::LightType;
+use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowParams, cube_face_view_proj};
 
 fn check_pass(lib: &Library, shader: &str, pass: &str) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
@@ -37,7 +37,7 @@ fn check_caster(lib: &Library) -> Option<CheckReport> {
 #[test]
 fn screen_space_shadows_match_the_reference() {
     let Some(report) = check_pass(
-        &Library::bundled().unwrap(),
+        &wgsl_variants_shaders::library().unwrap(),
         "screen_space_shadows",
         "Collect",
     ) else {
@@ -74,7 +74,7 @@ fn screen_space_shadows_match_the_reference() {
 /// six cube faces against the nearest kept occluder point, each keyword changing a texel.
 #[test]
 fn check_gpu_covers_every_caster_variant_per_texel() {
-    let Some(report) = check_caster(&Library::bundled().unwrap()) else {
+    let Some(report) = check_caster(&wgsl_variants_shaders::library().unwrap()) else {
         return;
     };
     let p = &report.passes[0];
@@ -139,7 +139,7 @@ fn context() -> Option<GpuContext> {
 #[test]
 fn every_caster_variant_and_its_keywords() {
     let Some(ctx) = context() else { return };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let rig = LightRig::new(&scene);
     let spot = ShadowParams::for_light(&rig.spot_light, 0.8, 0.0).unwrap();
@@ -211,9 +211,9 @@ fn every_caster_variant_and_its_keywords() {
             let r: Vec<f32> = color
                 .chunks_exact(8)
                 .map(|t| {
-                    wgsl_variants::reference::quantize::f16_bits_to_f32(u16::from_le_bytes([
-                        t[0], t[1],
-                    ]))
+                    wgsl_variants_shaders::reference::quantize::f16_bits_to_f32(u16::from_le_bytes(
+                        [t[0], t[1]],
+                    ))
                 })
                 .collect();
             for (d, v) in plain.0.iter().zip(&r) {
@@ -237,7 +237,7 @@ fn every_caster_variant_and_its_keywords() {
 #[test]
 fn shadows_land_where_the_geometry_puts_them() {
     let Some(ctx) = context() else { return };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let rig = LightRig::new(&scene);
     let shadows = ShadowRig::render(&ctx, &lib, &rig.spot_light, &rig.point_light).unwrap();

@@ -1,5 +1,5 @@
 //! URP's G-buffer encoders in WGSL (`wgsl/universal/gbuffer.wgsl`) against the CPU reference
-//! (`wgsl_variants::reference::urp`), run as a compute kernel on the GPU: the octahedral
+//! (`wgsl_variants_shaders::reference::urp`), run as a compute kernel on the GPU: the octahedral
 //! normal packed 8:8:8 over a Fibonacci sphere plus edge cases, and the flags byte.
 
 mod common;
@@ -8,12 +8,12 @@ use common::gpu::{adapter_filter, or_skip};
 use glam::{Vec3, Vec4};
 use wgsl_variants::Library;
 use wgsl_variants::library::LoadOptions;
-use wgsl_variants::reference::tolerance::f32_within;
-use wgsl_variants::reference::urp::accuracy::fibonacci_sphere;
-use wgsl_variants::reference::urp::flags::{MaterialFlags, unpack_flags_byte};
-use wgsl_variants::reference::urp::normal::{encode_normal_oct, oct_encode};
 use wgsl_variants::source::RawFile;
 use wgsl_variants_gpu::{GpuContext, run_compute};
+use wgsl_variants_shaders::reference::tolerance::f32_within;
+use wgsl_variants_shaders::reference::urp::accuracy::fibonacci_sphere;
+use wgsl_variants_shaders::reference::urp::flags::{MaterialFlags, unpack_flags_byte};
+use wgsl_variants_shaders::reference::urp::normal::{encode_normal_oct, oct_encode};
 
 /// One case: in = (n.xyz, flags byte); out = (urp_pack_normal(n), urp_pack_flags(flags)),
 /// (urp_oct_encode(n), 0, 0).
@@ -39,7 +39,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
 "#;
 
 fn library() -> Library {
-    let bundled = Library::bundled().unwrap();
+    let bundled = wgsl_variants_shaders::library().unwrap();
     let files = bundled.files();
     let mut raw: Vec<RawFile> = (0..files.len())
         .map(|id| RawFile {

@@ -56,7 +56,7 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
 
 #[test]
 fn covering_set_of_universal_forward_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let Some(report) = run(&lib, false) else {
         return;
     };
@@ -69,7 +69,7 @@ fn covering_set_of_universal_forward_matches_the_reference() {
 #[test]
 #[ignore = "55,296 variants: run with --ignored (the README gives the time)"]
 fn every_universal_forward_variant_matches_the_reference() {
-    let Some(report) = run(&Library::bundled().unwrap(), true) else {
+    let Some(report) = run(&wgsl_variants_shaders::library().unwrap(), true) else {
         return;
     };
     assert_passes(&report, 55_296);

@@ -9,14 +9,13 @@
 
 mod common;
 
-use wgsl_variants::Library;
-use wgsl_variants::reference::urp::gbuffer::{UrpKeywords, UrpTexel};
-use wgsl_variants::reference::urp::srgb::srgb8;
-use wgsl_variants::reference::urp::ufloat::UFloat;
 use wgsl_variants::variants::Space;
 use wgsl_variants_gpu::check::urp::{UrpScene, compare_variant, urp_targets};
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport, PassReport, TestScene};
 use wgsl_variants_gpu::{GpuContext, render};
+use wgsl_variants_shaders::reference::urp::gbuffer::{UrpKeywords, UrpTexel};
+use wgsl_variants_shaders::reference::urp::srgb::srgb8;
+use wgsl_variants_shaders::reference::urp::ufloat::UFloat;
 
 fn run(full: bool) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
@@ -25,7 +24,7 @@ fn run(full: bool) -> Option<CheckReport> {
     options.adapter = common::gpu::adapter_filter();
     options.full = full;
     common::gpu::or_skip(
-        check::run(&Library::bundled().unwrap(), &options),
+        check::run(&wgsl_variants_shaders::library().unwrap(), &options),
         "the GPU check",
     )
 }
@@ -54,7 +53,7 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
 fn covering_set_of_universal_gbuffer_matches_the_reference() {
     let Some(report) = run(false) else { return };
     // The 3-wise covering set plus at most one partner per keyword.
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let pass = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
     let cover = Space::full(pass).covering(3).unwrap().len();
     assert_passes(&report, cover);
@@ -79,7 +78,7 @@ fn the_comparison_catches_a_wrong_texel() {
     ) else {
         return;
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let pass = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
     let names = [
         "_GBUFFER_NORMALS_OCT",
@@ -180,8 +179,8 @@ fn urp_scene_is_well_posed() {
             let out = urp.reference(&k, x, y).unwrap();
             let p = urp.pixel(x, y).geometry.world_position;
             let v = (urp.lighting.camera_position - p).normalize();
-            let r = wgsl_variants::reference::surface::reflect(-v, out.normal);
-            let margin = wgsl_variants::reference::cube::face_margin(r);
+            let r = wgsl_variants_shaders::reference::surface::reflect(-v, out.normal);
+            let margin = wgsl_variants_shaders::reference::cube::face_margin(r);
             assert!(
                 margin >= check::scene::MIN_FACE_MARGIN,
                 "({x}, {y}) {margin}"
@@ -200,7 +199,7 @@ fn urp_scene_is_well_posed() {
     assert_eq!(urp.lightmap_texel(15, 14), (11, 11));
     assert!(urp.texels(0, 0).lightmap.max_element() > 0.0);
     assert_eq!(urp.pixel(3, 3).depth, 0.5);
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let pass = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
     let cover = Space::full(pass).covering(check::DEFAULT_COVER_T).unwrap();
     // 16 keyword sets, two of them one three-valued factor (their exclusion): far below the

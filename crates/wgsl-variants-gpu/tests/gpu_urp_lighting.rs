@@ -1,7 +1,7 @@
 //! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (8)
 //! and `stencil_deferred/DirectionalLit` (16), drawn over G-buffers `universal_lit`'s
 //! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
-//! reference (`wgsl_variants::reference::urp::lighting`), each keyword proven to change at
+//! reference (`wgsl_variants_shaders::reference::urp::lighting`), each keyword proven to change at
 //! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
 //! the older URP's diffuse formula) are caught where, and only where, the bug shows.
 //!
@@ -23,7 +23,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 
 #[test]
 fn every_lighting_variant_matches_the_reference() {
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
     for (pass, variants, keywords) in [("PunctualLit", 8, 3), ("DirectionalLit", 16, 5)] {
         let Some(report) = run(&lib, pass) else {
@@ -132,7 +132,7 @@ fn the_urp_pictures_show_the_gbuffer_and_the_light() {
     ) else {
         return;
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let pics = pictures::render_pictures(
         &ctx,
@@ -174,16 +174,16 @@ fn the_urp_pictures_show_the_gbuffer_and_the_light() {
 
 #[test]
 fn urp_light_volumes_with_the_stencil_equal_full_screen_on_lit_texels_only() {
-    use wgsl_variants::reference::urp::lighting::UrpLightKind;
     use wgsl_variants_gpu::check::urp_lighting::compare_urp_volume;
     use wgsl_variants_gpu::check::{LightRig, TestScene};
+    use wgsl_variants_shaders::reference::urp::lighting::UrpLightKind;
     let Some(ctx) = common::gpu::or_skip(
         wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref()),
         "URP's light volumes",
     ) else {
         return;
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let mut rig = LightRig::new(&scene);
     rig.render_screen_shadows(&ctx, &lib, &scene).unwrap();

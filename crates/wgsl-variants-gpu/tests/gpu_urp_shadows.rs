@@ -1,7 +1,7 @@
 //! The GPU proof of URP Lit's ShadowCaster: every variant (8) renders the URP scene's quad into
 //! a directional light's maps (a box around the scene and one tighter than the quad, whose near
 //! plane pancakes it) or a spot light's map, every texel compared with the reference
-//! (`wgsl_variants::reference::urp::shadow`); and planted bugs — no depth bias, the directional
+//! (`wgsl_variants_shaders::reference::urp::shadow`); and planted bugs — no depth bias, the directional
 //! formula for a punctual light, no pancaking — are caught where, and only where, they show.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
@@ -21,7 +21,7 @@ fn run(lib: &Library) -> Option<CheckReport> {
 
 #[test]
 fn every_urp_shadow_caster_variant_matches_the_reference() {
-    let Some(report) = run(&Library::bundled().unwrap()) else {
+    let Some(report) = run(&wgsl_variants_shaders::library().unwrap()) else {
         return;
     };
     let p = &report.passes[0];

@@ -38,7 +38,7 @@ fn setup() -> Option<Setup> {
         GpuContext::new(common::gpu::adapter_filter().as_deref()),
         "GPU context",
     )?;
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let rig = LightRig::new(&scene);
     let gbuffers = [false, true]
@@ -196,7 +196,7 @@ fn probe_boxes_and_full_screen_probes_are_bit_identical() {
 /// A probe whose box has no volume, or with a NaN, is a typed error, not a NaN frame.
 #[test]
 fn a_probe_without_volume_is_refused() {
-    use wgsl_variants::reference::probe::{Probe, ProbeError};
+    use wgsl_variants_shaders::reference::probe::{Probe, ProbeError};
     let view_proj = glam::Mat4::IDENTITY;
     let flat = Probe::new(
         Vec3::ZERO,

@@ -3,8 +3,8 @@
 mod common;
 
 use common::gpu::{adapter_filter, or_skip};
+use wgsl_variants::Variant;
 use wgsl_variants::snapshot::covering_set;
-use wgsl_variants::{Library, Variant};
 use wgsl_variants_gpu::{
     GpuContext, create_bind_group_layouts, create_pipeline_layout, urp_gbuffer_formats,
 };
@@ -17,7 +17,7 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
     let Some(ctx) = or_skip(GpuContext::new(adapter_filter().as_deref()), "GPU context") else {
         return;
     };
-    let lib = Library::bundled().unwrap();
+    let lib = wgsl_variants_shaders::library().unwrap();
     let mut pipelines = 0;
     for pass in lib.passes() {
         for (which, choice) in covering_set(pass) {

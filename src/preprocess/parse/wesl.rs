@@ -58,6 +58,15 @@ pub(super) fn parse(
     text: &str,
     limits: ParseLimits,
 ) -> Result<ParsedModule, Vec<ParseError>> {
+    // Deep nesting overflows the stack of the recursive tree wgsl-parse builds (an abort, not a
+    // panic): refused before the parser sees it, as this crate's own dialect refuses it.
+    if let Some(at) = crate::preprocess::lines::nesting_past(text, limits.expr_depth) {
+        return Err(vec![ParseError::TooDeep {
+            what: "brackets and prefix operators",
+            limit: limits.expr_depth,
+            span: Span::new(file, at..at + 1),
+        }]);
+    }
     // A parser panic on input it does not expect is this file's error, not the tool's crash.
     let parsed = std::panic::catch_unwind(|| text.parse::<syn::TranslationUnit>());
     let unit = match parsed {

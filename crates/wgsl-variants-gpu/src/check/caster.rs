@@ -4,12 +4,12 @@
 //! check's lights: `SHADOWS_DEPTH` into the spot light's 64 × 64 `Depth16Unorm` map,
 //! `SHADOWS_CUBE` into the point light's six 16 × 16 faces (`Rgba16Float` distance + depth).
 //! Every texel is compared with the reference: along the ray through the texel's centre, the
-//! nearest occluder point the caster keeps ([`wgsl_variants::reference::surface::surface`]'s
+//! nearest occluder point the caster keeps ([`wgsl_variants_shaders::reference::surface::surface`]'s
 //! alpha against the cutoff) gives the depth ([`shadow_coords`]`.z`, 1 LSB of 16-bit unorm)
 //! and, for a cube face, [`caster_distance`] (`F16_ULP` f16 steps); where the ray meets
 //! nothing kept, the clear values (depth 1, distance 1). The GPU's value is compared with the
 //! reference's value nearest to it over the texel's sub-pixel window
-//! ([`wgsl_variants::reference::tolerance::SUBPIXEL_WINDOW`]): the rasterizer snaps vertices to
+//! ([`wgsl_variants_shaders::reference::tolerance::SUBPIXEL_WINDOW`]): the rasterizer snaps vertices to
 //! its sub-pixel grid, which on a surface seen at a grazing angle moves the depth by several
 //! steps (NVIDIA's H200 showed two).
 //!
@@ -29,13 +29,13 @@ use super::shadows::{
 };
 use crate::{CheckError, GpuContext, GpuError};
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::Light;
-use wgsl_variants::reference::quantize::f16_bits_to_f32;
-use wgsl_variants::reference::shadow::{
+use wgsl_variants_shaders::reference::light::Light;
+use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
+use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, caster_distance, cube_face_view_proj, shadow_coords,
 };
-use wgsl_variants::reference::surface::{Geometry, Keywords, Material, Texels, surface};
-use wgsl_variants::reference::tolerance::{f16_within, unorm_within, window_offsets};
+use wgsl_variants_shaders::reference::surface::{Geometry, Keywords, Material, Texels, surface};
+use wgsl_variants_shaders::reference::tolerance::{f16_within, unorm_within, window_offsets};
 
 /// What one view of one variant rendered: depth codes and, for cube faces, the distances'
 /// f16 bits.
@@ -118,7 +118,7 @@ fn reference_texel(kw: &Keywords, view: &View, x: u32, y: u32) -> Option<Option<
 }
 
 /// The range of the texel's depth and distance over its sub-pixel window
-/// ([`wgsl_variants::reference::tolerance::SUBPIXEL_WINDOW`]): the reference at
+/// ([`wgsl_variants_shaders::reference::tolerance::SUBPIXEL_WINDOW`]): the reference at
 /// each of [`window_offsets`] that sees the centre's occluder (`(lo, hi)` twice).
 fn window_ranges(kw: &Keywords, view: &View, x: u32, y: u32, occluder: usize) -> [(f32, f32); 2] {
     let n = view.size as f32;

@@ -1,15 +1,15 @@
 //! Comparing a target texel read back from the GPU with the reference value, through
-//! [`wgsl_variants::reference::tolerance`] (and nothing else).
+//! [`wgsl_variants_shaders::reference::tolerance`] (and nothing else).
 
 use glam::Vec4;
 
 use crate::TargetFormat;
-use wgsl_variants::reference::gbuffer::{RGB10A2, RGBA8};
-use wgsl_variants::reference::tolerance::{
+use wgsl_variants_shaders::reference::gbuffer::{RGB10A2, RGBA8};
+use wgsl_variants_shaders::reference::tolerance::{
     f16x4_within, f32_within, snorm8_within, srgb8_within, ufloat_within, unorm_within,
     unorm4_within, vec4_within,
 };
-use wgsl_variants::reference::urp::ufloat::UFloat;
+use wgsl_variants_shaders::reference::urp::ufloat::UFloat;
 
 /// Whether the raw texel `raw` of a `format` target is acceptable for the reference value
 /// `expected` (what the shader wrote, before the target stored it): 1 LSB on unorm channels

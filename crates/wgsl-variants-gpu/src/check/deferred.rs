@@ -23,16 +23,16 @@ use crate::{
     Resource, TargetFormat, render, render_pass,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::cube::face_margin;
-use wgsl_variants::reference::gbuffer::{GBufferTexel, Rt3Texel, decode_normal};
-use wgsl_variants::reference::probe::{box_project_grown, composite, draw_order, falloff};
-use wgsl_variants::reference::quantize::unorm_to_f32;
-use wgsl_variants::reference::surface::{
+use wgsl_variants::variants::Choice;
+use wgsl_variants_shaders::reference::cube::face_margin;
+use wgsl_variants_shaders::reference::gbuffer::{GBufferTexel, Rt3Texel, decode_normal};
+use wgsl_variants_shaders::reference::probe::{box_project_grown, composite, draw_order, falloff};
+use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
+use wgsl_variants_shaders::reference::surface::{
     Keywords, SmoothnessSource, final_ldr, reflection_probe_pixel, reflections_add,
     view_and_reflection,
 };
-use wgsl_variants::reference::tolerance::{f16_blend_error, f16_store_error};
-use wgsl_variants::variants::Choice;
+use wgsl_variants_shaders::reference::tolerance::{f16_blend_error, f16_store_error};
 
 /// The keywords of the G-buffers the deferred chain starts from (with
 /// `UNITY_ENABLE_REFLECTION_BUFFERS`, so RT3 holds no indirect specular yet): every map on, and
@@ -508,7 +508,7 @@ pub fn ldr_ramp() -> Vec<u8> {
             let r = i;
             let g = 1023 - i;
             let b = (i * 389) % 1024;
-            wgsl_variants::reference::quantize::pack_rgb10a2([r, g, b, 3]).to_le_bytes()
+            wgsl_variants_shaders::reference::quantize::pack_rgb10a2([r, g, b, 3]).to_le_bytes()
         })
         .collect()
 }
@@ -707,7 +707,7 @@ pub fn check_deferred_chain(
 }
 
 /// The `Probe` uniform of the deferred reflection pass (`deferred/probe`'s record).
-fn probe_uniform(probe: &wgsl_variants::reference::probe::Probe) -> Vec<u8> {
+fn probe_uniform(probe: &wgsl_variants_shaders::reference::probe::Probe) -> Vec<u8> {
     let mut out = Vec::new();
     push_probe(&mut out, probe);
     out

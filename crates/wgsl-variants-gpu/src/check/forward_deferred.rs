@@ -1,7 +1,7 @@
 //! Forward = deferred, per pixel, for one light (docs/shading.md §10): the same surface lit by
 //! `standard/ForwardAdd` and by `standard/Deferred` + `deferred_shading/Lighting`, both in HDR
 //! (`Rgba16Float`), compared within
-//! [`wgsl_variants::reference::tolerance::gbuffer_light_bound`] — the G-buffer's 8- and 10-bit
+//! [`wgsl_variants_shaders::reference::tolerance::gbuffer_light_bound`] — the G-buffer's 8- and 10-bit
 //! quantization propagated through the direct-light formula — plus 1 f16 step on each side.
 //!
 //! The deferred pass rebuilds positions from a depth buffer of the scene's own orthographic view
@@ -17,11 +17,11 @@ use super::passes::{StandardOutput, standard_job};
 use super::scene::TestScene;
 use crate::{CheckError, ColorTarget, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
-use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
-use wgsl_variants::reference::light::{Cookies, LightType};
-use wgsl_variants::reference::quantize::f16_bits_to_f32;
-use wgsl_variants::reference::surface::{Keywords, surface};
-use wgsl_variants::reference::tolerance::{f16_step, gbuffer_light_bound};
+use wgsl_variants_shaders::reference::brdf::diffuse_and_specular_from_metallic;
+use wgsl_variants_shaders::reference::light::{Cookies, LightType};
+use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
+use wgsl_variants_shaders::reference::surface::{Keywords, surface};
+use wgsl_variants_shaders::reference::tolerance::{f16_step, gbuffer_light_bound};
 
 /// One pixel of the comparison.
 #[derive(Clone, Copy, Debug, PartialEq)]

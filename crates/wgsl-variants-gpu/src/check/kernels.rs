@@ -7,7 +7,7 @@
 //! (the bundled ones for the bundled library) plus the kernel files (under `check/`). Each kernel reads `IN` consecutive `vec4f` per case from
 //! an input storage buffer and writes `OUT` per case.
 //!
-//! Comparisons go through [`wgsl_variants::reference::tolerance`]: [`f32_within`] for `f32` results,
+//! Comparisons go through [`wgsl_variants_shaders::reference::tolerance`]: [`f32_within`] for `f32` results,
 //! [`unorm_within`] for the 8-bit codes of `pack4x8unorm`. Where a result comes out of `exp2`
 //! or `pow`, whose Vulkan precision depends on the argument, the bound is derived for the case
 //! as the tolerance module prescribes ([`exp2_ulp`], [`pow_ulp`]) and passed to
@@ -20,15 +20,15 @@ use super::scene::Rng;
 use crate::{CheckError, GpuContext, GpuError, run_compute};
 use wgsl_variants::Library;
 use wgsl_variants::library::LoadOptions;
-use wgsl_variants::reference::gbuffer::{GBuffer, decode_normal, encode_normal};
-use wgsl_variants::reference::ldr::{ldr_accumulate, ldr_decode, ldr_encode};
-use wgsl_variants::reference::probe::{
+use wgsl_variants::source::RawFile;
+use wgsl_variants_shaders::reference::gbuffer::{GBuffer, decode_normal, encode_normal};
+use wgsl_variants_shaders::reference::ldr::{ldr_accumulate, ldr_decode, ldr_encode};
+use wgsl_variants_shaders::reference::probe::{
     Probe, box_project, box_project_grown, falloff, forward_blend, mip_from_smoothness, rgbm_decode,
 };
-use wgsl_variants::reference::tolerance::{
+use wgsl_variants_shaders::reference::tolerance::{
     F32_ABS, F32_ULP, f32_within, f32_within_ulp, unorm_within,
 };
-use wgsl_variants::source::RawFile;
 
 /// The kernel sources, as library files under `check/`.
 pub const KERNEL_FILES: [(&str, &str); 4] = [
@@ -1020,7 +1020,7 @@ mod tests {
 
     #[test]
     fn kernel_library_composes_every_kernel() {
-        let lib = kernel_library(&Library::bundled().unwrap()).unwrap();
+        let lib = kernel_library(&wgsl_variants_shaders::library().unwrap()).unwrap();
         for k in &KERNELS {
             let v = lib.variant(k.shader, k.pass, k.keywords).unwrap();
             let (module, _) = lib.naga_module(&v).unwrap();

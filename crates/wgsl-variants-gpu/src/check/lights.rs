@@ -2,7 +2,7 @@
 //! ([`LightRig`]), and the check of `deferred_shading/Lighting` — every variant drawn full-screen
 //! over G-buffers rendered by `standard/Deferred` on the same GPU, with the world position
 //! rebuilt from a depth buffer of a perspective camera, and compared with
-//! [`wgsl_variants::reference::light::deferred_light`] blended as the pass's HDR mode says.
+//! [`wgsl_variants_shaders::reference::light::deferred_light`] blended as the pass's HDR mode says.
 //!
 //! Cookie textures use nearest sampling: the rig moves the cookies until every lookup the check
 //! makes (at the deferred pass's rebuilt positions and at the forward pass's pixel positions)
@@ -28,14 +28,16 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::cube::{CubeFaces, face_margin};
-use wgsl_variants::reference::light::{
+use wgsl_variants_shaders::reference::cube::{CubeFaces, face_margin};
+use wgsl_variants_shaders::reference::light::{
     Cookie2d, Cookies, Light, LightParams, LightShape, LightType, deferred_light, look_at_rh,
     perspective_rh, world_from_depth,
 };
-use wgsl_variants::reference::quantize::unorm_to_f32;
-use wgsl_variants::reference::shadow::{ShadowKeywords, baked_occlusion, mix_realtime_and_baked};
-use wgsl_variants::reference::surface::{Keywords, reflections_add};
+use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
+use wgsl_variants_shaders::reference::shadow::{
+    ShadowKeywords, baked_occlusion, mix_realtime_and_baked,
+};
+use wgsl_variants_shaders::reference::surface::{Keywords, reflections_add};
 
 /// The smallest distance, in texels (2D cookie) or [`face_margin`] units (cube cookie), between
 /// a cookie lookup of the check and an edge.

@@ -1,12 +1,12 @@
 //! The GPU proof of the bundled library: every variant of the standard shader's passes, the
 //! deferred reflection and final passes, and compute kernels over the library's pure
-//! functions, each compared with [`wgsl_variants::reference`] through [`wgsl_variants::reference::tolerance`].
+//! functions, each compared with [`wgsl_variants_shaders::reference`] through [`wgsl_variants_shaders::reference::tolerance`].
 //!
 //! [`run`] is shared by the `check-gpu` command and the GPU tests:
 //!
 //! ```no_run
 //! use wgsl_variants_gpu::check::{run, CheckOptions};
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let report = run(&lib, &CheckOptions::default()).unwrap();
 //! assert!(report.passed(), "{report}");
 //! ```
@@ -21,8 +21,8 @@
 //! | [`frame`] | a whole frame (five objects, a main light and four per-pixel lights with cookies and shadows) forward and deferred, HDR and LDR, every pixel against the reference and forward against deferred (the `gpu_frame` test; `render --frame`) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
-//! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants::reference::urp::gbuffer`] |
-//! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants::reference::urp::forward`] |
+//! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants_shaders::reference::urp::gbuffer`] |
+//! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |

@@ -20,14 +20,14 @@ use crate::{
     CheckError, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat,
     render_with,
 };
-use wgsl_variants::reference::light::{Cookies, LightType};
-use wgsl_variants::reference::shadow::ShadowKeywords;
-use wgsl_variants::reference::surface::{
-    Keywords, shade_deferred, shade_forward, shade_forward_add,
-};
 use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Space};
 use wgsl_variants::{Library, Variant};
+use wgsl_variants_shaders::reference::light::{Cookies, LightType};
+use wgsl_variants_shaders::reference::shadow::ShadowKeywords;
+use wgsl_variants_shaders::reference::surface::{
+    Keywords, shade_deferred, shade_forward, shade_forward_add,
+};
 
 /// The clear colours of the G-buffer targets RT0..RT4 (and of the forward target: RT0's):
 /// values no lit pixel of the scene produces, so a discarded pixel that was written shows.

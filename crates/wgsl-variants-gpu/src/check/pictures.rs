@@ -16,13 +16,13 @@ use super::urp_forward::UrpForwardScene;
 use super::urp_lighting::{light_gbuffer, render_urp_gbuffer};
 use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
-use wgsl_variants::reference::ldr::ldr_decode;
-use wgsl_variants::reference::quantize::unorm;
-use wgsl_variants::reference::surface::Keywords;
-use wgsl_variants::reference::urp::flags::{
+use wgsl_variants_shaders::reference::ldr::ldr_decode;
+use wgsl_variants_shaders::reference::quantize::unorm;
+use wgsl_variants_shaders::reference::surface::Keywords;
+use wgsl_variants_shaders::reference::urp::flags::{
     RECEIVE_SHADOWS_OFF, SPECULAR_HIGHLIGHTS_OFF, SPECULAR_SETUP, SUBTRACTIVE_MIXED_LIGHTING,
 };
-use wgsl_variants::reference::urp::normal::{
+use wgsl_variants_shaders::reference::urp::normal::{
     decode_normal_oct, decode_normal_snorm8, snorm8_to_f32,
 };
 

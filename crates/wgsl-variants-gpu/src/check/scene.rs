@@ -16,16 +16,16 @@
 //!   [`MIN_FACE_MARGIN`] away from a cube-face edge ([`reference::cube::face_margin`]), for every
 //!   combination of the normal keywords, with and without the 10-bit G-buffer normal.
 //!
-//! [`reference::cube::face_margin`]: wgsl_variants::reference::cube::face_margin
+//! [`reference::cube::face_margin`]: wgsl_variants_shaders::reference::cube::face_margin
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::{BoundResource, Resource, VertexBuffer};
-use wgsl_variants::reference::cube::{CubeFaces, face_margin};
-use wgsl_variants::reference::gbuffer::{decode_normal, encode_normal};
-use wgsl_variants::reference::probe::{Probe, box_project, box_project_grown, falloff};
-use wgsl_variants::reference::quantize::{unorm, unorm_to_f32};
-use wgsl_variants::reference::surface::{
+use wgsl_variants_shaders::reference::cube::{CubeFaces, face_margin};
+use wgsl_variants_shaders::reference::gbuffer::{decode_normal, encode_normal};
+use wgsl_variants_shaders::reference::probe::{Probe, box_project, box_project_grown, falloff};
+use wgsl_variants_shaders::reference::quantize::{unorm, unorm_to_f32};
+use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, Material, Scene, Texels, surface, view_and_reflection,
 };
 
@@ -179,7 +179,7 @@ pub struct TestScene {
     /// Camera, ambient light, directional light and the forward pass's two probes.
     pub scene: Scene,
     /// The deferred reflection pass's probes with their cube maps, in the order given to the
-    /// pass (which draws them in [`wgsl_variants::reference::probe::draw_order`]).
+    /// pass (which draws them in [`wgsl_variants_shaders::reference::probe::draw_order`]).
     pub deferred_probes: Vec<(Probe, CubeFaces)>,
     /// Object-to-world transform of the quad.
     pub model: Mat4,

@@ -21,11 +21,11 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::LightType;
-use wgsl_variants::reference::shadow::{
+use wgsl_variants_shaders::reference::light::LightType;
+use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
 };
-use wgsl_variants::reference::tolerance::unorm_within;
+use wgsl_variants_shaders::reference::tolerance::unorm_within;
 
 /// The directional shadows' strength.
 pub const DIRECTIONAL_STRENGTH: f32 = 0.85;

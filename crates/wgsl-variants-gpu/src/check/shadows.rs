@@ -3,7 +3,7 @@
 //! `Depth16Unorm` map for the spot light (`SHADOWS_DEPTH`) and a `Rgba16Float` cube of
 //! distances for the point light (`SHADOWS_CUBE`, one draw per face, each with a depth buffer).
 //! The maps are read back: the GPU binds them to the shadowed variants of `Lighting` and
-//! `ForwardAdd`, and the CPU reference ([`wgsl_variants::reference::shadow`]) runs its own
+//! `ForwardAdd`, and the CPU reference ([`wgsl_variants_shaders::reference::shadow`]) runs its own
 //! comparison and filter over the same texels. So the reference tests the receivers' math
 //! exactly; [`analytic_occlusion`] then checks that the caster's map puts the shadow where the
 //! geometry says (a ray from the floor to the light through the quads and their cut-out
@@ -17,9 +17,9 @@ use crate::{
     BoundResource, CheckError, GpuContext, GpuError, Resource, VertexBuffer, read_texture,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::{Light, LightType};
-use wgsl_variants::reference::quantize::f16_bits_to_f32;
-use wgsl_variants::reference::shadow::{
+use wgsl_variants_shaders::reference::light::{Light, LightType};
+use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
+use wgsl_variants_shaders::reference::shadow::{
     ShadowCube, ShadowError, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams,
     cube_face_view_proj, shadow_factor,
 };

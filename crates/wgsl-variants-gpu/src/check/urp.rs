@@ -1,7 +1,7 @@
 //! `universal_lit/UniversalGBuffer` on the test scene: every selected variant rendered into
 //! the targets its keywords give ([`crate::urp_gbuffer_formats`]), read back and compared
-//! texel by texel with [`wgsl_variants::reference::urp::gbuffer`] through
-//! [`wgsl_variants::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
+//! texel by texel with [`wgsl_variants_shaders::reference::urp::gbuffer`] through
+//! [`wgsl_variants_shaders::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
 //! changed a texel.
 //!
 //! The scene is [`TestScene`]'s quad, material maps, camera, ambient light, main light and
@@ -32,16 +32,16 @@ use crate::{
     BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat,
     VertexBuffer, urp_gbuffer_formats,
 };
-use wgsl_variants::reference::cube::CubeFaces;
-use wgsl_variants::reference::quantize::{f16_bits_to_f32, f32_to_f16_bits};
-use wgsl_variants::reference::tolerance::urp_texel_within;
-use wgsl_variants::reference::urp::gbuffer::{
-    UrpGBufferOutput, UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexel, UrpTexels,
-    shade_gbuffer,
-};
 use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Shard};
 use wgsl_variants::{Library, Variant};
+use wgsl_variants_shaders::reference::cube::CubeFaces;
+use wgsl_variants_shaders::reference::quantize::{f16_bits_to_f32, f32_to_f16_bits};
+use wgsl_variants_shaders::reference::tolerance::urp_texel_within;
+use wgsl_variants_shaders::reference::urp::gbuffer::{
+    UrpGBufferOutput, UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexel, UrpTexels,
+    shade_gbuffer,
+};
 
 /// The clear values of the optional targets, in location order: depth as colour, rendering
 /// layers, shadowmask (none of them a value the scene writes).

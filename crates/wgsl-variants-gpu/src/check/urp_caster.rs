@@ -21,10 +21,12 @@ use super::shadows::{MAP_SIZE, render_depth};
 use super::urp::{DEFAULT_SEED, UrpScene};
 use crate::{BoundResource, CheckError, GpuContext, GpuError, Resource};
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::LightShape;
-use wgsl_variants::reference::shadow::{directional_shadow_view_proj, spot_shadow_view_proj};
-use wgsl_variants::reference::tolerance::unorm_within;
-use wgsl_variants::reference::urp::shadow::{CasterLight, apply_shadow_bias, caster_clip};
+use wgsl_variants_shaders::reference::light::LightShape;
+use wgsl_variants_shaders::reference::shadow::{
+    directional_shadow_view_proj, spot_shadow_view_proj,
+};
+use wgsl_variants_shaders::reference::tolerance::unorm_within;
+use wgsl_variants_shaders::reference::urp::shadow::{CasterLight, apply_shadow_bias, caster_clip};
 
 /// URP's `_ShadowBias` of the directional light's map: (depth, normal) in world units.
 pub const DIRECTIONAL_BIAS: Vec2 = Vec2::new(-0.05, -0.08);

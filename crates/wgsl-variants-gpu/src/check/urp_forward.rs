@@ -1,7 +1,7 @@
 //! `universal_lit/UniversalForward` on the URP scene: every selected variant rendered into an
 //! `Rg11b10Ufloat` camera target (URP's default HDR colour format), read back and compared
-//! texel by texel with [`wgsl_variants::reference::urp::forward::shade_forward`] through
-//! [`wgsl_variants::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
+//! texel by texel with [`wgsl_variants_shaders::reference::urp::forward::shade_forward`] through
+//! [`wgsl_variants_shaders::reference::tolerance::urp_texel_within`]; then, per keyword, whether it
 //! changed a texel (the loop of [`super::urp`], with the same covering set and partners).
 //!
 //! The scene is [`UrpScene`]'s quad, maps, lightmap and environment, lit by the [`LightRig`]:
@@ -22,13 +22,13 @@ use super::screen_shadows::{ScreenShadow, shadow_map_resources};
 use super::urp::{RENDERING_LAYERS, UrpColorPass, UrpScene};
 use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, spot_inner_degrees};
 use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
-use wgsl_variants::reference::light::{Light, LightError};
-use wgsl_variants::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
-use wgsl_variants::reference::urp::forward::{
+use wgsl_variants_shaders::reference::light::{Light, LightError};
+use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
+use wgsl_variants_shaders::reference::urp::forward::{
     MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward, vertex_lighting,
 };
-use wgsl_variants::reference::urp::gbuffer::UrpTexel;
-use wgsl_variants::reference::urp::lighting::UrpLight;
+use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
+use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
 
 /// The second point light's position (lit only without `_LIGHT_LAYERS`).
 const OTHER_POINT: Vec3 = Vec3::new(-0.6, -0.4, 0.9);

@@ -2,10 +2,10 @@
 //! full-screen over G-buffers that `universal_lit/UniversalGBuffer` rendered on the same GPU,
 //! positions rebuilt from the [`LightRig`]'s depth buffer, blended One/One onto GBuffer3
 //! (`Rg11b10Ufloat`), and every texel compared with
-//! [`wgsl_variants::reference::urp::lighting::stencil_deferred_light`] evaluated on the
+//! [`wgsl_variants_shaders::reference::urp::lighting::stencil_deferred_light`] evaluated on the
 //! G-buffer texels as read back (so the G-buffer pass's own check stays separate):
 //! `GBuffer3 = emission + GI (as stored) + light`, within
-//! [`wgsl_variants::reference::tolerance::rg11b10_within`].
+//! [`wgsl_variants_shaders::reference::tolerance::rg11b10_within`].
 //!
 //! Inputs ([`GBUFFER_INPUTS`]): three material keyword sets (metallic with maps, specular setup
 //! with maps, the ReceiveShadowsOff and SpecularHighlightsOff flags), each rendered with and
@@ -37,13 +37,13 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::{Light, LightType};
-use wgsl_variants::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
-use wgsl_variants::reference::tolerance::rg11b10_within;
-use wgsl_variants::reference::urp::lighting::{
+use wgsl_variants_shaders::reference::light::{Light, LightType};
+use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
+use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
+use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
-use wgsl_variants::reference::urp::ufloat::unpack_rg11b10;
+use wgsl_variants_shaders::reference::urp::ufloat::unpack_rg11b10;
 
 /// The material keywords of the G-buffers the lighting variants read (each also rendered
 /// with `_GBUFFER_NORMALS_OCT`, and always with `_WRITE_RENDERING_LAYERS`).
@@ -60,7 +60,7 @@ pub const SPOT_INNER_FRACTION: f32 = 0.6;
 /// [`SPOT_INNER_FRACTION`] of its outer angle.
 pub(crate) fn spot_inner_degrees(rig: &LightRig) -> f32 {
     match rig.spot_light.shape {
-        wgsl_variants::reference::light::LightShape::Spot { angle_degrees, .. } => {
+        wgsl_variants_shaders::reference::light::LightShape::Spot { angle_degrees, .. } => {
             angle_degrees * SPOT_INNER_FRACTION
         }
         _ => 0.0,

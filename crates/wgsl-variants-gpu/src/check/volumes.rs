@@ -33,7 +33,7 @@ use crate::{
 };
 use crate::{DepthTest, Draw};
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::{Light, LightType};
+use wgsl_variants_shaders::reference::light::{Light, LightType};
 
 /// The depth-stencil format of the volume draws: always renderable, 8 stencil bits.
 const DEPTH_STENCIL: wgpu::TextureFormat = wgpu::TextureFormat::Depth24PlusStencil8;

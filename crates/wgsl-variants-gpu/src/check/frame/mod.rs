@@ -10,9 +10,9 @@
 //!
 //! in HDR (`Rgba16Float`, `UNITY_HDR_ON`) and LDR (`Rgba8Unorm` forward, the 10-bit `exp2(−c)`
 //! RT3 and the final pass deferred), and compares every pixel of both with a CPU reference
-//! computed from the formulas ([`wgsl_variants::reference`]) and with each other: the
+//! computed from the formulas ([`wgsl_variants_shaders::reference`]) and with each other: the
 //! documents' claim that the shader "produces the same results in both forward and deferred
-//! mode". The tolerances are those of [`wgsl_variants::reference::tolerance`] (the frame's
+//! mode". The tolerances are those of [`wgsl_variants_shaders::reference::tolerance`] (the frame's
 //! row): the rounding of every draw, the G-buffer's quantization of each deferred light, and
 //! the reference's change over the rasterizer's sub-pixel window. Pixels whose window sees two
 //! objects (silhouettes) are left out and counted; the background is compared (nothing drawn).
@@ -21,7 +21,7 @@
 //! use wgsl_variants_gpu::GpuContext;
 //! use wgsl_variants_gpu::check::frame::{FrameScene, check_frame};
 //! let ctx = GpuContext::new(None).unwrap();
-//! let lib = wgsl_variants::Library::bundled().unwrap();
+//! let lib = wgsl_variants_shaders::library().unwrap();
 //! let report = check_frame(&ctx, &lib, &FrameScene::new(), true).unwrap();
 //! assert!(report.passed(), "{report}");
 //! ```
@@ -48,13 +48,13 @@ use crate::{
     Resource, TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::brdf::diffuse_and_specular_from_metallic;
-use wgsl_variants::reference::light::{Cookies, LightParams, LightType};
-use wgsl_variants::reference::surface::{
+use wgsl_variants_shaders::reference::brdf::diffuse_and_specular_from_metallic;
+use wgsl_variants_shaders::reference::light::{Cookies, LightParams, LightType};
+use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, shade_deferred, shade_forward, shade_forward_add, surface,
     view_and_reflection,
 };
-use wgsl_variants::reference::tolerance::{
+use wgsl_variants_shaders::reference::tolerance::{
     f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error, window_offsets,
     window_range,
 };

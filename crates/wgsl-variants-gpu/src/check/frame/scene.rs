@@ -18,13 +18,13 @@ use super::super::scene::{
 };
 use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
-use wgsl_variants::reference::cube::CubeFaces;
-use wgsl_variants::reference::light::{
+use wgsl_variants_shaders::reference::cube::CubeFaces;
+use wgsl_variants_shaders::reference::light::{
     Cookie2d, Light, LightError, LightParams, LightShape, LightType, look_at_rh, perspective_rh,
 };
-use wgsl_variants::reference::probe::Probe;
-use wgsl_variants::reference::quantize::unorm_to_f32;
-use wgsl_variants::reference::surface::{
+use wgsl_variants_shaders::reference::probe::Probe;
+use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
+use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Texels,
 };
 

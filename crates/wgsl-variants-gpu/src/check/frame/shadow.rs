@@ -2,7 +2,7 @@
 //! spot light's `Depth16Unorm` map (`SHADOWS_DEPTH`), a point light's six faces of distances
 //! (`SHADOWS_CUBE`) or a directional light's one cascade (`SHADOWS_SCREEN`), read back; the
 //! receivers bind what was rendered, and the reference reads the same maps
-//! ([`wgsl_variants::reference::shadow`]). A directional light's receivers read a screen-space
+//! ([`wgsl_variants_shaders::reference::shadow`]). A directional light's receivers read a screen-space
 //! mask instead, which each path renders with `screen_space_shadows/Collect` over its own depth
 //! buffer ([`FrameShadows::with_masks`]): the forward path's from a depth pre-pass of the
 //! casters with the camera's view (as Unity renders its camera depth texture), the deferred
@@ -23,13 +23,13 @@ use crate::{
     TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
-use wgsl_variants::reference::light::{Light, LightShape};
-use wgsl_variants::reference::shadow::{
+use wgsl_variants_shaders::reference::light::{Light, LightShape};
+use wgsl_variants_shaders::reference::shadow::{
     ShadowCube, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, cube_face_view_proj,
     shadow_factor,
 };
-use wgsl_variants::reference::surface::SmoothnessSource;
-use wgsl_variants::reference::tolerance::unorm_store_error;
+use wgsl_variants_shaders::reference::surface::SmoothnessSource;
+use wgsl_variants_shaders::reference::tolerance::unorm_store_error;
 
 /// Edge length of a spot light's map in texels.
 pub const SHADOW_MAP_SIZE: u32 = 128;

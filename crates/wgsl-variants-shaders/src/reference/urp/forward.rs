@@ -1,0 +1,507 @@
+//! What URP Lit's `UniversalForward` fragment writes (docs/urp.md §11): the surface of
+//! [`super::gbuffer`] lit in one pass, as URP's `UniversalFragmentPBR` does — global
+//! illumination (`GlobalIllumination`, the baked light after `MixRealtimeAndBakedGI`), the
+//! main directional light with its realtime shadow, the additional point and spot lights per
+//! pixel (`_ADDITIONAL_LIGHTS`) or per vertex (`_ADDITIONAL_LIGHTS_VERTEX`, URP's
+//! `VertexLighting`), light layers, and the emission. Facts from URP's `Lighting.hlsl`,
+//! `RealtimeLights.hlsl`, `GlobalIllumination.hlsl` and `LitForwardPass.hlsl`.
+//!
+//! ```
+//! use glam::{Vec3, Vec4};
+//! use wgsl_variants_shaders::reference::cube::CubeFaces;
+//! use wgsl_variants_shaders::reference::surface::Geometry;
+//! use wgsl_variants_shaders::reference::urp::forward::*;
+//! use wgsl_variants_shaders::reference::urp::gbuffer::{UrpLighting, UrpMaterial, UrpPixel, UrpTexels};
+//! let k = UrpForwardKeywords::from_names(&["_SPECULARHIGHLIGHTS_OFF", "_LIGHT_LAYERS"]).unwrap();
+//! let geo = Geometry { world_position: Vec3::ZERO, normal: Vec3::Z, tangent: Vec4::new(1.0, 0.0, 0.0, 1.0) };
+//! let pixel = UrpPixel { geometry: geo, depth: 0.5, rendering_layers: 1 };
+//! // A white light straight above a white dielectric (metallic 0): diffuse = 0.96.
+//! let light = UrpLighting { main_light_dir: Vec3::Z, main_light_color: Vec3::ONE, ..UrpLighting::default() };
+//! let env = CubeFaces::uniform(Vec4::ZERO);
+//! let lights = UrpForwardLights::new(1, vec![]).unwrap();
+//! let lit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
+//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO).unwrap();
+//! assert!((lit - Vec3::splat(0.96)).abs().max_element() < 1e-6);
+//! // The main light on another layer than the mesh's lights nothing.
+//! let other = UrpForwardLights::new(2, vec![]).unwrap();
+//! let unlit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
+//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO).unwrap();
+//! assert_eq!(unlit, Vec3::ZERO);
+//! ```
+
+use glam::Vec3;
+
+use super::gbuffer::{
+    UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels, global_illumination, kw,
+    urp_baked_gi, urp_brdf, urp_surface, urp_world_normal,
+};
+use super::lighting::{HALF_MIN_SQRT, UrpBrdfData, UrpLightKind, UrpLightParams};
+use crate::reference::cube::CubeFaces;
+use crate::reference::light::LightError;
+use crate::reference::surface::KeywordsError;
+
+/// The keywords of `universal_lit/UniversalForward`, in declaration order.
+pub const URP_FORWARD_KEYWORD_NAMES: [&str; 17] = [
+    "_NORMALMAP",
+    "_ALPHATEST_ON",
+    "_EMISSION",
+    "_METALLICSPECGLOSSMAP",
+    "_SPECULAR_SETUP",
+    "_OCCLUSIONMAP",
+    "_SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A",
+    "_RECEIVE_SHADOWS_OFF",
+    "_SPECULARHIGHLIGHTS_OFF",
+    "_ENVIRONMENTREFLECTIONS_OFF",
+    "_MAIN_LIGHT_SHADOWS",
+    "_SHADOWS_SOFT",
+    "_ADDITIONAL_LIGHTS_VERTEX",
+    "_ADDITIONAL_LIGHTS",
+    "_LIGHT_LAYERS",
+    "_MIXED_LIGHTING_SUBTRACTIVE",
+    "LIGHTMAP_ON",
+];
+
+/// URP's limit of additional lights per object in the forward path (the WGSL array's length).
+pub const MAX_ADDITIONAL_LIGHTS: usize = 8;
+
+/// How the additional lights are evaluated (`_ _ADDITIONAL_LIGHTS_VERTEX _ADDITIONAL_LIGHTS`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AdditionalLights {
+    /// Not at all.
+    #[default]
+    Off,
+    /// Lambert at the vertices, interpolated, times the diffuse colour.
+    PerVertex,
+    /// URP's BRDF at every pixel.
+    PerPixel,
+}
+
+/// The keyword set of one `UniversalForward` variant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UrpForwardKeywords {
+    /// The surface keywords, shared with the G-buffer pass: the ten material keywords,
+    /// `LIGHTMAP_ON` and `_MIXED_LIGHTING_SUBTRACTIVE` (at their [`kw`] indices).
+    pub surface: UrpKeywords,
+    /// `_MAIN_LIGHT_SHADOWS`.
+    pub main_light_shadows: bool,
+    /// `_SHADOWS_SOFT`: the 3 × 3 tent instead of one tap.
+    pub shadows_soft: bool,
+    /// The additional-lights keyword.
+    pub additional_lights: AdditionalLights,
+    /// `_LIGHT_LAYERS`.
+    pub light_layers: bool,
+}
+
+impl UrpForwardKeywords {
+    /// The keyword set of these names (underscore-only names skipped); a name the pass does
+    /// not declare is [`KeywordsError::Unknown`].
+    ///
+    /// ```
+    /// use wgsl_variants_shaders::reference::urp::forward::{AdditionalLights, UrpForwardKeywords};
+    /// let k = UrpForwardKeywords::from_names(&["_", "_ADDITIONAL_LIGHTS_VERTEX"]).unwrap();
+    /// assert_eq!(k.additional_lights, AdditionalLights::PerVertex);
+    /// assert!(UrpForwardKeywords::from_names(&["_GBUFFER_NORMALS_OCT"]).is_err());
+    /// ```
+    pub fn from_names(names: &[&str]) -> Result<UrpForwardKeywords, KeywordsError> {
+        let mut k = UrpForwardKeywords::default();
+        let mut surface = Vec::new();
+        for &name in names {
+            match name {
+                "_MAIN_LIGHT_SHADOWS" => k.main_light_shadows = true,
+                "_SHADOWS_SOFT" => k.shadows_soft = true,
+                "_ADDITIONAL_LIGHTS_VERTEX" => k.additional_lights = AdditionalLights::PerVertex,
+                "_ADDITIONAL_LIGHTS" => k.additional_lights = AdditionalLights::PerPixel,
+                "_LIGHT_LAYERS" => k.light_layers = true,
+                _ if URP_FORWARD_KEYWORD_NAMES.contains(&name)
+                    || (!name.is_empty() && name.bytes().all(|b| b == b'_')) =>
+                {
+                    surface.push(name);
+                }
+                _ => return Err(KeywordsError::Unknown(name.to_owned())),
+            }
+        }
+        k.surface = UrpKeywords::from_names(&surface)?;
+        Ok(k)
+    }
+
+    /// Whether the main light's shadow map is read: `_MAIN_LIGHT_SHADOWS` without
+    /// `_RECEIVE_SHADOWS_OFF` (URP's `MainLightRealtimeShadow` returns 1 then).
+    pub fn reads_shadow_map(&self) -> bool {
+        self.main_light_shadows && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
+    }
+}
+
+/// The main light's realtime shadow at a pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MainLightShadow {
+    /// `1 − strength + strength · visibility`.
+    pub attenuation: f32,
+    /// The shadow's strength.
+    pub strength: f32,
+}
+
+impl MainLightShadow {
+    /// No shadow: attenuation 1, strength 0 (what the pass uses where it reads no map).
+    pub const NONE: MainLightShadow = MainLightShadow {
+        attenuation: 1.0,
+        strength: 0.0,
+    };
+}
+
+/// The lights of the forward pass besides the main light's direction and colour (which
+/// [`UrpLighting`] holds): the main light's rendering-layer mask and up to
+/// [`MAX_ADDITIONAL_LIGHTS`] point and spot lights.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpForwardLights {
+    main_layer_mask: u32,
+    additional: Vec<UrpLightParams>,
+}
+
+impl UrpForwardLights {
+    /// The lights; more than [`MAX_ADDITIONAL_LIGHTS`] additional lights, or a directional
+    /// one among them (the pass's additional lights are punctual), is an error.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants_shaders::reference::light::Light;
+    /// use wgsl_variants_shaders::reference::urp::forward::UrpForwardLights;
+    /// use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
+    /// let point = UrpLight::new(Light::point(Vec3::Z, 4.0, Vec3::ONE), 0.0, 1).params().unwrap();
+    /// assert!(UrpForwardLights::new(1, vec![point; 8]).is_ok());
+    /// assert!(UrpForwardLights::new(1, vec![point; 9]).is_err());
+    /// let sun = UrpLight::new(Light::directional(Vec3::NEG_Z, Vec3::ONE), 0.0, 1).params().unwrap();
+    /// assert!(UrpForwardLights::new(1, vec![sun]).is_err());
+    /// ```
+    pub fn new(
+        main_layer_mask: u32,
+        additional: Vec<UrpLightParams>,
+    ) -> Result<UrpForwardLights, LightError> {
+        if additional.len() > MAX_ADDITIONAL_LIGHTS {
+            return Err(LightError::TooManyAdditional {
+                count: additional.len(),
+                max: MAX_ADDITIONAL_LIGHTS,
+            });
+        }
+        if additional
+            .iter()
+            .any(|l| l.kind == UrpLightKind::Directional)
+        {
+            return Err(LightError::AdditionalDirectional);
+        }
+        Ok(UrpForwardLights {
+            main_layer_mask,
+            additional,
+        })
+    }
+
+    /// The main light's rendering-layer mask.
+    pub fn main_layer_mask(&self) -> u32 {
+        self.main_layer_mask
+    }
+
+    /// The additional lights.
+    pub fn additional(&self) -> &[UrpLightParams] {
+        &self.additional
+    }
+
+    /// The WGSL `ForwardLights` record: `params` (count, main light's mask, 0, 0) as a
+    /// `vec4u`, then eight `UrpLight` records ([`UrpLightParams::uniform`]; zeros past the
+    /// count), little-endian: 16 + 8 · 80 = 656 bytes.
+    pub fn uniform(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(16 + 80 * MAX_ADDITIONAL_LIGHTS);
+        let count = self.additional.len() as u32;
+        for word in [count, self.main_layer_mask, 0, 0] {
+            out.extend(word.to_le_bytes());
+        }
+        for light in &self.additional {
+            out.extend(light.uniform());
+        }
+        out.resize(16 + 80 * MAX_ADDITIONAL_LIGHTS, 0);
+        out
+    }
+
+    /// The additional lights that light a mesh of `rendering_layers` (every one without
+    /// `_LIGHT_LAYERS`).
+    fn lighting(
+        &self,
+        layers: bool,
+        rendering_layers: u32,
+    ) -> impl Iterator<Item = &UrpLightParams> {
+        self.additional
+            .iter()
+            .filter(move |l| !layers || l.lights_layers(rendering_layers))
+    }
+}
+
+/// URP's `VertexLighting` at one vertex: `Σ color · attenuation · saturate(n·l)` over the
+/// additional lights that light the mesh (the vertex stage's `p` and unit normal `n`); 0
+/// unless `_ADDITIONAL_LIGHTS_VERTEX`. The pass interpolates it across the triangle.
+pub fn vertex_lighting(
+    k: &UrpForwardKeywords,
+    lights: &UrpForwardLights,
+    p: Vec3,
+    n: Vec3,
+    rendering_layers: u32,
+) -> Vec3 {
+    if k.additional_lights != AdditionalLights::PerVertex {
+        return Vec3::ZERO;
+    }
+    lights
+        .lighting(k.light_layers, rendering_layers)
+        .map(|light| {
+            let (l, attenuation) = light.sample(p);
+            light.color * attenuation * n.dot(l).clamp(0.0, 1.0)
+        })
+        .sum()
+}
+
+/// The `UniversalForward` fragment at one pixel (rgb; the pass writes alpha 1): `None` where
+/// `_ALPHATEST_ON` discards. `shadow` is the main light's shadow at the pixel's position
+/// (used where [`UrpForwardKeywords::reads_shadow_map`]; [`MainLightShadow::NONE`] elsewhere),
+/// `vertex_lighting` the interpolated [`vertex_lighting`] (used with
+/// `_ADDITIONAL_LIGHTS_VERTEX`).
+#[allow(clippy::too_many_arguments)]
+pub fn shade_forward(
+    k: &UrpForwardKeywords,
+    mat: &UrpMaterial,
+    tex: &UrpTexels,
+    pixel: &UrpPixel,
+    light: &UrpLighting,
+    env: &CubeFaces,
+    shadow: MainLightShadow,
+    lights: &UrpForwardLights,
+    vertex_lighting: Vec3,
+) -> Option<Vec3> {
+    let sk = &k.surface;
+    let s = urp_surface(sk, mat, tex)?;
+    let b = urp_brdf(sk, &s);
+    let roughness = (b.perceptual_roughness * b.perceptual_roughness).max(HALF_MIN_SQRT);
+    let direct = UrpBrdfData {
+        diffuse: b.diffuse,
+        specular: b.specular,
+        reflectivity: b.reflectivity,
+        roughness,
+        roughness2: b.roughness2,
+        normalization_term: roughness * 4.0 + 2.0,
+        roughness2_minus_one: b.roughness2 - 1.0,
+    };
+    let n = urp_world_normal(sk, s.normal_ts, &pixel.geometry);
+    let p = pixel.geometry.world_position;
+    let v = (light.camera_position - p).normalize();
+    let specular_off = sk.on(kw::SPECULARHIGHLIGHTS_OFF);
+    let shadow = if k.reads_shadow_map() {
+        shadow
+    } else {
+        MainLightShadow::NONE
+    };
+    let baked = urp_baked_gi(sk, tex, light, n, shadow.attenuation, shadow.strength);
+    let mut color = global_illumination(sk, &b, baked, n, v, s.occlusion, light, env);
+    let layers = pixel.rendering_layers;
+    if !k.light_layers || lights.main_layer_mask & layers != 0 {
+        color += super::lighting::lighting_physically_based(
+            &direct,
+            light.main_light_color,
+            shadow.attenuation,
+            light.main_light_dir,
+            n,
+            v,
+            specular_off,
+        );
+    }
+    match k.additional_lights {
+        AdditionalLights::Off => {}
+        AdditionalLights::PerPixel => {
+            for l in lights.lighting(k.light_layers, layers) {
+                let (dir, attenuation) = l.sample(p);
+                color += super::lighting::lighting_physically_based(
+                    &direct,
+                    l.color,
+                    attenuation,
+                    dir,
+                    n,
+                    v,
+                    specular_off,
+                );
+            }
+        }
+        AdditionalLights::PerVertex => color += vertex_lighting * b.diffuse,
+    }
+    Some(color + s.emission)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::light::Light;
+    use crate::reference::surface::Geometry;
+    use crate::reference::urp::lighting::UrpLight;
+    use glam::Vec4;
+
+    fn pixel(layers: u32) -> UrpPixel {
+        UrpPixel {
+            geometry: Geometry {
+                world_position: Vec3::ZERO,
+                normal: Vec3::Z,
+                tangent: Vec4::new(1.0, 0.0, 0.0, 1.0),
+            },
+            depth: 0.5,
+            rendering_layers: layers,
+        }
+    }
+
+    fn shade(names: &[&str], lights: &UrpForwardLights, shadow: MainLightShadow, vl: Vec3) -> Vec3 {
+        let k = UrpForwardKeywords::from_names(names).unwrap();
+        let light = UrpLighting {
+            main_light_dir: Vec3::Z,
+            ..UrpLighting::default()
+        };
+        shade_forward(
+            &k,
+            &UrpMaterial::default(),
+            &UrpTexels::default(),
+            &pixel(1),
+            &light,
+            &CubeFaces::uniform(Vec4::ZERO),
+            shadow,
+            lights,
+            vl,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn additional_point_light_on_paper() {
+        // A point light 2 above the pixel, range 4: 1/d² · (1 − (d²/r²)²)² = 1/4 · (1 − 1/16)²
+        // = 0.2197265625; n·l = 1; a white dielectric's diffuse 0.96 (no specular):
+        // 0.2109375 per pixel. Black main light, no GI.
+        let point = UrpLight::new(
+            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
+            0.0,
+            1,
+        )
+        .params()
+        .unwrap();
+        let lights = UrpForwardLights::new(0, vec![point]).unwrap();
+        let off = ["_SPECULARHIGHLIGHTS_OFF"];
+        assert_eq!(
+            shade(&off, &lights, MainLightShadow::NONE, Vec3::ZERO),
+            Vec3::ZERO
+        );
+        let per_pixel = shade(
+            &["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS"],
+            &lights,
+            MainLightShadow::NONE,
+            Vec3::ZERO,
+        );
+        assert!((per_pixel - Vec3::splat(0.210_937_5)).abs().max_element() < 1e-6);
+        // Per vertex: the same Lambert at a vertex there, times the diffuse colour.
+        let k = UrpForwardKeywords::from_names(&["_ADDITIONAL_LIGHTS_VERTEX"]).unwrap();
+        let at_vertex = vertex_lighting(&k, &lights, Vec3::ZERO, Vec3::Z, 1);
+        assert!((at_vertex - Vec3::splat(0.219_726_56)).abs().max_element() < 1e-7);
+        let per_vertex = shade(
+            &["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS_VERTEX"],
+            &lights,
+            MainLightShadow::NONE,
+            at_vertex,
+        );
+        assert!((per_vertex - per_pixel).abs().max_element() < 1e-6);
+        // Light layers: the light's layer 0 is the mesh's.
+        let elsewhere = UrpLight::new(
+            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
+            0.0,
+            2,
+        )
+        .params()
+        .unwrap();
+        let lights = UrpForwardLights::new(0, vec![elsewhere]).unwrap();
+        let layered = [
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS",
+            "_LIGHT_LAYERS",
+        ];
+        assert_eq!(
+            shade(&layered, &lights, MainLightShadow::NONE, Vec3::ZERO),
+            Vec3::ZERO
+        );
+    }
+
+    #[test]
+    fn main_light_shadow_on_paper() {
+        // White main light from +Z onto the white dielectric, specular off: 0.96 unshadowed.
+        // Strength 0.8, visibility 0.25: attenuation 1 − 0.8 + 0.8 · 0.25 = 0.4 → 0.384.
+        let lights = UrpForwardLights::new(1, vec![]).unwrap();
+        let k = UrpForwardKeywords::from_names(&["_MAIN_LIGHT_SHADOWS", "_SPECULARHIGHLIGHTS_OFF"])
+            .unwrap();
+        let light = UrpLighting {
+            main_light_dir: Vec3::Z,
+            main_light_color: Vec3::ONE,
+            ..UrpLighting::default()
+        };
+        let shadow = MainLightShadow {
+            attenuation: 0.4,
+            strength: 0.8,
+        };
+        let run = |k: &UrpForwardKeywords| {
+            shade_forward(
+                k,
+                &UrpMaterial::default(),
+                &UrpTexels::default(),
+                &pixel(1),
+                &light,
+                &CubeFaces::uniform(Vec4::ZERO),
+                shadow,
+                &lights,
+                Vec3::ZERO,
+            )
+            .unwrap()
+        };
+        assert!((run(&k) - Vec3::splat(0.384)).abs().max_element() < 1e-6);
+        // Receiving no shadows ignores the map.
+        let mut off = k;
+        off.surface.0[kw::RECEIVE_SHADOWS_OFF] = true;
+        assert!((run(&off) - Vec3::splat(0.96)).abs().max_element() < 1e-6);
+        // Subtractive: lightmap 1, lambert 1 · (1 − 0.4) = 0.6 subtracted → 0.4; mixed by
+        // strength 0.8 from 1: 1 − 0.8 · 0.6 = 0.52; GI = 0.52 · 0.96 = 0.4992; + 0.384.
+        let sub = UrpForwardKeywords::from_names(&[
+            "_MAIN_LIGHT_SHADOWS",
+            "_SPECULARHIGHLIGHTS_OFF",
+            "LIGHTMAP_ON",
+            "_MIXED_LIGHTING_SUBTRACTIVE",
+        ])
+        .unwrap();
+        let tex = UrpTexels {
+            lightmap: Vec3::ONE,
+            ..UrpTexels::default()
+        };
+        let got = shade_forward(
+            &sub,
+            &UrpMaterial::default(),
+            &tex,
+            &pixel(1),
+            &light,
+            &CubeFaces::uniform(Vec4::ZERO),
+            shadow,
+            &lights,
+            Vec3::ZERO,
+        )
+        .unwrap();
+        assert!(
+            (got - Vec3::splat(0.4992 + 0.384)).abs().max_element() < 1e-6,
+            "{got}"
+        );
+    }
+
+    #[test]
+    fn uniform_layout() {
+        let point = UrpLight::new(Light::point(Vec3::Z, 4.0, Vec3::ONE), 0.0, 5)
+            .params()
+            .unwrap();
+        let bytes = UrpForwardLights::new(9, vec![point, point])
+            .unwrap()
+            .uniform();
+        assert_eq!(bytes.len(), 656);
+        assert_eq!(&bytes[..8], &[2, 0, 0, 0, 9, 0, 0, 0]);
+        assert_eq!(&bytes[16..96], &point.uniform()[..]);
+        assert!(bytes[176..].iter().all(|&b| b == 0));
+    }
+}
