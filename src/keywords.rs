@@ -8,7 +8,16 @@
 use std::fmt;
 
 use crate::diagnostic::{Diagnostic, Span};
-pub use crate::preprocess::tree::SetKind;
+
+/// Which Unity keyword pragma declared a set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SetKind {
+    /// `#pragma multi_compile`: every option is built.
+    MultiCompile,
+    /// `#pragma shader_feature`: only options some material uses are built.
+    ShaderFeature,
+}
 
 /// One keyword set of a pass (serialized as `kind`, `local` and `options`).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
@@ -282,6 +291,10 @@ impl KeywordSet {
         if kind == SetKind::ShaderFeature && names.len() == 1 && !is_placeholder(&names[0].0) {
             options.push(None);
         }
+        // Linear in the set's size: sets of many thousands of options are refused or built at
+        // once, not one quadratic scan at a time.
+        let mut seen: std::collections::HashSet<&str> =
+            std::collections::HashSet::with_capacity(names.len());
         for (name, name_span) in names {
             if is_placeholder(name) {
                 if options.contains(&None) {
@@ -292,7 +305,7 @@ impl KeywordSet {
                 }
                 options.push(None);
             } else {
-                if options.iter().any(|o| o.as_deref() == Some(&**name)) {
+                if !seen.insert(name) {
                     return Err(KeywordError::DuplicateInSet {
                         keyword: name.to_string(),
                         span: *name_span,
@@ -345,6 +358,91 @@ impl fmt::Display for KeywordSet {
         }
         Ok(())
     }
+}
+
+/// The value of a shader def, as naga_oil types it (`ShaderDefValue`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DefValue {
+    /// `true` / `false`.
+    Bool(bool),
+    /// A signed integer (a plain TOML integer).
+    Int(i32),
+    /// An unsigned integer (`{ uint = N }`).
+    UInt(u32),
+}
+
+impl DefValue {
+    /// The value the preprocessor's static analysis compares: booleans are 0 and 1.
+    pub fn as_i64(self) -> i64 {
+        match self {
+            DefValue::Bool(b) => i64::from(b),
+            DefValue::Int(i) => i64::from(i),
+            DefValue::UInt(u) => i64::from(u),
+        }
+    }
+}
+
+impl std::fmt::Display for DefValue {
+    /// As a valued keyword writes it (and naga_oil substitutes it): `true`, `-3`, `4u`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DefValue::Bool(b) => write!(f, "{b}"),
+            DefValue::Int(i) => write!(f, "{i}"),
+            DefValue::UInt(u) => write!(f, "{u}u"),
+        }
+    }
+}
+
+#[cfg(feature = "naga-oil")]
+impl DefValue {
+    /// naga_oil's type for the value (`ShaderDefValue`), as naga_oil receives a variant's defs.
+    ///
+    /// ```
+    /// use wgsl_variants::declaration::DefValue;
+    /// assert_eq!(DefValue::UInt(4).to_naga_oil(), naga_oil::compose::ShaderDefValue::UInt(4));
+    /// ```
+    pub fn to_naga_oil(self) -> naga_oil::compose::ShaderDefValue {
+        use naga_oil::compose::ShaderDefValue;
+        match self {
+            DefValue::Bool(b) => ShaderDefValue::Bool(b),
+            DefValue::Int(i) => ShaderDefValue::Int(i),
+            DefValue::UInt(u) => ShaderDefValue::UInt(u),
+        }
+    }
+}
+
+/// The def a keyword sets: a keyword of a valued set, `NAME=VALUE` (`true`, `-3`, `4u`), sets
+/// `NAME` to that value; any other keyword sets itself to `true`.
+///
+/// ```
+/// use wgsl_variants::keywords::{DefValue, def_of};
+/// assert_eq!(def_of("MAX_CASCADES=4u"), ("MAX_CASCADES", DefValue::UInt(4)));
+/// assert_eq!(def_of("TAPS=-8"), ("TAPS", DefValue::Int(-8)));
+/// assert_eq!(def_of("SKINNED"), ("SKINNED", DefValue::Bool(true)));
+/// ```
+pub fn def_of(keyword: &str) -> (&str, DefValue) {
+    let valued = keyword.split_once('=').and_then(|(name, v)| {
+        let value = match v {
+            "true" => DefValue::Bool(true),
+            "false" => DefValue::Bool(false),
+            v => match v.strip_suffix('u') {
+                Some(u) => DefValue::UInt(u.parse().ok()?),
+                None => DefValue::Int(v.parse().ok()?),
+            },
+        };
+        Some((name, value))
+    });
+    valued.unwrap_or((keyword, DefValue::Bool(true)))
+}
+
+/// A shader def with a fixed value in every variant of a pass.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Constant {
+    /// The def's name.
+    pub name: String,
+    /// Its value.
+    pub value: DefValue,
 }
 
 #[cfg(test)]

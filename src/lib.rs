@@ -28,25 +28,33 @@
 //! assert_eq!(module.entry_points[0].name, "fs");
 //! ```
 //!
-//! ## The pipeline, one module per stage
+//! ## The pipeline, one module per stage, each importing only the stages below it
 //!
-//! 1. [`source`] reads files; [`preprocess`] splits WGSL lines, parses directives and composes
-//!    a variant; [`library`] loads and links a tree ([`LoadError`] holds every problem, typed);
-//!    [`reach`] leaves out of a variant's text the items its entry points do not reach.
-//! 2. [`keywords`], [`shader`], [`variants`] ([`Space`], [`Choice`]), [`lookup`] and
-//!    [`materials`] model Unity's keyword semantics; [`plan`] chooses what a command builds.
-//! 3. [`validate`] runs naga ([`cache`] remembers valid texts); [`audit`] measures a variant
-//!    explosion without building anything.
-//! 4. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
-//!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests.
-//!    [`merge`] puts the outputs of `--shard K/N` runs back together, byte for byte;
-//!    [`watch`] validates a tree again as it changes (`wgsl-variants watch`, hot reload).
-//! 5. [`diagnostic`] renders errors, [`json`] serializes exact counts.
+//! 1. [`diagnostic`], [`error`] ([`VariantError`]: every stage's report of a variant),
+//!    [`source`] (reading files) and [`cache`] are the ground floor.
+//! 2. [`preprocess`] splits WGSL lines, parses directives and composes a variant;
+//!    [`keywords`], [`shader`], [`variants`] ([`Space`], [`Choice`]), [`lookup`], [`covering`]
+//!    and [`materials`] model Unity's keyword semantics; [`declaration`] reads the keywords of
+//!    naga_oil and WESL trees.
+//! 3. [`library`] loads and links a tree ([`LoadError`] holds every problem, typed) and
+//!    composes variants; [`reach`] leaves out of a variant's text the items its entry points do
+//!    not reach; [`validator`] is naga's verdict on one text.
+//! 4. [`analysis`] reads a space without composing it (distinct texts, regions, unreached
+//!    items); [`plan`] chooses what a command builds; [`fingerprint`] names what an output was
+//!    made from.
+//! 5. [`validate`] runs naga over plans ([`cache`] remembers valid texts); [`audit`] measures a
+//!    variant explosion without building anything.
+//! 6. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
+//!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests; [`merge`] puts
+//!    the outputs of `--shard K/N` runs back together, byte for byte; [`watch`] validates a
+//!    tree again as it changes (`wgsl-variants watch`, hot reload). [`json`] serializes exact
+//!    counts.
 //!
 //! `docs/api.md` in the repository lists the main items of each stage.
 
 #![deny(missing_docs)]
 
+pub mod analysis;
 pub mod audit;
 pub mod bake;
 pub mod cache;
@@ -54,7 +62,9 @@ pub mod covering;
 pub mod data_file;
 pub mod declaration;
 pub mod diagnostic;
+pub mod error;
 pub mod emit;
+pub mod fingerprint;
 pub mod json;
 pub mod keywords;
 pub mod library;
@@ -69,6 +79,7 @@ pub mod shader;
 pub mod snapshot;
 pub mod source;
 pub mod validate;
+pub mod validator;
 pub mod variants;
 pub mod watch;
 
@@ -77,7 +88,7 @@ pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use preprocess::Dialect;
 pub use shader::{Pass, Shader};
-pub use validate::VariantError;
+pub use error::VariantError;
 pub use variants::{Choice, Space};
 
 /// `docs/api.md`: its example is compiled and run with the doc tests, so the page cannot drift

@@ -201,6 +201,23 @@ fn nearest(space: &Space<'_>, choice: &Choice, n: usize, budget: u64) -> Vec<Cho
     scored.into_iter().take(n).map(|(_, c)| c).collect()
 }
 
+impl Pass {
+    /// The variant with exactly these keywords on, in the full space.
+    ///
+    /// Every keyword must be declared by the pass, at most one per set; a set none of whose
+    /// keywords is given takes its "none" option.
+    ///
+    /// ```
+    /// let lib = wgsl_variants_shaders::library().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
+    /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
+    /// ```
+    pub fn resolve<S: AsRef<str>>(&self, keywords: &[S]) -> Result<Choice, LookupError> {
+        resolve(self, keywords)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -70,7 +70,7 @@ impl Default for PlanOptions {
 }
 
 impl PlanOptions {
-    /// These options as text for [`crate::merge::fingerprint`]: everything but the shard, so
+    /// These options as text for [`crate::fingerprint::fingerprint`]: everything but the shard, so
     /// every shard of one plan has the same fingerprint.
     pub fn fingerprint_text(&self) -> String {
         let whole = PlanOptions {

@@ -29,7 +29,7 @@ use std::fmt;
 use serde::Serialize;
 
 use crate::library::{Library, Variant};
-use crate::validate::VariantError;
+use crate::error::VariantError;
 
 /// A shader stage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]

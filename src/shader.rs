@@ -6,9 +6,8 @@ use num_bigint::BigUint;
 
 use crate::diagnostic::{FileId, Span};
 use crate::keywords::{Constraint, KeywordError, KeywordSet};
-use crate::lookup::LookupError;
-use crate::preprocess::tree::{Node, PassDecl, Pragma, SetKind};
-use crate::variants::Choice;
+use crate::keywords::SetKind;
+use crate::preprocess::tree::{Node, PassDecl, Pragma};
 
 /// A shader: a named set of passes declared by one `#shader` file.
 #[derive(Clone, Debug)]
@@ -131,10 +130,11 @@ impl Pass {
                 } => match KeywordSet::new(*kind, *local, names, *span) {
                     Ok(set) => {
                         let set_index = sets.len();
+                        let spans: HashMap<&str, Span> =
+                            names.iter().map(|(n, s)| (&**n, *s)).collect();
                         for (option, name) in set.options.iter().enumerate() {
                             let Some(name) = name else { continue };
-                            let name_span =
-                                names.iter().find(|n| &*n.0 == name).map_or(*span, |n| n.1);
+                            let name_span = spans.get(name.as_str()).copied().unwrap_or(*span);
                             if let Some(first) = first_span.get(name) {
                                 errors.push(KeywordError::InTwoSets {
                                     keyword: name.clone(),
@@ -192,23 +192,7 @@ impl Pass {
             index,
             constraints,
         };
-        crate::variants::check_constraints(&pass).map_err(|e| vec![e])?;
         Ok(pass)
-    }
-
-    /// The variant with exactly these keywords on, in the full space.
-    ///
-    /// Every keyword must be declared by the pass, at most one per set; a set none of whose
-    /// keywords is given takes its "none" option.
-    ///
-    /// ```
-    /// let lib = wgsl_variants_shaders::library().unwrap();
-    /// let pass = lib.pass("standard", "Deferred").unwrap();
-    /// assert!(pass.resolve(&["_NORMAL_MAP"]).is_ok());
-    /// assert!(pass.resolve(&["_NORMAL_MAPP"]).unwrap_err().to_string().contains("did you mean `_NORMAL_MAP`"));
-    /// ```
-    pub fn resolve<S: AsRef<str>>(&self, keywords: &[S]) -> Result<Choice, LookupError> {
-        crate::lookup::resolve(self, keywords)
     }
 
     /// The shader defs of a variant with `keywords` on: the pass's constants, then each

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use crate::emit::set::file_safe;
 use crate::library::{Library, Variant};
 use crate::shader::Pass;
-use crate::validate::VariantError;
+use crate::error::VariantError;
 use crate::variants::{Choice, Space};
 
 /// A named text to snapshot.
@@ -43,7 +43,7 @@ pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, Va
     naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty()).map_err(
         |e| VariantError {
             variant: label,
-            stage: crate::validate::Stage::Validate,
+            stage: crate::error::Stage::Validate,
             message: format!("naga's WGSL writer failed: {e}"),
             labels: Vec::new(),
             notes: Vec::new(),

@@ -7,146 +7,15 @@ use num_bigint::BigUint;
 use rayon::prelude::*;
 
 use crate::cache::{Hash, ValidCache};
-use crate::diagnostic::{Diagnostic, Location, SourceFiles, Span};
+use crate::diagnostic::Location;
 use crate::library::{Library, Variant};
 use crate::plan::{Plan, PlanOptions};
 use crate::preprocess::Composed;
 use crate::shader::Pass;
 use crate::variants::{Choice, Shard, Space};
 
-/// Which naga stage rejected a variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Stage {
-    /// The tree's composer (naga_oil for a naga_oil tree: its preprocessor and imports).
-    Compose,
-    /// The WGSL front end (syntax, name resolution, types).
-    Parse,
-    /// naga's IR validator.
-    Validate,
-}
-
-/// naga rejected a variant. Spans point into the original module files.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct VariantError {
-    /// `shader/pass {KEYWORDS}`.
-    pub variant: String,
-    /// The failing stage.
-    pub stage: Stage,
-    /// naga's message, with its chain of causes.
-    pub message: String,
-    /// naga's labels, mapped back to original files.
-    pub labels: Vec<(Span, String)>,
-    /// naga's notes.
-    pub notes: Vec<String>,
-}
-
-impl std::fmt::Display for VariantError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} (in variant {})", self.message, self.variant)
-    }
-}
-
-impl std::error::Error for VariantError {}
-
-impl VariantError {
-    /// A renderable report naming the variant's keyword set.
-    pub fn diagnostic(&self) -> Diagnostic {
-        let mut d = Diagnostic::new(self.message.clone());
-        for (i, (span, label)) in self.labels.iter().enumerate() {
-            d = if i == 0 {
-                d.at(*span, label.clone())
-            } else {
-                d.also(*span, label.clone())
-            };
-        }
-        for note in &self.notes {
-            d = d.note(note.clone());
-        }
-        d.note(format!("in variant {}", self.variant))
-    }
-
-    /// `path:line:col` of the first label.
-    pub fn location(&self, files: &SourceFiles) -> Option<Location> {
-        self.labels.first().map(|(s, _)| files.location(*s))
-    }
-}
-
-fn error_chain(e: &dyn std::error::Error) -> String {
-    let mut message = e.to_string();
-    let mut source = e.source();
-    while let Some(s) = source {
-        message.push_str(": ");
-        message.push_str(&s.to_string());
-        source = s.source();
-    }
-    message
-}
-
-/// Parses and validates composed WGSL; `variant` names it in errors.
-pub fn validate_composed(
-    composed: &Composed,
-    variant: &str,
-) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-    validate_with(composed, variant, &mut validator())
-}
-
-/// The validator every stage uses: every check on, and the capabilities WebGPU gives a shader
-/// by default (what wgpu accepts without optional features).
-pub fn validator() -> naga::valid::Validator {
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-}
-
-fn map_spans<'a>(
-    composed: &Composed,
-    spans: impl Iterator<Item = (naga::Span, &'a str)>,
-) -> Vec<(Span, String)> {
-    spans
-        .filter_map(|(span, label)| {
-            let range = span.to_range()?;
-            let original = composed
-                .map
-                .to_original(range.start, range.end, &composed.text)?;
-            Some((original, label.to_string()))
-        })
-        .collect()
-}
-
-fn validate_with(
-    composed: &Composed,
-    variant: &str,
-    validator: &mut naga::valid::Validator,
-) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-    if let Some(failure) = &composed.failure {
-        return Err(VariantError {
-            variant: variant.to_string(),
-            ..(**failure).clone()
-        });
-    }
-    let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| VariantError {
-        variant: variant.to_string(),
-        stage: Stage::Parse,
-        message: e.message().to_string(),
-        labels: map_spans(composed, e.labels()),
-        notes: e.notes().map(str::to_string).collect(),
-    })?;
-    let info = validator.validate(&module).map_err(|e| {
-        let mut labels = map_spans(composed, e.spans().map(|(s, l)| (*s, l.as_str())));
-        // naga lists the enclosing function first; the narrowest span is where to look.
-        labels.sort_by_key(|(span, _)| span.end - span.start);
-        VariantError {
-            variant: variant.to_string(),
-            stage: Stage::Validate,
-            message: error_chain(e.as_inner()),
-            labels,
-            notes: Vec::new(),
-        }
-    })?;
-    Ok((module, info))
-}
+pub use crate::error::{Stage, VariantError};
+pub use crate::validator::{validate_composed, validator};
 
 /// Composes, validates and compacts a variant (unused items removed, then validated again):
 /// the module every back end writes and snapshots are made of.
@@ -284,14 +153,14 @@ pub struct ValidateReport {
     pub ok: bool,
     /// Build sets or full spaces.
     pub selection: Selection,
-    /// What the report was made from (see [`crate::merge::fingerprint`]); the same for every
+    /// What the report was made from (see [`crate::fingerprint::fingerprint`]); the same for every
     /// shard of one run and for the run on one machine.
     #[serde(skip_serializing_if = "String::is_empty")]
     pub fingerprint: String,
     /// The shard validated, if only one was (`K/N` in JSON).
     #[serde(
         skip_serializing_if = "Option::is_none",
-        serialize_with = "crate::merge::shard_text"
+        serialize_with = "crate::variants::shard_text"
     )]
     pub shard: Option<Shard>,
     /// One report per pass, in plan order.
@@ -401,7 +270,7 @@ pub(crate) fn plan_report(
         Selection::BuildSet
     };
     let mut report = ValidateReport::new(passes, selection, options.shard);
-    report.fingerprint = crate::merge::fingerprint(lib, "validate", &options.fingerprint_text());
+    report.fingerprint = crate::fingerprint::fingerprint(lib, "validate", &options.fingerprint_text());
     report
 }
 
@@ -425,7 +294,7 @@ const BATCH_PER_THREAD: usize = 256;
 ///
 /// Variants are composed in parallel batches; each text is hashed (BLAKE3) and only the first
 /// variant with a given text is validated. Texts are dropped batch by batch; what is kept is
-/// the failing variants and, unless [`crate::audit::proves_all_distinct`] shows that every
+/// the failing variants and, unless [`crate::analysis::proves_all_distinct`] shows that every
 /// variant of the pass has its own text, 16 bytes per distinct text seen. Results are in
 /// enumeration order whatever the thread count.
 ///
@@ -476,7 +345,7 @@ pub(crate) fn validate_keyed(
     // Keys (128 bits of the text's hash) of the texts seen; not kept when the audit proves
     // that no two variants share a text, so memory does not grow with the space.
     let mut seen: Option<HashSet<u128>> =
-        (!crate::audit::proves_all_distinct(lib, pass)).then(HashSet::new);
+        (!crate::analysis::proves_all_distinct(lib, pass)).then(HashSet::new);
     // One entry per failing text, in order of first appearance: error, text key and keyword
     // sets with their positions.
     type Failing = (VariantError, u128, Vec<(u64, Choice)>);

@@ -253,30 +253,6 @@ impl<'p> Space<'p> {
         }
     }
 
-    /// A deterministic t-wise covering set of this space (t from 1 to 4): every variant is in
-    /// the space, and every combination of options of every t keyword sets that occurs in
-    /// the space occurs in one of them. Sets coupled by materials or constraints are covered
-    /// as one factor (every allowed combination of them appears). See [`crate::covering`].
-    ///
-    /// ```
-    /// use wgsl_variants::{Library, Space};
-    /// let lib = Library::from_sources([(
-    ///     "s.wgsl",
-    ///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#pragma multi_compile _ B\n\
-    ///      #pragma multi_compile _ C\n#pragma multi_compile _ D\n#endpass",
-    /// )])
-    /// .unwrap();
-    /// let pass = lib.pass("s", "P").unwrap();
-    /// let space = Space::full(pass);
-    /// let cover = space.covering(2).unwrap();
-    /// assert_eq!(cover.len(), 5); // of 16: every pair of A..D, each way, in 5 variants
-    /// assert!(cover.iter().all(|c| space.contains(c)));
-    /// assert!(space.covering(0).is_err() && space.covering(5).is_err());
-    /// ```
-    pub fn covering(&self, t: usize) -> Result<Vec<Choice>, crate::covering::CoverError> {
-        crate::covering::cover(self, t)
-    }
-
     /// Every variant, in [`Space::iter`] order, if there are at most `budget`.
     /// Cost is proportional to the result, whatever the size of the full space.
     pub fn enumerate(&self, budget: u64) -> Result<Vec<Choice>, BudgetError> {
@@ -657,6 +633,14 @@ impl std::str::FromStr for Shard {
             index: k - 1,
             count: n,
         })
+    }
+}
+
+/// Serializes an optional shard as `K/N` (for `#[serde(serialize_with)]`).
+pub fn shard_text<S: serde::Serializer>(shard: &Option<Shard>, s: S) -> Result<S::Ok, S::Error> {
+    match shard {
+        Some(shard) => s.collect_str(shard),
+        None => s.serialize_none(),
     }
 }
 

@@ -3,7 +3,7 @@
 //! a random sample of the same size is measured for comparison (printed, not asserted).
 
 use test_support::shaders::planted_fault_shader;
-use wgsl_variants::covering::regions::region_aware;
+use wgsl_variants::analysis::region_aware;
 use wgsl_variants::{Choice, Library, Space, Variant};
 
 /// SplitMix64: a seeded generator so that every run plants the same faults.

@@ -413,7 +413,7 @@ fn bake_writes_a_strict_lookup_table_and_rerun_lines() {
         "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAP\"]\n\n[[material]]\nname = \"Final\"\nshader = \"deferred_final\"\n",
     )
     .unwrap();
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("wgsl");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/wgsl-variants-shaders/wgsl");
     let baked = Bake::new(&root)
         .materials(&materials)
         .target(BakeTarget::Wgsl)
@@ -521,7 +521,7 @@ fn bake_fails_with_rendered_diagnostics() {
 #[test]
 fn bake_cover_bakes_the_covering_sets() {
     let out = tempfile::tempdir().unwrap();
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("wgsl");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/wgsl-variants-shaders/wgsl");
     let baked = Bake::new(&root)
         .cover(2)
         .target(BakeTarget::Wgsl)

@@ -101,7 +101,7 @@ fn what_the_audit_calls_unreached_is_in_no_variant() {
     let variants = covered(&lib);
     let mut listed = 0;
     for pass in lib.passes() {
-        let unreached = wgsl_variants::reach::unreached(&lib, pass);
+        let unreached = wgsl_variants::analysis::unreached(&lib, pass);
         for u in &unreached {
             listed += u.names.len();
             eprintln!(

@@ -127,8 +127,8 @@ fn unused() -> f32 { return missing; }
     assert_eq!((r.built, r.distinct, r.valid, r.invalid), (2, 1, 2, 0));
     assert_eq!(r.distinct, distinct_by_text(&lib));
     assert_eq!(
-        wgsl_variants::reach::unreached(&lib, pass),
-        [wgsl_variants::reach::Unreached {
+        wgsl_variants::analysis::unreached(&lib, pass),
+        [wgsl_variants::analysis::Unreached {
             module: "s".into(),
             names: vec!["unused".into()],
         }]

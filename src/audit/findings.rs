@@ -4,7 +4,7 @@
 use crate::shader::Pass;
 use crate::variants::Factor;
 
-use super::distinct::{Analysis, Table};
+use crate::analysis::distinct::{Analysis, Table};
 
 /// What the full-space analysis says about one keyword set.
 #[derive(Clone, Debug, Default)]

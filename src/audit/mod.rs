@@ -18,12 +18,8 @@
 //! assert!(report.distinct.exact && report.dead_keywords.is_empty());
 //! ```
 
-mod bits;
 pub mod budget;
 pub mod chart;
-mod compose;
-mod deps;
-mod distinct;
 mod findings;
 mod report;
 
@@ -34,25 +30,14 @@ use crate::materials::{self, Material, MaterialsError};
 use crate::shader::Pass;
 use crate::variants::Space;
 
-use compose::LineIds;
-use distinct::Limits;
+use crate::analysis::compose::LineIds;
+use crate::analysis::distinct::{self, Limits};
+
+pub use crate::analysis::{Method, proves_all_distinct};
 
 pub use report::{
     AuditReport, AuditTotals, AuditedPass, CodeGroup, Distinct, PassAudit, SetAudit, Together,
 };
-
-/// How a distinct count was obtained.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Method {
-    /// Exact: the product over components of coupled keyword sets, each enumerated on its
-    /// own, with the composed text proven to be an unambiguous concatenation of their regions.
-    Components,
-    /// Exact: every variant of the stage was composed and compared.
-    Enumeration,
-    /// An upper bound: a component was too large to enumerate and so was the whole stage.
-    Bound,
-}
 
 /// What to audit against, and the limits of the analysis.
 #[derive(Clone, Debug)]
@@ -71,55 +56,9 @@ impl Default for AuditOptions {
     fn default() -> Self {
         AuditOptions {
             materials: None,
-            component_limit: 1 << 16,
+            component_limit: crate::analysis::COMPONENT_LIMIT,
             enumeration_limit: 1_000_000,
         }
-    }
-}
-
-/// The code regions of a space, for region-aware covering: the space's factors and, per group
-/// of factors whose code depends on each other, one representative assignment (a choice per
-/// factor of the group) for each distinct output of the group, or `None` when the group was
-/// too large to enumerate. Factors in no group change no code.
-pub(crate) struct Regions {
-    /// The space's factors ([`Space::factors`](crate::variants::Space)).
-    pub factors: Vec<crate::variants::Factor>,
-    /// `(factors of the group, representatives)`.
-    pub groups: Vec<(Vec<usize>, Option<Representatives>)>,
-}
-
-/// One assignment (a choice per factor of a group) per distinct output of the group.
-pub(crate) type Representatives = Vec<Vec<usize>>;
-
-/// The regions of `space` (see [`Regions`]), from the same analysis as the audit's.
-pub(crate) fn regions(lib: &Library, space: &Space<'_>) -> Regions {
-    let graph = lib.module_graph();
-    let ids = LineIds::new(&graph);
-    let defaults = AuditOptions::default();
-    let limits = Limits {
-        component: defaults.component_limit,
-        whole: 0,
-    };
-    let analysis = distinct::analyze(&graph, &ids, space.pass(), space.clone(), limits);
-    let groups = analysis
-        .components
-        .iter()
-        .map(|c| {
-            let reps = c.table.as_ref().map(|table| {
-                let mut reps: Vec<Option<Vec<usize>>> = vec![None; table.classes as usize];
-                for (row, &class) in table.class.iter().enumerate() {
-                    if reps[class as usize].is_none() {
-                        reps[class as usize] = Some(table.digits(row));
-                    }
-                }
-                reps.into_iter().flatten().collect()
-            });
-            (c.factors.clone(), reps)
-        })
-        .collect();
-    Regions {
-        factors: analysis.factors,
-        groups,
     }
 }
 
@@ -131,60 +70,6 @@ pub fn audit_pass(
 ) -> Result<PassAudit, MaterialsError> {
     let ids = LineIds::new(&lib.module_graph());
     audit_with(lib, &ids, pass, options)
-}
-
-/// Whether every variant of `pass`'s full space composes to a different text, proved by the
-/// static analysis alone (never by enumerating the space). `false` means "not proved": some
-/// variants share a text, or the analysis could not certify an exact count within its default
-/// per-component limit.
-///
-/// The texts are the ones validated: pruned of unreached items ([`crate::reach`]). The static
-/// analysis proves the composed texts distinct, so the proof also needs pruning to leave every
-/// variant as composed ([`crate::reach::prunes_nothing`]): otherwise two variants that differ
-/// only in items no entry point reaches would share a pruned text.
-///
-/// Validation uses this to skip its index of seen texts: when every text is different, each
-/// variant is validated once anyway, and memory stays the same however large the space.
-/// For a tree in another dialect (naga_oil) it is never proved.
-///
-/// ```
-/// use wgsl_variants::{Library, audit};
-///
-/// // A changes what the entry point returns: two programs.
-/// let lib = Library::from_sources([(
-///     "s.wgsl",
-///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#ifdef A\nconst X = 1.0;\n#else\n\
-///      const X = 0.0;\n#endif\n@fragment fn fs() -> @location(0) vec4f { return vec4f(X); }\n#endpass",
-/// )])
-/// .unwrap();
-/// assert!(audit::proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
-///
-/// // The bundled shadow casters compose the surface functions, and reach none of them.
-/// let lib = wgsl_variants_shaders::library().unwrap();
-/// assert!(!audit::proves_all_distinct(&lib, lib.pass("standard", "ShadowCaster").unwrap()));
-///
-/// // DEAD changes no code: both of its variants compose to the same text.
-/// let lib = Library::from_sources([(
-///     "s.wgsl",
-///     "#shader s\n#pass P\n#pragma multi_compile _ DEAD\nfn f() {}\n#endpass",
-/// )])
-/// .unwrap();
-/// assert!(!audit::proves_all_distinct(&lib, lib.pass("s", "P").unwrap()));
-/// ```
-pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
-    // The analysis proves preprocessed texts distinct; naga_oil keeps only the imported items
-    // a program uses, so two different texts can still compose to one program there.
-    if lib.dialect() != crate::Dialect::WgslVariants {
-        return false;
-    }
-    let graph = lib.module_graph();
-    let ids = LineIds::new(&graph);
-    let limits = Limits {
-        component: AuditOptions::default().component_limit,
-        whole: 0,
-    };
-    let full = distinct::analyze(&graph, &ids, pass, Space::full(pass), limits);
-    full.exact && full.distinct == full.count && crate::reach::prunes_nothing(lib, pass)
 }
 
 /// Audits several passes (in parallel; the result is in the order given).
@@ -247,7 +132,7 @@ fn audit_with<'p>(
         }
     }
     let mut audit = report::assemble(pass, &full, &after, &build, used);
-    audit.unreached = crate::reach::unreached(lib, pass);
+    audit.unreached = crate::analysis::unreached(lib, pass);
     Ok(audit)
 }
 

@@ -6,7 +6,7 @@ use serde::{Serialize as _, Serializer};
 
 use crate::json::{ExactCount, exact_count};
 
-use crate::preprocess::tree::SetKind;
+use crate::keywords::SetKind;
 use crate::shader::Pass;
 
 use super::Method;
@@ -157,10 +157,10 @@ pub struct PassAudit {
     /// Whether dead keywords and the other findings are complete.
     pub findings_exact: bool,
     /// Per module, the top-level items no variant of the pass reaches
-    /// ([`crate::reach::unreached()`]): composed into the texts, left out of every program, so
+    /// ([`crate::analysis::unreached()`]): composed into the texts, left out of every program, so
     /// never validated without `validate --strict`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub unreached: Vec<crate::reach::Unreached>,
+    pub unreached: Vec<crate::analysis::Unreached>,
     /// Whether materials were given.
     #[serde(skip)]
     pub materials: bool,

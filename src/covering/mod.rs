@@ -25,7 +25,6 @@
 //! ```
 
 pub mod array;
-pub mod regions;
 
 use crate::shader::Pass;
 use crate::variants::{Choice, Factor, Space};
@@ -264,6 +263,32 @@ pub fn shrink(
         if !changed {
             return current;
         }
+    }
+}
+
+impl Space<'_> {
+    /// A deterministic t-wise covering set of this space (t from 1 to 4): every variant is in
+    /// the space, and every combination of options of every t keyword sets that occurs in
+    /// the space occurs in one of them. Sets coupled by materials or constraints are covered
+    /// as one factor (every allowed combination of them appears). See [`crate::covering`].
+    ///
+    /// ```
+    /// use wgsl_variants::{Library, Space};
+    /// let lib = Library::from_sources([(
+    ///     "s.wgsl",
+    ///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#pragma multi_compile _ B\n\
+    ///      #pragma multi_compile _ C\n#pragma multi_compile _ D\n#endpass",
+    /// )])
+    /// .unwrap();
+    /// let pass = lib.pass("s", "P").unwrap();
+    /// let space = Space::full(pass);
+    /// let cover = space.covering(2).unwrap();
+    /// assert_eq!(cover.len(), 5); // of 16: every pair of A..D, each way, in 5 variants
+    /// assert!(cover.iter().all(|c| space.contains(c)));
+    /// assert!(space.covering(0).is_err() && space.covering(5).is_err());
+    /// ```
+    pub fn covering(&self, t: usize) -> Result<Vec<Choice>, CoverError> {
+        cover(self, t)
     }
 }
 

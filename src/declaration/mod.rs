@@ -51,95 +51,13 @@ use toml::Spanned;
 
 use crate::diagnostic::{Diagnostic, FileId, Span};
 use crate::keywords::ConstraintKind;
-use crate::preprocess::tree::{PassDecl, Pragma, SetKind};
+use crate::keywords::SetKind;
+use crate::preprocess::tree::{PassDecl, Pragma};
 
 /// The declaration file's name, at the root of a tree.
 pub const FILE_NAME: &str = "wgsl-variants.toml";
 
-/// The value of a shader def, as naga_oil types it (`ShaderDefValue`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DefValue {
-    /// `true` / `false`.
-    Bool(bool),
-    /// A signed integer (a plain TOML integer).
-    Int(i32),
-    /// An unsigned integer (`{ uint = N }`).
-    UInt(u32),
-}
-
-impl DefValue {
-    /// The value the preprocessor's static analysis compares: booleans are 0 and 1.
-    pub fn as_i64(self) -> i64 {
-        match self {
-            DefValue::Bool(b) => i64::from(b),
-            DefValue::Int(i) => i64::from(i),
-            DefValue::UInt(u) => i64::from(u),
-        }
-    }
-}
-
-impl std::fmt::Display for DefValue {
-    /// As a valued keyword writes it (and naga_oil substitutes it): `true`, `-3`, `4u`.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            DefValue::Bool(b) => write!(f, "{b}"),
-            DefValue::Int(i) => write!(f, "{i}"),
-            DefValue::UInt(u) => write!(f, "{u}u"),
-        }
-    }
-}
-
-#[cfg(feature = "naga-oil")]
-impl DefValue {
-    /// naga_oil's type for the value (`ShaderDefValue`), as naga_oil receives a variant's defs.
-    ///
-    /// ```
-    /// use wgsl_variants::declaration::DefValue;
-    /// assert_eq!(DefValue::UInt(4).to_naga_oil(), naga_oil::compose::ShaderDefValue::UInt(4));
-    /// ```
-    pub fn to_naga_oil(self) -> naga_oil::compose::ShaderDefValue {
-        use naga_oil::compose::ShaderDefValue;
-        match self {
-            DefValue::Bool(b) => ShaderDefValue::Bool(b),
-            DefValue::Int(i) => ShaderDefValue::Int(i),
-            DefValue::UInt(u) => ShaderDefValue::UInt(u),
-        }
-    }
-}
-
-/// The def a keyword sets: a keyword of a valued set, `NAME=VALUE` (`true`, `-3`, `4u`), sets
-/// `NAME` to that value; any other keyword sets itself to `true`.
-///
-/// ```
-/// use wgsl_variants::declaration::{DefValue, def_of};
-/// assert_eq!(def_of("MAX_CASCADES=4u"), ("MAX_CASCADES", DefValue::UInt(4)));
-/// assert_eq!(def_of("TAPS=-8"), ("TAPS", DefValue::Int(-8)));
-/// assert_eq!(def_of("SKINNED"), ("SKINNED", DefValue::Bool(true)));
-/// ```
-pub fn def_of(keyword: &str) -> (&str, DefValue) {
-    let valued = keyword.split_once('=').and_then(|(name, v)| {
-        let value = match v {
-            "true" => DefValue::Bool(true),
-            "false" => DefValue::Bool(false),
-            v => match v.strip_suffix('u') {
-                Some(u) => DefValue::UInt(u.parse().ok()?),
-                None => DefValue::Int(v.parse().ok()?),
-            },
-        };
-        Some((name, value))
-    });
-    valued.unwrap_or((keyword, DefValue::Bool(true)))
-}
-
-/// A shader def with a fixed value in every variant of a pass.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
-pub struct Constant {
-    /// The def's name.
-    pub name: String,
-    /// Its value.
-    pub value: DefValue,
-}
+pub use crate::keywords::{Constant, DefValue, def_of};
 
 /// One `[[shader]]` of the file, its passes turned into declarations.
 #[derive(Clone, Debug)]
@@ -159,8 +77,9 @@ pub(crate) struct ShaderSpec {
 pub(crate) struct Declaration {
     /// The dialect of the tree's modules.
     pub dialect: crate::Dialect,
-    /// Paths (files or folders, relative to the root) left out of the tree.
-    pub exclude: Vec<String>,
+    /// Paths (files or folders, relative to the root) left out of the tree, with where each
+    /// is written.
+    pub exclude: Vec<(String, Span)>,
     /// The shaders, in file order.
     pub shaders: Vec<ShaderSpec>,
 }
@@ -188,7 +107,7 @@ impl DeclarationError {
 struct FileToml {
     dialect: Option<Spanned<String>>,
     #[serde(default)]
-    exclude: Vec<String>,
+    exclude: Vec<Spanned<String>>,
     #[serde(default)]
     constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
     #[serde(default, rename = "shader")]
@@ -309,15 +228,45 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
                 .collect(),
         })
         .collect();
+    let exclude: Vec<(String, Span)> = parsed
+        .exclude
+        .iter()
+        .map(|e| (e.get_ref().clone(), at(e.span())))
+        .collect();
+    for (path, span) in &exclude {
+        if let Some(why) = not_a_tree_path(path) {
+            errors.push(DeclarationError {
+                message: format!(
+                    "exclude entry `{path}` {why}: entries are paths of files or folders relative to the root, not patterns"
+                ),
+                span: *span,
+            });
+        }
+    }
     if errors.is_empty() {
         Ok(Declaration {
             dialect,
-            exclude: parsed.exclude,
+            exclude,
             shaders,
         })
     } else {
         Err(errors)
     }
+}
+
+/// Why `path` cannot name a file or folder of the tree, if it cannot: empty, a pattern, or a
+/// path that leaves the root.
+fn not_a_tree_path(path: &str) -> Option<&'static str> {
+    if path.trim_matches('/').is_empty() {
+        return Some("is empty (it would leave out the whole tree)");
+    }
+    if path.contains(['*', '?', '[', ']', '{', '}']) {
+        return Some("is a glob pattern");
+    }
+    if path.starts_with('/') || path.contains('\\') || path.split('/').any(|c| c == ".." || c == ".") {
+        return Some("is not a plain relative path (no `/` at the start, `\\`, `.` or `..`)");
+    }
+    None
 }
 
 fn constants(

@@ -18,7 +18,7 @@
 use std::fmt;
 
 use crate::library::{Library, Variant};
-use crate::validate::VariantError;
+use crate::error::VariantError;
 
 use crate::reflect::{EntryPoint, Stage, entry_points};
 

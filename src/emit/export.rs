@@ -24,7 +24,8 @@ use crate::lookup::suggest;
 use crate::preprocess::Composed;
 use crate::preprocess::compose::compose;
 use crate::preprocess::tree::Node;
-use crate::validate::{VariantError, validate_composed};
+use crate::error::VariantError;
+use crate::validator::validate_composed;
 
 /// Why a module could not be exported.
 #[derive(Debug, thiserror::Error)]
@@ -295,7 +296,7 @@ pub fn export_prefixed(
     let label = format!("module {path} {{{}}}", keywords.join(", "));
     let (mut module, _) = validate_composed(&composed, &label)?;
     prefix_names(&mut module, prefix);
-    let info = crate::validate::validator()
+    let info = crate::validator::validator()
         .validate(&module)
         .map_err(|e| ExportError::Renamed(Box::new(e)))?;
     let body =

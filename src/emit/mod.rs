@@ -29,7 +29,8 @@ pub mod wesl;
 use std::path::Path;
 
 use crate::library::{Library, Variant};
-use crate::validate::{VariantError, validate_composed};
+use crate::error::VariantError;
+use crate::validator::validate_composed;
 
 /// One variant's composed WGSL, as written (what `emit SHADER PASS --json` prints).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]

@@ -7,7 +7,7 @@
 //! letters, digits, `_` and `-`, or when the only keyword is `none`), and GLSL adds the entry
 //! point: `<name>.<entry point>.<vert|frag|comp>`. A name depends on the variant alone, so the
 //! shards of a build set (`--shard K/N`) name files as one run does. The manifest records
-//! the set's [`crate::merge::fingerprint`] (and its shard), and lists, for each variant in
+//! the set's [`crate::fingerprint::fingerprint`] (and its shard), and lists, for each variant in
 //! enumeration order: shader, pass, keywords, entry points with their stage, and each file
 //! with its target, entry point, size and BLAKE3 content hash (hex). Files and manifest are
 //! byte-identical across runs and thread counts.
@@ -83,13 +83,13 @@ pub struct ManifestVariant {
 pub struct Manifest {
     /// `wgsl-variants <version>`.
     pub generator: String,
-    /// What the set was made from (see [`crate::merge::fingerprint`]); empty when unknown.
+    /// What the set was made from (see [`crate::fingerprint::fingerprint`]); empty when unknown.
     #[serde(skip_serializing_if = "String::is_empty")]
     pub fingerprint: String,
     /// The shard written, if only one was (`K/N`).
     #[serde(
         skip_serializing_if = "Option::is_none",
-        serialize_with = "crate::merge::shard_text"
+        serialize_with = "crate::variants::shard_text"
     )]
     pub shard: Option<Shard>,
     /// The back ends, in the order given.
@@ -138,6 +138,19 @@ pub enum SetError {
         /// The OS error.
         #[source]
         source: std::io::Error,
+    },
+    /// A file or folder name would be longer than file systems allow (255 bytes): a shader,
+    /// pass or entry point name too long to be a file name. Nothing is written.
+    #[error(
+        "`{start}…` ({bytes} bytes) would be a file or folder name of {variant}, longer than the 255 bytes file systems allow: shorten the shader, pass or entry point name"
+    )]
+    NameTooLong {
+        /// The name's first 40 characters.
+        start: String,
+        /// Its length in bytes.
+        bytes: usize,
+        /// The variant (`shader/pass {keywords}`).
+        variant: String,
     },
     /// Two outputs would be written to the same file: their names differ only in characters
     /// a file name cannot hold (`a/b` and `a-b` are both `a-b`), or only in case (one file on
@@ -204,7 +217,7 @@ pub fn variant_stem(keywords: &[&str]) -> String {
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct SetOrigin {
-    /// See [`crate::merge::fingerprint`].
+    /// See [`crate::fingerprint::fingerprint`].
     pub fingerprint: String,
     /// The shard written, if only one is.
     pub shard: Option<Shard>,
@@ -223,7 +236,7 @@ impl SetOrigin {
             plan_options.fingerprint_text()
         );
         SetOrigin {
-            fingerprint: crate::merge::fingerprint(lib, "emit", &text),
+            fingerprint: crate::fingerprint::fingerprint(lib, "emit", &text),
             shard: plan_options.shard,
         }
     }
@@ -331,6 +344,13 @@ pub fn write_set_from(
                 ),
                 None => format!("{folder}/{stem}.{}", target.extension(None)),
             };
+            if let Some(long) = file.split('/').find(|c| c.len() > 255) {
+                return Err(SetError::NameTooLong {
+                    start: long.chars().take(40).collect(),
+                    bytes: long.len(),
+                    variant: label,
+                });
+            }
             match taken.entry(file.to_lowercase()) {
                 std::collections::hash_map::Entry::Occupied(first) => {
                     return Err(SetError::Collision {

@@ -43,7 +43,7 @@ use super::naga_oil::import_path;
 use super::scan::{Scan, scan_library, scan_nodes};
 use crate::keywords::ConstraintKind;
 use crate::preprocess::lines::comment_step;
-use crate::preprocess::tree::SetKind;
+use crate::keywords::SetKind;
 use crate::shader::Pass;
 
 /// One module in WESL's dialect (serialized as `module`, `module_path` and `source`).

@@ -42,8 +42,9 @@ pub enum LinkError {
         /// The import where the limit was passed.
         span: Span,
     },
-    /// Two files declare a shader of the same name.
-    #[error("two files declare shader `{name}`")]
+    /// Two declarations (two files, or two `[[shader]]` entries of a declaration file) name
+    /// the same shader.
+    #[error("shader `{name}` is declared twice")]
     DuplicateShader {
         /// The name.
         name: String,

@@ -104,6 +104,15 @@ pub(crate) fn load_declared(
     let (exclude, dialect) = crate::declaration::parse(raw.len(), &text)
         .map(|d| (d.exclude, d.dialect))
         .unwrap_or((Vec::new(), Dialect::NagaOil));
+    let excludes = |path: &str, e: &str| {
+        path == e || path.starts_with(&format!("{}/", e.trim_end_matches('/')))
+    };
+    // Entries that leave out nothing: a misspelt path is a warning, not silence.
+    let unmatched: Vec<String> = exclude
+        .iter()
+        .filter(|(e, _)| !raw.iter().any(|f| excludes(&f.path, e)))
+        .map(|(e, _)| e.clone())
+        .collect();
     let wesl_stems: Vec<&str> = raw
         .iter()
         .filter_map(|f| f.path.strip_suffix(".wesl"))
@@ -123,10 +132,7 @@ pub(crate) fn load_declared(
         .into_iter()
         .zip(keep)
         .filter(|(f, keep)| {
-            *keep
-                && !exclude.iter().any(|e| {
-                    f.path == *e || f.path.starts_with(&format!("{}/", e.trim_end_matches('/')))
-                })
+            *keep && !exclude.iter().any(|(e, _)| excludes(&f.path, e))
         })
         .map(|(f, _)| f)
         .collect();
@@ -227,7 +233,16 @@ pub(crate) fn load_declared(
     if !problems.is_empty() {
         return Err(LoadError { files, problems });
     }
-    let warnings = unread_keywords(&decl, &modules, &resolved, &files);
+    let mut warnings = unread_keywords(&decl, &modules, &resolved, &files);
+    for (path, span) in decl.exclude.iter().filter(|(e, _)| unmatched.contains(e)) {
+        warnings.push(
+            crate::diagnostic::Diagnostic::new(format!(
+                "exclude entry `{path}` matches no file or folder of the tree"
+            ))
+            .warning()
+            .at(*span, "leaves out nothing"),
+        );
+    }
     let decls = decl
         .shaders
         .into_iter()
@@ -801,7 +816,11 @@ fn build_shaders(
                 continue;
             }
             pass_spans.insert(pass.name.clone(), pass.span);
-            match Pass::new(&decl.name, pass.module.unwrap_or(id), pass) {
+            // The constraints are checked against the pass's whole space, which only a built
+            // pass has.
+            match Pass::new(&decl.name, pass.module.unwrap_or(id), pass)
+                .and_then(|p| crate::variants::check_constraints(&p).map(|()| p).map_err(|e| vec![e]))
+            {
                 Ok(p) => passes.push(p),
                 Err(errs) => problems.extend(errs.into_iter().map(Into::into)),
             }

@@ -18,7 +18,7 @@ use crate::preprocess::tree::ParsedModule;
 use crate::reflect::Reflection;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
-use crate::validate::VariantError;
+use crate::error::VariantError;
 use crate::variants::{Choice, Space};
 
 pub use error::{LinkError, LoadError, LoadProblem};
@@ -113,7 +113,7 @@ fn unreachable_engine(
 ) -> Result<String, VariantError> {
     Err(unlocated(
         variant,
-        crate::validate::Stage::Compose,
+        crate::error::Stage::Compose,
         format!(
             "this build of wgsl-variants cannot compose `{}` trees (cargo feature `{}` off): they load and audit, but cannot compose",
             dialect.name(),
@@ -125,7 +125,7 @@ fn unreachable_engine(
 /// A variant's failure that has no place in the sources.
 fn unlocated(
     variant: &Variant<'_>,
-    stage: crate::validate::Stage,
+    stage: crate::error::Stage,
     message: String,
 ) -> VariantError {
     VariantError {
@@ -175,7 +175,7 @@ fn composer_panicked(
         .unwrap_or_default();
     unlocated(
         variant,
-        crate::validate::Stage::Compose,
+        crate::error::Stage::Compose,
         format!(
             "{composer} panicked composing this variant ({what}); a bug to report to {composer}"
         ),
@@ -600,7 +600,7 @@ impl Library {
         &self,
         variant: &Variant<'_>,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-        crate::validate::validate_composed(&self.compose(variant), &variant.label())
+        crate::validator::validate_composed(&self.compose(variant), &variant.label())
     }
 
     /// The entry points and bindings of a variant, validated first (the reflection stage:

@@ -20,7 +20,7 @@ use naga_oil::compose::{
 
 use crate::diagnostic::{SourceFiles, Span};
 use crate::preprocess::tree::ParsedModule;
-use crate::validate::{Stage, VariantError};
+use crate::error::{Stage, VariantError};
 
 use super::Variant;
 
@@ -130,7 +130,7 @@ impl NagaOilEngine {
             let module = composer
                 .make_naga_module(descriptor())
                 .map_err(|e| error(&e, &composer, files, variant))?;
-            match crate::validate::validator().validate(&module) {
+            match crate::validator::validator().validate(&module) {
                 Ok(info) => naga::back::wgsl::write_string(
                     &module,
                     &info,

@@ -28,7 +28,7 @@ use wgsl_parse::SyntaxNode;
 use crate::declaration::DefValue;
 use crate::diagnostic::{SourceFiles, Span};
 use crate::preprocess::tree::ParsedModule;
-use crate::validate::{Stage, VariantError};
+use crate::error::{Stage, VariantError};
 
 use super::Variant;
 
@@ -157,7 +157,7 @@ impl WeslEngine {
                 variant,
             )
         })?;
-        if let Err(invalid) = crate::validate::validator().validate(&module) {
+        if let Err(invalid) = crate::validator::validator().validate(&module) {
             let labels = invalid
                 .spans()
                 .map(|(s, m)| (s.to_range().unwrap_or(0..0), m.clone()))

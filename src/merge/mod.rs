@@ -22,8 +22,10 @@
 pub mod manifest;
 pub mod validate;
 
-use crate::library::Library;
 use crate::variants::Shard;
+
+pub use crate::fingerprint::fingerprint;
+pub use crate::variants::shard_text;
 
 /// Why shard outputs could not be merged. Every variant names the shard input at fault.
 #[derive(Debug, thiserror::Error)]
@@ -190,51 +192,6 @@ pub fn order_shards(inputs: &[ShardInfo]) -> Result<Vec<usize>, MergeError> {
         return Err(MergeError::Missing { missing, count });
     }
     Ok(slots.into_values().collect())
-}
-
-/// A hex BLAKE3 fingerprint of what a stage's output is made from: this crate's and naga's
-/// versions, every source file of `lib` (path and text), the stage's name and `options` (the
-/// selection and options in any stable text form, the shard left out). Two outputs with the
-/// same fingerprint come from the same inputs.
-///
-/// ```
-/// let lib = wgsl_variants_shaders::library().unwrap();
-/// let a = wgsl_variants::merge::fingerprint(&lib, "validate", "all");
-/// assert_eq!(a, wgsl_variants::merge::fingerprint(&lib, "validate", "all"));
-/// assert_ne!(a, wgsl_variants::merge::fingerprint(&lib, "validate", "build set"));
-/// ```
-pub fn fingerprint(lib: &Library, stage: &str, options: &str) -> String {
-    let files = lib.files();
-    let versions = [
-        env!("CARGO_PKG_VERSION").as_bytes(),
-        env!("WGSL_VARIANTS_NAGA_VERSION").as_bytes(),
-        stage.as_bytes(),
-        options.as_bytes(),
-    ];
-    let sources =
-        (0..files.len()).flat_map(|id| [files.path(id).as_bytes(), files.text(id).as_bytes()]);
-    hash_parts(versions.into_iter().chain(sources))
-        .to_hex()
-        .to_string()
-}
-
-/// The BLAKE3 hash of a list of byte strings, each length-prefixed so that no two lists hash
-/// the same bytes.
-pub(crate) fn hash_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> blake3::Hash {
-    let mut h = blake3::Hasher::new();
-    for bytes in parts {
-        h.update(&(bytes.len() as u64).to_le_bytes());
-        h.update(bytes);
-    }
-    h.finalize()
-}
-
-/// Serializes an optional shard as `K/N` (for `#[serde(serialize_with)]`).
-pub fn shard_text<S: serde::Serializer>(shard: &Option<Shard>, s: S) -> Result<S::Ok, S::Error> {
-    match shard {
-        Some(shard) => s.collect_str(shard),
-        None => s.serialize_none(),
-    }
 }
 
 /// Parses the optional `K/N` field of input `name`.

@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
 use super::{MergeError, ShardInfo, order_shards, parse_shard};
-use crate::validate::{Selection, Stage, ValidateTotals};
+use crate::error::Stage;
+use crate::validate::{Selection, ValidateTotals};
 use crate::variants::Shard;
 
 /// A failure as `validate --json` writes it (field order as [`crate::validate::Failure`]).

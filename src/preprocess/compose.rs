@@ -52,7 +52,7 @@ pub struct Composed {
     /// For a tree in another dialect: the composer's error, when it could not compose the
     /// variant (`text` then describes the error, so different errors hash differently).
     /// Validating the composition reports it; this crate's own composition never fails.
-    pub failure: Option<Box<crate::validate::VariantError>>,
+    pub failure: Option<Box<crate::error::VariantError>>,
 }
 
 /// Composes `body` (nodes of module `module`) with `defines` in effect at the start.

@@ -6,6 +6,7 @@
 use std::ops::Range;
 
 use crate::diagnostic::{FileId, Span};
+use crate::keywords::SetKind;
 
 use super::expr::Expr;
 
@@ -51,16 +52,6 @@ pub struct ImportRef {
     pub span: Span,
 }
 
-/// Which Unity keyword pragma declared a set.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SetKind {
-    /// `#pragma multi_compile`: every option is built.
-    MultiCompile,
-    /// `#pragma shader_feature`: only options some material uses are built.
-    ShaderFeature,
-}
-
 /// A `#pragma` of a pass, as written.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Pragma {
@@ -104,7 +95,7 @@ pub struct PassDecl {
     /// The body.
     pub body: Vec<Node>,
     /// Shader defs with a fixed value (declaration files' `constants`).
-    pub constants: Vec<crate::declaration::Constant>,
+    pub constants: Vec<crate::keywords::Constant>,
     /// The pass's own entry module, where a declaration file names one (its path as written
     /// and where); otherwise the pass composes its shader's.
     pub entry: Option<(String, Span)>,

@@ -28,14 +28,12 @@
 //! validates each distinct unpruned text ([`crate::Library::compose_unpruned`]).
 
 pub(crate) mod items;
-pub mod unreached;
 
 use std::collections::HashMap;
 
 use crate::preprocess::Composed;
 use items::Splitter;
 
-pub use unreached::{Unreached, prunes_nothing, unreached};
 
 /// `composed` with the top-level items no entry point reaches left out (see the
 /// [module docs](self)); the line map, when there is one, follows the lines kept.

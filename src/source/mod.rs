@@ -50,9 +50,13 @@ impl SourceError {
     /// A renderable report.
     pub fn diagnostic(&self) -> Diagnostic {
         match self {
-            SourceError::NotUtf8 { span, .. } => Diagnostic::new(self.to_string())
+            SourceError::NotUtf8 { span, path } => Diagnostic::new(self.to_string())
                 .at(*span, "invalid UTF-8 byte here")
-                .note("WGSL sources must be UTF-8"),
+                .note(if path.ends_with(".toml") {
+                    "a declaration file must be UTF-8 (TOML is)"
+                } else {
+                    "WGSL sources must be UTF-8"
+                }),
         }
     }
 }

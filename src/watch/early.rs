@@ -8,7 +8,9 @@ use rayon::prelude::*;
 use crate::cache::ValidCache;
 use crate::library::{Library, Variant};
 use crate::plan::{Plan, PlanOptions, variants_to_build};
-use crate::validate::{VariantError, validate_variant, validator};
+use crate::error::VariantError;
+use crate::validate::validate_variant;
+use crate::validator::validator;
 use crate::variants::Choice;
 
 use super::Recent;

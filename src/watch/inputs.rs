@@ -34,7 +34,7 @@ pub(super) fn fingerprint(lib: &Library, pass: &Pass, options: &str) -> Hash {
                 files.text(*f).as_bytes(),
             ]
         }));
-    *crate::merge::hash_parts(parts).as_bytes()
+    *crate::fingerprint::hash_parts(parts).as_bytes()
 }
 
 #[cfg(test)]

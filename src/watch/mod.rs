@@ -59,7 +59,8 @@ use crate::cache::{Hash, ValidCache};
 use crate::diagnostic::Span;
 use crate::library::{Library, LoadError, LoadOptions};
 use crate::plan::{PlanError, PlanOptions};
-use crate::validate::{Keyed, PassReport, ValidateReport, VariantError, validate_keyed};
+use crate::error::VariantError;
+use crate::validate::{Keyed, PassReport, ValidateReport, validate_keyed};
 
 /// Why a run gave no verdict: the tree did not load or could not be planned. The session
 /// stays usable: the next run (after the next change) tries again.

@@ -113,7 +113,7 @@ fn main() {
     let dir = tempfile::tempdir().expect("temp dir");
     let (root, cache) = (dir.path().join("wgsl"), dir.path().join("cache"));
     std::fs::create_dir_all(&root).expect("mkdir");
-    copy_tree(&workspace.join("wgsl"), &root);
+    copy_tree(&workspace.join("crates/wgsl-variants-shaders/wgsl"), &root);
     let surface = root.join("standard/surface.wgsl");
     let original = std::fs::read_to_string(&surface).expect("surface module");
     assert!(original.contains(LINE), "the edited line moved: {LINE}");

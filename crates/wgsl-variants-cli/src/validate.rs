@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use wgsl_variants::covering::regions::region_aware;
+use wgsl_variants::analysis::region_aware;
 use wgsl_variants::covering::{first_covered, shrink, tuple_label};
 use wgsl_variants::plan::{Plan, PlanOptions};
 use wgsl_variants::validate::ValidateReport;

@@ -276,13 +276,22 @@ fn watch(
         .as_ref()
         .and_then(|m| std::fs::canonicalize(m).ok());
     let cancel = Arc::new(AtomicBool::new(false));
+    // Set when the root itself was removed, renamed or made again: its recursive watch is then
+    // gone (the OS drops it with the folder) and is set up anew.
+    let rearm = Arc::new(AtomicBool::new(false));
     let (send, changes) = std::sync::mpsc::channel::<Instant>();
     let stop = Arc::clone(&cancel);
+    let root_moved = Arc::clone(&rearm);
     let watched_materials = materials.clone();
+    let watched_root = root.clone();
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
-        if let Ok(event) = event
-            && relevant(&event, cache_abs.as_deref(), watched_materials.as_deref())
-        {
+        let Ok(event) = event else { return };
+        let of_root = !matches!(event.kind, notify::EventKind::Access(_))
+            && event.paths.iter().any(|p| *p == watched_root);
+        if of_root {
+            root_moved.store(true, Ordering::Relaxed);
+        }
+        if of_root || relevant(&event, cache_abs.as_deref(), watched_materials.as_deref()) {
             // Stop the run in progress at once: it validates a tree that is no longer there.
             stop.store(true, Ordering::Relaxed);
             let _ = send.send(Instant::now());
@@ -292,6 +301,13 @@ fn watch(
     watcher
         .watch(&root, notify::RecursiveMode::Recursive)
         .map_err(|e| format!("cannot watch `{}`: {e}", root.display()))?;
+    // The root's folder too, not recursively: a root deleted or renamed and made again is seen
+    // there, and watched again.
+    if let Some(parent) = root.parent() {
+        watcher
+            .watch(parent, notify::RecursiveMode::NonRecursive)
+            .map_err(|e| format!("cannot watch `{}`: {e}", parent.display()))?;
+    }
     // A materials file outside the tree: its folder too (an editor's save replaces the file).
     if let Some(folder) = materials
         .as_deref()
@@ -348,6 +364,14 @@ fn watch(
         match next_change(&changes, quiet) {
             Some(first) => since = first,
             None => return Err("the file watcher stopped".into()),
+        }
+        if rearm.swap(false, Ordering::Relaxed) {
+            // Gone with the old folder (or never set up, if it was already gone); a root that
+            // is not back yet is watched from its parent until it is.
+            let _ = watcher.unwatch(&root);
+            if root.is_dir() {
+                let _ = watcher.watch(&root, notify::RecursiveMode::Recursive);
+            }
         }
     }
 }

@@ -8,8 +8,10 @@ mod emit;
 mod entry;
 mod json;
 mod loading;
+mod messages;
 mod nesting;
 mod pipe;
+mod watch;
 
 use std::io::Read;
 use std::path::Path;

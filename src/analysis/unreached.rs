@@ -13,7 +13,7 @@ use crate::library::Library;
 use crate::preprocess::tree::Node;
 use crate::shader::Pass;
 
-use super::items::{Item, Splitter, State};
+use crate::reach::items::{Item, Splitter, State};
 
 /// Top-level items of one module that no variant of a pass reaches.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
@@ -31,7 +31,7 @@ pub struct Unreached {
 /// ```
 /// let lib = wgsl_variants_shaders::library().unwrap();
 /// let pass = lib.pass("deferred_final", "Final").unwrap();
-/// for u in wgsl_variants::reach::unreached(&lib, pass) {
+/// for u in wgsl_variants::analysis::unreached(&lib, pass) {
 ///     println!("{}: {}", u.module, u.names.join(", "));
 /// }
 /// ```
@@ -101,7 +101,7 @@ pub fn unreached(lib: &Library, pass: &Pass) -> Vec<Unreached> {
 /// Whether pruning leaves every variant of `pass` as composed: each item the pass can compose
 /// is a root or is mentioned, outside any `#if` of the mentioning item, by an item that is
 /// itself kept whenever it is composed. The audit's proof that every variant has its own text
-/// ([`crate::audit::proves_all_distinct`]) holds for the pruned texts only then. `false` is
+/// ([`super::proves_all_distinct`]) holds for the pruned texts only then. `false` is
 /// always safe (validation then keeps an index of the texts it has seen).
 pub fn prunes_nothing(lib: &Library, pass: &Pass) -> bool {
     if lib.dialect() != crate::Dialect::WgslVariants {

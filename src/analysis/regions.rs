@@ -6,7 +6,7 @@
 use crate::library::Library;
 use crate::variants::{Choice, Space};
 
-use super::{CoverError, check};
+use crate::covering::{CoverError, check};
 
 /// A region-aware t-wise covering set of `space`: every variant is in the space; every
 /// distinct output of every coupled group of keyword sets appears, and every t of them from
@@ -15,7 +15,7 @@ use super::{CoverError, check};
 /// the code the variants generate.
 ///
 /// ```
-/// use wgsl_variants::{Library, Space, covering::regions::region_aware};
+/// use wgsl_variants::{Library, Space, analysis::region_aware};
 /// let lib = Library::from_sources([
 ///     (
 ///         "s.wgsl",
@@ -34,7 +34,7 @@ use super::{CoverError, check};
 /// ```
 pub fn region_aware(lib: &Library, space: &Space<'_>, t: usize) -> Result<Vec<Choice>, CoverError> {
     let pass = space.pass();
-    let regions = crate::audit::regions(lib, space);
+    let regions = super::regions(lib, space);
     check(pass, &regions.factors, t)?;
     // One covering factor per enumerated group (its representatives), or per factor of a
     // group too large to enumerate.
@@ -55,7 +55,7 @@ pub fn region_aware(lib: &Library, space: &Space<'_>, t: usize) -> Result<Vec<Ch
             Unit::Factor(f) => regions.factors[*f].len(),
         })
         .collect();
-    let rows = super::array::covering_array(&levels, t);
+    let rows = crate::covering::array::covering_array(&levels, t);
     let mut seen = std::collections::HashSet::new();
     Ok(rows
         .into_iter()
