@@ -134,9 +134,11 @@ impl Secret {
     pub fn from_file(file: &Path) -> Result<Secret, CacheError> {
         let read = |file: &Path| -> Result<Option<Secret>, CacheError> {
             match std::fs::read_to_string(file) {
-                Ok(text) => Secret::from_hex(&text).map(Some).ok_or_else(|| CacheError::Secret {
-                    message: format!("`{}` does not hold 64 hex digits", file.display()),
-                }),
+                Ok(text) => Secret::from_hex(&text)
+                    .map(Some)
+                    .ok_or_else(|| CacheError::Secret {
+                        message: format!("`{}` does not hold 64 hex digits", file.display()),
+                    }),
                 Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
                 Err(e) => Err(io_error(file, e)),
             }
@@ -668,7 +670,11 @@ mod tests {
         let cache = open(dir.path());
         assert!(!cache.contains(&hash("fn invalid() -> f32 { return vec2f(); }")));
         assert_eq!((cache.len(), cache.corrupt()), (0, 1));
-        assert!(cache.problems()[0].contains("untrusted"), "{:?}", cache.problems());
+        assert!(
+            cache.problems()[0].contains("untrusted"),
+            "{:?}",
+            cache.problems()
+        );
     }
 
     #[test]

@@ -61,4 +61,3 @@ impl VariantError {
         self.labels.first().map(|(s, _)| files.location(*s))
     }
 }
-

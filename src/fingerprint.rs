@@ -40,4 +40,3 @@ pub(crate) fn hash_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> blake
     }
     h.finalize()
 }
-

@@ -62,8 +62,8 @@ pub mod covering;
 pub mod data_file;
 pub mod declaration;
 pub mod diagnostic;
-pub mod error;
 pub mod emit;
+pub mod error;
 pub mod fingerprint;
 pub mod json;
 pub mod keywords;
@@ -84,11 +84,11 @@ pub mod variants;
 pub mod watch;
 
 pub use diagnostic::{Diagnostic, Location, Severity, SourceFiles, Span};
+pub use error::VariantError;
 pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use preprocess::Dialect;
 pub use shader::{Pass, Shader};
-pub use error::VariantError;
 pub use variants::{Choice, Space};
 
 /// `docs/api.md`: its example is compiled and run with the doc tests, so the page cannot drift

@@ -28,8 +28,8 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::library::{Library, Variant};
 use crate::error::VariantError;
+use crate::library::{Library, Variant};
 
 /// A shader stage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]

@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use num_bigint::BigUint;
 
 use crate::diagnostic::{FileId, Span};
-use crate::keywords::{Constraint, KeywordError, KeywordSet};
 use crate::keywords::SetKind;
+use crate::keywords::{Constraint, KeywordError, KeywordSet};
 use crate::preprocess::tree::{Node, PassDecl, Pragma};
 
 /// A shader: a named set of passes declared by one `#shader` file.

@@ -15,9 +15,9 @@
 use rayon::prelude::*;
 
 use crate::emit::set::file_safe;
+use crate::error::VariantError;
 use crate::library::{Library, Variant};
 use crate::shader::Pass;
-use crate::error::VariantError;
 use crate::variants::{Choice, Space};
 
 /// A named text to snapshot.

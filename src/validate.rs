@@ -15,6 +15,7 @@ use crate::shader::Pass;
 use crate::variants::{Choice, Shard, Space};
 
 pub use crate::error::{Stage, VariantError};
+use crate::validator::validate_with;
 pub use crate::validator::{validate_composed, validator};
 
 /// Composes, validates and compacts a variant (unused items removed, then validated again):
@@ -270,7 +271,8 @@ pub(crate) fn plan_report(
         Selection::BuildSet
     };
     let mut report = ValidateReport::new(passes, selection, options.shard);
-    report.fingerprint = crate::fingerprint::fingerprint(lib, "validate", &options.fingerprint_text());
+    report.fingerprint =
+        crate::fingerprint::fingerprint(lib, "validate", &options.fingerprint_text());
     report
 }
 

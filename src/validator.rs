@@ -49,7 +49,7 @@ fn map_spans<'a>(
         .collect()
 }
 
-fn validate_with(
+pub(crate) fn validate_with(
     composed: &Composed,
     variant: &str,
     validator: &mut naga::valid::Validator,
@@ -81,4 +81,3 @@ fn validate_with(
     })?;
     Ok((module, info))
 }
-

@@ -59,7 +59,7 @@ pub(crate) type Representatives = Vec<Vec<usize>>;
 pub(crate) fn regions(lib: &Library, space: &Space<'_>) -> Regions {
     let graph = lib.module_graph();
     let ids = LineIds::new(&graph);
-        let limits = Limits {
+    let limits = Limits {
         component: COMPONENT_LIMIT,
         whole: 0,
     };
@@ -139,4 +139,3 @@ pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
     let full = distinct::analyze(&graph, &ids, pass, Space::full(pass), limits);
     full.exact && full.distinct == full.count && unreached::prunes_nothing(lib, pass)
 }
-

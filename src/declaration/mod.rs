@@ -263,7 +263,10 @@ fn not_a_tree_path(path: &str) -> Option<&'static str> {
     if path.contains(['*', '?', '[', ']', '{', '}']) {
         return Some("is a glob pattern");
     }
-    if path.starts_with('/') || path.contains('\\') || path.split('/').any(|c| c == ".." || c == ".") {
+    if path.starts_with('/')
+        || path.contains('\\')
+        || path.split('/').any(|c| c == ".." || c == ".")
+    {
         return Some("is not a plain relative path (no `/` at the start, `\\`, `.` or `..`)");
     }
     None

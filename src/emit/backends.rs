@@ -17,8 +17,8 @@
 
 use std::fmt;
 
-use crate::library::{Library, Variant};
 use crate::error::VariantError;
+use crate::library::{Library, Variant};
 
 use crate::reflect::{EntryPoint, Stage, entry_points};
 

@@ -19,12 +19,12 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::diagnostic::Diagnostic;
+use crate::error::VariantError;
 use crate::library::Library;
 use crate::lookup::suggest;
 use crate::preprocess::Composed;
 use crate::preprocess::compose::compose;
 use crate::preprocess::tree::Node;
-use crate::error::VariantError;
 use crate::validator::validate_composed;
 
 /// Why a module could not be exported.

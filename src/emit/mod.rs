@@ -28,8 +28,8 @@ pub mod wesl;
 
 use std::path::Path;
 
-use crate::library::{Library, Variant};
 use crate::error::VariantError;
+use crate::library::{Library, Variant};
 use crate::validator::validate_composed;
 
 /// One variant's composed WGSL, as written (what `emit SHADER PASS --json` prints).

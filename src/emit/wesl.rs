@@ -42,8 +42,8 @@ use super::export::{ExportError, dependency_order, import_closure, library_order
 use super::naga_oil::import_path;
 use super::scan::{Scan, scan_library, scan_nodes};
 use crate::keywords::ConstraintKind;
-use crate::preprocess::lines::comment_step;
 use crate::keywords::SetKind;
+use crate::preprocess::lines::comment_step;
 use crate::shader::Pass;
 
 /// One module in WESL's dialect (serialized as `module`, `module_path` and `source`).

@@ -131,9 +131,7 @@ pub(crate) fn load_declared(
     let raw: Vec<RawFile> = raw
         .into_iter()
         .zip(keep)
-        .filter(|(f, keep)| {
-            *keep && !exclude.iter().any(|(e, _)| excludes(&f.path, e))
-        })
+        .filter(|(f, keep)| *keep && !exclude.iter().any(|(e, _)| excludes(&f.path, e)))
         .map(|(f, _)| f)
         .collect();
     let (mut files, paths, mut modules) = parse_all(raw, dialect, options)?;
@@ -818,9 +816,11 @@ fn build_shaders(
             pass_spans.insert(pass.name.clone(), pass.span);
             // The constraints are checked against the pass's whole space, which only a built
             // pass has.
-            match Pass::new(&decl.name, pass.module.unwrap_or(id), pass)
-                .and_then(|p| crate::variants::check_constraints(&p).map(|()| p).map_err(|e| vec![e]))
-            {
+            match Pass::new(&decl.name, pass.module.unwrap_or(id), pass).and_then(|p| {
+                crate::variants::check_constraints(&p)
+                    .map(|()| p)
+                    .map_err(|e| vec![e])
+            }) {
                 Ok(p) => passes.push(p),
                 Err(errs) => problems.extend(errs.into_iter().map(Into::into)),
             }

@@ -10,6 +10,7 @@ mod wesl;
 use std::path::Path;
 
 use crate::diagnostic::SourceFiles;
+use crate::error::VariantError;
 use crate::lookup::{LookupError, suggest};
 use crate::materials::{self, Material, MaterialsError};
 use crate::preprocess::Composed;
@@ -18,7 +19,6 @@ use crate::preprocess::tree::ParsedModule;
 use crate::reflect::Reflection;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
-use crate::error::VariantError;
 use crate::variants::{Choice, Space};
 
 pub use error::{LinkError, LoadError, LoadProblem};
@@ -123,11 +123,7 @@ fn unreachable_engine(
 }
 
 /// A variant's failure that has no place in the sources.
-fn unlocated(
-    variant: &Variant<'_>,
-    stage: crate::error::Stage,
-    message: String,
-) -> VariantError {
+fn unlocated(variant: &Variant<'_>, stage: crate::error::Stage, message: String) -> VariantError {
     VariantError {
         variant: variant.label(),
         stage,
@@ -215,12 +211,11 @@ impl Library {
             .collect();
         let declaration = root.join(crate::declaration::FILE_NAME);
         let mut lib = if declaration.is_file() {
-            let bytes = read_declaration(&declaration, options.max_total_bytes).map_err(|e| {
-                LoadError {
+            let bytes =
+                read_declaration(&declaration, options.max_total_bytes).map_err(|e| LoadError {
                     files: SourceFiles::new(),
                     problems: vec![e.into()],
-                }
-            })?;
+                })?;
             let declaration = RawFile {
                 path: crate::declaration::FILE_NAME.to_string(),
                 bytes,

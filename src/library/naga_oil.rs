@@ -19,8 +19,8 @@ use naga_oil::compose::{
 };
 
 use crate::diagnostic::{SourceFiles, Span};
-use crate::preprocess::tree::ParsedModule;
 use crate::error::{Stage, VariantError};
+use crate::preprocess::tree::ParsedModule;
 
 use super::Variant;
 

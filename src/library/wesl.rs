@@ -27,8 +27,8 @@ use wgsl_parse::SyntaxNode;
 
 use crate::declaration::DefValue;
 use crate::diagnostic::{SourceFiles, Span};
-use crate::preprocess::tree::ParsedModule;
 use crate::error::{Stage, VariantError};
+use crate::preprocess::tree::ParsedModule;
 
 use super::Variant;
 

@@ -220,7 +220,12 @@ fn self_check(name: &str, r: &ReportJson, shard: Option<Shard>) -> Result<(), Me
             name,
             format!(
                 "its totals ({} built, {} valid, {} invalid) are not the sums of its passes ({} built, {} valid, {} invalid)",
-                r.totals.built, r.totals.valid, r.totals.invalid, sums.built, sums.valid, sums.invalid
+                r.totals.built,
+                r.totals.valid,
+                r.totals.invalid,
+                sums.built,
+                sums.valid,
+                sums.invalid
             ),
         ));
     }
@@ -365,14 +370,20 @@ mod tests {
                     if k == 2 {
                         edit(&mut value);
                     }
-                    (format!("{k}/2"), serde_json::to_string_pretty(&value).unwrap())
+                    (
+                        format!("{k}/2"),
+                        serde_json::to_string_pretty(&value).unwrap(),
+                    )
                 })
                 .collect()
         };
         assert!(merge_reports(&inputs(&|_| {})).is_ok());
         let moved = |v: &mut serde_json::Value| {
             let pass = &mut v["passes"][0];
-            let (valid, invalid) = (pass["valid"].as_u64().unwrap(), pass["invalid"].as_u64().unwrap());
+            let (valid, invalid) = (
+                pass["valid"].as_u64().unwrap(),
+                pass["invalid"].as_u64().unwrap(),
+            );
             pass["valid"] = (valid + 2).into();
             pass["invalid"] = (invalid - 2).into();
         };
@@ -394,7 +405,10 @@ mod tests {
             v["passes"][0]["failures"][0]["numbers"][0] = 0.into();
         };
         let err = merge_reports(&inputs(&foreign)).unwrap_err().to_string();
-        assert!(err.contains("variant number 0 is not in shard 2/2"), "{err}");
+        assert!(
+            err.contains("variant number 0 is not in shard 2/2"),
+            "{err}"
+        );
     }
 
     #[test]

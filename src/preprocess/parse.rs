@@ -8,9 +8,8 @@ use crate::keywords::ConstraintKind;
 use super::error::ParseError;
 use super::expr::{self, Expr};
 use super::lines::{self, Line};
-use super::tree::{
-    Conditional, ImportRef, Node, ParsedModule, PassDecl, Pragma, SetKind, ShaderDecl,
-};
+use super::tree::{Conditional, ImportRef, Node, ParsedModule, PassDecl, Pragma, ShaderDecl};
+use crate::keywords::SetKind;
 
 mod naga_oil;
 #[cfg(feature = "wesl")]

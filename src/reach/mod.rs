@@ -34,7 +34,6 @@ use std::collections::HashMap;
 use crate::preprocess::Composed;
 use items::Splitter;
 
-
 /// `composed` with the top-level items no entry point reaches left out (see the
 /// [module docs](self)); the line map, when there is one, follows the lines kept.
 ///

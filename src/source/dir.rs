@@ -155,7 +155,8 @@ pub fn read_dir_tree(root: &Path, limits: DirLimits) -> Result<DirTree, DirError
             } else if !module {
                 continue;
             } else if !meta.is_file() {
-                tree.skipped.push((rel_path, special_kind(meta.file_type())));
+                tree.skipped
+                    .push((rel_path, special_kind(meta.file_type())));
             } else {
                 let size = usize::try_from(meta.len()).unwrap_or(usize::MAX);
                 let over = |bytes: usize| DirError::TooLarge {

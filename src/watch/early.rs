@@ -6,9 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rayon::prelude::*;
 
 use crate::cache::ValidCache;
+use crate::error::VariantError;
 use crate::library::{Library, Variant};
 use crate::plan::{Plan, PlanOptions, variants_to_build};
-use crate::error::VariantError;
 use crate::validate::validate_variant;
 use crate::validator::validator;
 use crate::variants::Choice;

@@ -57,9 +57,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use crate::cache::{Hash, ValidCache};
 use crate::diagnostic::Span;
+use crate::error::VariantError;
 use crate::library::{Library, LoadError, LoadOptions};
 use crate::plan::{PlanError, PlanOptions};
-use crate::error::VariantError;
 use crate::validate::{Keyed, PassReport, ValidateReport, validate_keyed};
 
 /// Why a run gave no verdict: the tree did not load or could not be planned. The session

@@ -403,11 +403,7 @@ fn main() -> ExitCode {
         eprint!("{}", warning.render(lib.files(), color));
     }
     let json = cli.json;
-    let ctx = Context {
-        lib,
-        json,
-        color,
-    };
+    let ctx = Context { lib, json, color };
     let result = match cli.command {
         Command::List { materials } => list::run(&ctx, &materials),
         Command::Validate { all, build, run } => validate::run(&ctx, all, &build, &run),

@@ -287,7 +287,7 @@ fn watch(
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
         let Ok(event) = event else { return };
         let of_root = !matches!(event.kind, notify::EventKind::Access(_))
-            && event.paths.iter().any(|p| *p == watched_root);
+            && event.paths.contains(&watched_root);
         if of_root {
             root_moved.store(true, Ordering::Relaxed);
         }

@@ -37,7 +37,10 @@ fn a_forged_cache_entry_does_not_make_an_invalid_variant_valid() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("1 valid, 1 invalid"), "{stdout}");
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("untrusted"), "the forged record is reported: {stderr}");
+    assert!(
+        stderr.contains("untrusted"),
+        "the forged record is reported: {stderr}"
+    );
 
     let info = run_on(tree.path(), &["cache", "info", "--json", "--cache", dir]);
     assert_clean_exit(&info, 0);

@@ -55,12 +55,17 @@ fn assert_manifest_describes_folder(dir: &std::path::Path) {
                 stack.push(p);
             } else if p.file_name().unwrap() != "manifest.json" {
                 let rel = p.strip_prefix(dir).unwrap().to_str().unwrap().to_string();
-                let hash = blake3::hash(&std::fs::read(&p).unwrap()).to_hex().to_string();
+                let hash = blake3::hash(&std::fs::read(&p).unwrap())
+                    .to_hex()
+                    .to_string();
                 found.insert(rel, hash);
             }
         }
     }
-    assert_eq!(listed, found, "the manifest describes exactly the files beside it");
+    assert_eq!(
+        listed, found,
+        "the manifest describes exactly the files beside it"
+    );
 }
 
 #[test]

@@ -24,8 +24,14 @@ fn a_link_to_its_own_folder_does_not_loop() {
     let out = run_on(tree.path(), &["list"]);
     assert_clean_exit(&out, 0);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("`loop` is a link to a folder already read"), "{stderr}");
-    assert!(stderr.contains("`sub/up` is a link to a folder already read"), "{stderr}");
+    assert!(
+        stderr.contains("`loop` is a link to a folder already read"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("`sub/up` is a link to a folder already read"),
+        "{stderr}"
+    );
 }
 
 #[cfg(unix)]
@@ -54,7 +60,10 @@ fn a_fifo_named_like_a_module_is_skipped_not_read() {
     module(tree.path());
     let fifo = tree.path().join("x.wgsl");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
-    assert!(made.is_ok_and(|s| s.success()), "mkfifo (coreutils) makes the FIFO");
+    assert!(
+        made.is_ok_and(|s| s.success()),
+        "mkfifo (coreutils) makes the FIFO"
+    );
     let out = run_on(tree.path(), &["list"]);
     assert_clean_exit(&out, 0);
     let stderr = String::from_utf8_lossy(&out.stderr);

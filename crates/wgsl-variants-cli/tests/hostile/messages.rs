@@ -22,7 +22,10 @@ fn two_shader_entries_of_one_name_are_not_called_two_files() {
     let out = run_on(tree.path(), &["list"]);
     assert_clean_exit(&out, 1);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("shader `lit` is declared twice"), "{stderr}");
+    assert!(
+        stderr.contains("shader `lit` is declared twice"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("two files"), "{stderr}");
 }
 
@@ -38,7 +41,10 @@ fn a_declaration_file_that_is_not_utf8_is_not_called_a_wgsl_source() {
     let out = run_on(tree.path(), &["list"]);
     assert_clean_exit(&out, 1);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("a declaration file must be UTF-8"), "{stderr}");
+    assert!(
+        stderr.contains("a declaration file must be UTF-8"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("WGSL sources"), "{stderr}");
 }
 

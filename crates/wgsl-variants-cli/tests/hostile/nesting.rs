@@ -36,7 +36,8 @@ fn deep_parentheses_in_a_wesl_module_are_refused_not_a_crash() {
             assert_clean_exit(&out, 1);
             let stderr = String::from_utf8_lossy(&out.stderr);
             assert!(
-                stderr.contains("nested deeper than the limit of 256") && stderr.contains("s.wesl:1:"),
+                stderr.contains("nested deeper than the limit of 256")
+                    && stderr.contains("s.wesl:1:"),
                 "{args:?} at depth {depth}: {stderr}"
             );
         }

@@ -52,7 +52,11 @@ fn watch_recovers_when_its_root_comes_back() {
     until("error");
     // Made again, with an error in it: seen and validated.
     std::fs::create_dir(&root).unwrap();
-    std::fs::write(root.join("a.wgsl"), SHADER.replace("vec4f(1.0)", "vec4f(1.0, ,)")).unwrap();
+    std::fs::write(
+        root.join("a.wgsl"),
+        SHADER.replace("vec4f(1.0)", "vec4f(1.0, ,)"),
+    )
+    .unwrap();
     let broken = until("verdict");
     assert_eq!(broken["report"]["ok"], false, "{broken}");
     // And edits inside the new folder are watched too.
