@@ -5,7 +5,9 @@
 # module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
 # imports), lean (naga gives the lean and the emitted text of every variant the same outcome),
 # naga_oil (naga_oil-dialect trees, loaded and composed through naga_oil), wesl (WESL trees,
-# their `@if` tree read and every variant composed through the wesl crate).
+# their `@if` tree read and every variant composed through the wesl crate), declaration (any
+# wgsl-variants.toml over a fixed tree), merge (shard reports, edited or not: merged totals
+# always add up) and cache (segment bytes: nothing untrusted is ever trusted).
 # Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
 # saved under fuzz/artifacts/<target>/; copy it to fuzz/regressions/<target>/ and fix the bug:
 # `cargo test --test fuzz_regressions` replays every saved input.
@@ -17,7 +19,7 @@ seconds="${1:-60}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 summary=""
-for target in preprocess expr pragmas loader lean naga_oil wesl; do
+for target in preprocess expr pragmas loader lean naga_oil wesl declaration merge cache; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
     cp -n fuzz/initial/"$target"/* "$corpus"/ 2>/dev/null || true

@@ -195,12 +195,13 @@ pub fn key() -> String {
 #[non_exhaustive]
 pub enum CacheError {
     /// A file could not be read or written.
-    #[error("`{path}`: {message}")]
+    #[error("`{}`: {source}", .path.display())]
     Io {
         /// The path.
         path: PathBuf,
         /// The OS error.
-        message: String,
+        #[source]
+        source: std::io::Error,
     },
     /// The file is not a cache export.
     #[error("`{path}` is not a wgsl-variants cache file")]
@@ -229,7 +230,7 @@ pub enum CacheError {
 fn io_error(path: &Path, e: std::io::Error) -> CacheError {
     CacheError::Io {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        source: e,
     }
 }
 

@@ -6,6 +6,7 @@
 //! `multi_compile K` with a single name is a one-option set (K always on), as in Unity.
 
 use std::fmt;
+use std::str::FromStr;
 
 use crate::diagnostic::{Diagnostic, Span};
 
@@ -427,8 +428,8 @@ pub fn def_of(keyword: &str) -> (&str, DefValue) {
             "true" => DefValue::Bool(true),
             "false" => DefValue::Bool(false),
             v => match v.strip_suffix('u') {
-                Some(u) => DefValue::UInt(u.parse().ok()?),
-                None => DefValue::Int(v.parse().ok()?),
+                Some(u) => DefValue::UInt(u32::from_str(u).ok()?),
+                None => DefValue::Int(i32::from_str(v).ok()?),
             },
         };
         Some((name, value))

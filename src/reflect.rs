@@ -489,6 +489,21 @@ pub fn reflect_module(module: &naga::Module, info: &naga::valid::ModuleInfo) -> 
     }
 }
 
+impl Library {
+    /// The entry points and bindings of a variant, validated first (the reflection stage:
+    /// [`reflect`](crate::reflect)).
+    ///
+    /// ```
+    /// let lib = wgsl_variants_shaders::library().unwrap();
+    /// let v = lib.variant("deferred_final", "Final", &[] as &[&str]).unwrap();
+    /// let r = lib.reflect(&v).unwrap();
+    /// assert_eq!(r.bindings[0].name, "rt3");
+    /// ```
+    pub fn reflect(&self, variant: &Variant<'_>) -> Result<Reflection, VariantError> {
+        reflect_variant(self, variant)
+    }
+}
+
 /// The reflection of a variant, validated first (see [`Library::reflect`]).
 pub(crate) fn reflect_variant(
     lib: &Library,

@@ -616,11 +616,21 @@ impl Shard {
     }
 }
 
-impl std::str::FromStr for Shard {
-    type Err = String;
+/// A shard written wrongly: not `K/N` with `1 <= K <= N`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("`{text}` is not a shard: write K/N with 1 <= K <= N, e.g. 2/4")]
+pub struct ShardError {
+    /// The text as written.
+    pub text: String,
+}
 
-    fn from_str(s: &str) -> Result<Shard, String> {
-        let err = || format!("`{s}` is not a shard: write K/N with 1 <= K <= N, e.g. 2/4");
+impl std::str::FromStr for Shard {
+    type Err = ShardError;
+
+    fn from_str(s: &str) -> Result<Shard, ShardError> {
+        let err = || ShardError {
+            text: s.to_string(),
+        };
         let (k, n) = s.split_once('/').ok_or_else(err)?;
         let (k, n): (u64, u64) = (
             k.trim().parse().map_err(|_| err())?,

@@ -31,7 +31,7 @@ type Target = (&'static str, fn(&[u8]));
 
 #[test]
 fn fuzz_seeds_and_regressions_replay_cleanly() {
-    let targets: [Target; 7] = [
+    let targets: [Target; 10] = [
         ("preprocess", checks::preprocess),
         ("expr", checks::expr),
         ("pragmas", checks::pragmas),
@@ -39,6 +39,9 @@ fn fuzz_seeds_and_regressions_replay_cleanly() {
         ("lean", checks::lean),
         ("naga_oil", checks::naga_oil),
         ("wesl", checks::wesl),
+        ("declaration", checks::declaration),
+        ("merge", checks::merge),
+        ("cache", checks::cache),
     ];
     let mut total = 0;
     for (name, check) in targets {

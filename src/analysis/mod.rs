@@ -127,7 +127,7 @@ pub(crate) fn regions(lib: &Library, space: &Space<'_>) -> Regions {
 pub fn proves_all_distinct(lib: &Library, pass: &Pass) -> bool {
     // The analysis proves preprocessed texts distinct; naga_oil keeps only the imported items
     // a program uses, so two different texts can still compose to one program there.
-    if lib.dialect() != crate::Dialect::WgslVariants {
+    if lib.dialect() != crate::preprocess::Dialect::WgslVariants {
         return false;
     }
     let graph = lib.module_graph();

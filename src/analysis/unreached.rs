@@ -36,7 +36,7 @@ pub struct Unreached {
 /// }
 /// ```
 pub fn unreached(lib: &Library, pass: &Pass) -> Vec<Unreached> {
-    if lib.dialect() != crate::Dialect::WgslVariants {
+    if lib.dialect() != crate::preprocess::Dialect::WgslVariants {
         return Vec::new();
     }
     let graph = lib.module_graph();
@@ -104,7 +104,7 @@ pub fn unreached(lib: &Library, pass: &Pass) -> Vec<Unreached> {
 /// ([`super::proves_all_distinct`]) holds for the pruned texts only then. `false` is
 /// always safe (validation then keeps an index of the texts it has seen).
 pub fn prunes_nothing(lib: &Library, pass: &Pass) -> bool {
-    if lib.dialect() != crate::Dialect::WgslVariants {
+    if lib.dialect() != crate::preprocess::Dialect::WgslVariants {
         return false;
     }
     let graph = lib.module_graph();

@@ -24,7 +24,7 @@
 //! assert_eq!(cover.len(), 10); // the optimum for 64 binary sets
 //! ```
 
-pub mod array;
+pub(crate) mod array;
 
 use crate::shader::Pass;
 use crate::variants::{Choice, Factor, Space};
@@ -35,6 +35,33 @@ pub const MAX_T: usize = 4;
 /// Most values of the t largest factors together: above it the tuples to cover do not fit in
 /// memory comfortably.
 pub const MAX_TUPLES: u128 = 1 << 26;
+
+/// Most t-way combinations of options one covering set may have to cover
+/// ([`interactions`]): the generator's time and memory grow with them, and past this a
+/// generation would run for many minutes (about 2.7 s for 7.8 million on a 2-core machine,
+/// measured 2026-11-27 with `validate --cover 4` over 60 two-option sets).
+pub const MAX_INTERACTIONS: u128 = 200_000_000;
+
+/// The number of t-way combinations of options that a t-wise covering set of factors with
+/// `levels` options each must cover: the sum, over every t factors, of the product of their
+/// sizes (exact; saturating at `u128::MAX`).
+///
+/// ```
+/// use wgsl_variants::covering::interactions;
+/// assert_eq!(interactions(&[2, 2, 2], 2), 12); // 3 pairs of sets, 4 combinations each
+/// assert_eq!(interactions(&[2; 202], 4), 1_077_306_400); // C(202, 4) * 16
+/// ```
+pub fn interactions(levels: &[usize], t: usize) -> u128 {
+    // e[j] = sum over j-subsets of the factors seen so far of the product of their sizes.
+    let mut e = vec![0u128; t + 1];
+    e[0] = 1;
+    for &l in levels {
+        for j in (1..=t).rev() {
+            e[j] = e[j].saturating_add(e[j - 1].saturating_mul(l as u128));
+        }
+    }
+    e[t]
+}
 
 /// Why a covering set could not be made. Every variant names the pass.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -96,6 +123,34 @@ pub enum CoverError {
         /// Product of the t largest factor sizes.
         combinations: u128,
     },
+    /// The covering set would take too long to generate: it must cover more t-way
+    /// combinations of options than [`MAX_INTERACTIONS`].
+    #[error(
+        "{shader}/{pass}: a t = {t} covering set of its {sets} keyword sets must cover {interactions} combinations of options, past the limit of {MAX_INTERACTIONS} (it would take many minutes to generate){}",
+        lower_hint(*.t, *.lower)
+    )]
+    TooMuchWork {
+        /// Shader.
+        shader: String,
+        /// Pass.
+        pass: String,
+        /// The strength asked for.
+        t: usize,
+        /// Number of keyword sets (factors).
+        sets: usize,
+        /// Combinations to cover ([`interactions`]).
+        interactions: u128,
+        /// Combinations a covering set of strength t − 1 covers.
+        lower: u128,
+    },
+}
+
+fn lower_hint(t: usize, lower: u128) -> String {
+    if t > 1 {
+        format!("; t = {} covers {lower}", t - 1)
+    } else {
+        String::new()
+    }
 }
 
 impl CoverError {
@@ -106,7 +161,8 @@ impl CoverError {
             | CoverError::Unsupported { shader, pass, .. }
             | CoverError::TooStrong { shader, pass, .. }
             | CoverError::Empty { shader, pass, .. }
-            | CoverError::TooLarge { shader, pass, .. } => (shader, pass),
+            | CoverError::TooLarge { shader, pass, .. }
+            | CoverError::TooMuchWork { shader, pass, .. } => (shader, pass),
         }
     }
 }
@@ -159,6 +215,18 @@ pub(crate) fn check(pass: &Pass, factors: &[Factor], t: usize) -> Result<(), Cov
             pass: name,
             t,
             combinations,
+        });
+    }
+    let sizes: Vec<usize> = factors.iter().map(Factor::len).collect();
+    let work = interactions(&sizes, t);
+    if work > MAX_INTERACTIONS {
+        return Err(CoverError::TooMuchWork {
+            shader,
+            pass: name,
+            t,
+            sets: factors.len(),
+            interactions: work,
+            lower: interactions(&sizes, t - 1),
         });
     }
     Ok(())

@@ -76,7 +76,7 @@ pub(crate) struct ShaderSpec {
 #[derive(Clone, Debug)]
 pub(crate) struct Declaration {
     /// The dialect of the tree's modules.
-    pub dialect: crate::Dialect,
+    pub dialect: crate::preprocess::Dialect,
     /// Paths (files or folders, relative to the root) left out of the tree, with where each
     /// is written.
     pub exclude: Vec<(String, Span)>,
@@ -188,11 +188,11 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         .iter()
         .any(|s| s.entry.get_ref().ends_with(".wesl"));
     let dialect = match &parsed.dialect {
-        None if wesl_entries => crate::Dialect::Wesl,
-        None => crate::Dialect::NagaOil,
+        None if wesl_entries => crate::preprocess::Dialect::Wesl,
+        None => crate::preprocess::Dialect::NagaOil,
         Some(d) => match d.get_ref().as_str() {
-            "naga-oil" => crate::Dialect::NagaOil,
-            "wesl" => crate::Dialect::Wesl,
+            "naga-oil" => crate::preprocess::Dialect::NagaOil,
+            "wesl" => crate::preprocess::Dialect::Wesl,
             other => {
                 errors.push(DeclarationError {
                     message: format!(
@@ -200,7 +200,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
                     ),
                     span: at(d.span()),
                 });
-                crate::Dialect::NagaOil
+                crate::preprocess::Dialect::NagaOil
             }
         },
     };

@@ -2,6 +2,7 @@
 
 mod error;
 mod load;
+mod engine;
 #[cfg(feature = "naga-oil")]
 mod naga_oil;
 #[cfg(feature = "wesl")]
@@ -16,7 +17,6 @@ use crate::materials::{self, Material, MaterialsError};
 use crate::preprocess::Composed;
 use crate::preprocess::compose::{ModuleGraph, compose};
 use crate::preprocess::tree::ParsedModule;
-use crate::reflect::Reflection;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
 use crate::variants::{Choice, Space};
@@ -43,12 +43,10 @@ pub struct Library {
     resolved: Vec<Vec<usize>>,
     shaders: Vec<Shader>,
     origin: Origin,
-    dialect: crate::Dialect,
-    warnings: Vec<crate::Diagnostic>,
-    #[cfg(feature = "naga-oil")]
-    naga_oil: Option<naga_oil::NagaOilEngine>,
-    #[cfg(feature = "wesl")]
-    wesl: Option<wesl::WeslEngine>,
+    dialect: crate::preprocess::Dialect,
+    warnings: Vec<crate::diagnostic::Diagnostic>,
+    /// What composes its variants (chosen by the dialect when it loaded).
+    engine: Box<dyn engine::Engine>,
 }
 
 impl std::fmt::Debug for Library {
@@ -105,25 +103,8 @@ fn raw_files<P: Into<String>, T: Into<String>>(
     raw
 }
 
-/// The failure of a variant of a naga_oil or WESL tree when this build cannot compose its
-/// dialect (its cargo feature off).
-fn unreachable_engine(
-    variant: &Variant<'_>,
-    dialect: crate::Dialect,
-) -> Result<String, VariantError> {
-    Err(unlocated(
-        variant,
-        crate::error::Stage::Compose,
-        format!(
-            "this build of wgsl-variants cannot compose `{}` trees (cargo feature `{}` off): they load and audit, but cannot compose",
-            dialect.name(),
-            dialect.name()
-        ),
-    ))
-}
-
 /// A variant's failure that has no place in the sources.
-fn unlocated(variant: &Variant<'_>, stage: crate::error::Stage, message: String) -> VariantError {
+pub(crate) fn unlocated(variant: &Variant<'_>, stage: crate::error::Stage, message: String) -> VariantError {
     VariantError {
         variant: variant.label(),
         stage,
@@ -200,11 +181,11 @@ impl Library {
             files: SourceFiles::new(),
             problems: vec![e.into()],
         })?;
-        let skipped: Vec<crate::Diagnostic> = tree
+        let skipped: Vec<crate::diagnostic::Diagnostic> = tree
             .skipped
             .iter()
             .map(|(path, why)| {
-                crate::Diagnostic::new(format!("`{path}` is {why}"))
+                crate::diagnostic::Diagnostic::new(format!("`{path}` is {why}"))
                     .warning()
                     .note("only regular files and folders are read from a tree")
             })
@@ -279,18 +260,21 @@ impl Library {
     /// or WESL tree).
     fn from_loaded(l: load::Loaded, origin: Origin) -> Library {
         let dialect = l.dialect;
-        #[cfg(feature = "naga-oil")]
-        let naga_oil = (dialect == crate::Dialect::NagaOil).then(|| {
-            naga_oil::NagaOilEngine::new(
+        let engine: Box<dyn engine::Engine> = match dialect {
+            crate::preprocess::Dialect::WgslVariants => Box::new(engine::Preprocessor),
+            #[cfg(feature = "naga-oil")]
+            crate::preprocess::Dialect::NagaOil => Box::new(naga_oil::NagaOilEngine::new(
                 &l.modules,
                 &l.resolved,
                 l.shaders
                     .iter()
                     .flat_map(|s| s.passes.iter().map(|p| p.module)),
-            )
-        });
-        #[cfg(feature = "wesl")]
-        let wesl = (dialect == crate::Dialect::Wesl).then(|| wesl::WeslEngine::new(&l.modules));
+            )),
+            #[cfg(feature = "wesl")]
+            crate::preprocess::Dialect::Wesl => Box::new(wesl::WeslEngine::new(&l.modules)),
+            #[allow(unreachable_patterns)]
+            other => Box::new(engine::Unavailable(other)),
+        };
         Library {
             files: l.files,
             modules: l.modules,
@@ -300,10 +284,7 @@ impl Library {
             origin,
             dialect,
             warnings: l.warnings,
-            #[cfg(feature = "naga-oil")]
-            naga_oil,
-            #[cfg(feature = "wesl")]
-            wesl,
+            engine,
         }
     }
 
@@ -349,12 +330,12 @@ impl Library {
 
     /// What loaded but is probably not meant, to show the user (render with
     /// [`Library::files`]): declared keywords that no module of their pass reads.
-    pub fn warnings(&self) -> &[crate::Diagnostic] {
+    pub fn warnings(&self) -> &[crate::diagnostic::Diagnostic] {
         &self.warnings
     }
 
     /// The dialect the library's modules are written in.
-    pub fn dialect(&self) -> crate::Dialect {
+    pub fn dialect(&self) -> crate::preprocess::Dialect {
         self.dialect
     }
 
@@ -490,57 +471,8 @@ impl Library {
     }
 
     fn compose_with(&self, variant: &Variant<'_>, with_map: bool, prune: bool) -> Composed {
-        if self.dialect != crate::Dialect::WgslVariants {
-            return self.compose_by_engine(variant);
-        }
-        let graph = ModuleGraph {
-            modules: &self.modules,
-            resolved: &self.resolved,
-            files: &self.files,
-        };
-        let composed = compose(
-            &graph,
-            variant.pass.module,
-            &variant.pass.body,
-            variant.choice.defines(variant.pass),
-            with_map,
-        );
-        if prune {
-            crate::reach::prune(composed)
-        } else {
-            composed
-        }
-    }
-
-    /// A naga_oil or WESL tree's variant, composed by naga_oil or the `wesl` crate: its
-    /// program as WGSL, or the failure (see [`Composed::failure`]).
-    fn compose_by_engine(&self, variant: &Variant<'_>) -> Composed {
-        let result = match self.dialect {
-            #[cfg(feature = "naga-oil")]
-            crate::Dialect::NagaOil => match &self.naga_oil {
-                Some(engine) => engine.compose(&self.files, &self.modules, variant),
-                None => unreachable_engine(variant, self.dialect),
-            },
-            #[cfg(feature = "wesl")]
-            crate::Dialect::Wesl => match &self.wesl {
-                Some(engine) => engine.compose(&self.files, &self.modules, variant),
-                None => unreachable_engine(variant, self.dialect),
-            },
-            _ => unreachable_engine(variant, self.dialect),
-        };
-        match result {
-            Ok(text) => Composed {
-                text,
-                ..Composed::default()
-            },
-            // Variants that fail alike (same message, same places) are one failure with many
-            // keyword sets, as variants with one text are.
-            Err(e) => Composed {
-                text: format!("// {:?} {} {:?}\n", e.stage, e.message, e.labels),
-                failure: Some(Box::new(e)),
-                ..Composed::default()
-            },
-        }
+        self.engine
+            .compose(&self.module_graph(), variant, engine::How { with_map, prune })
     }
 
     /// The source files a pass's variants are composed from: its module and every module it
@@ -556,7 +488,7 @@ impl Library {
     /// assert!(!paths.iter().any(|p| p.starts_with("universal/")));
     /// ```
     pub fn pass_files(&self, pass: &Pass) -> Vec<crate::diagnostic::FileId> {
-        if self.dialect != crate::Dialect::WgslVariants {
+        if self.dialect != crate::preprocess::Dialect::WgslVariants {
             return (0..self.files.len()).collect();
         }
         self.module_graph()
@@ -596,18 +528,5 @@ impl Library {
         variant: &Variant<'_>,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
         crate::validator::validate_composed(&self.compose(variant), &variant.label())
-    }
-
-    /// The entry points and bindings of a variant, validated first (the reflection stage:
-    /// [`reflect`](crate::reflect)).
-    ///
-    /// ```
-    /// let lib = wgsl_variants_shaders::library().unwrap();
-    /// let v = lib.variant("deferred_final", "Final", &[] as &[&str]).unwrap();
-    /// let r = lib.reflect(&v).unwrap();
-    /// assert_eq!(r.bindings[0].name, "rt3");
-    /// ```
-    pub fn reflect(&self, variant: &Variant<'_>) -> Result<Reflection, VariantError> {
-        crate::reflect::reflect_variant(self, variant)
     }
 }

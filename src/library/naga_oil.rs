@@ -329,6 +329,17 @@ fn undecorate(text: &str) -> String {
     out
 }
 
+impl super::engine::Engine for NagaOilEngine {
+    fn compose(
+        &self,
+        tree: &crate::preprocess::compose::ModuleGraph<'_>,
+        variant: &Variant<'_>,
+        _: super::engine::How,
+    ) -> crate::preprocess::Composed {
+        super::engine::composed(self.compose(tree.files, tree.modules, variant))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -391,3 +391,14 @@ fn unmangle(text: &str, map: &wesl::BasicSourceMap) -> String {
     flush(&mut word, &mut out);
     out
 }
+
+impl super::engine::Engine for WeslEngine {
+    fn compose(
+        &self,
+        tree: &crate::preprocess::compose::ModuleGraph<'_>,
+        variant: &Variant<'_>,
+        _: super::engine::How,
+    ) -> crate::preprocess::Composed {
+        super::engine::composed(self.compose(tree.files, tree.modules, variant))
+    }
+}

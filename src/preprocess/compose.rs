@@ -55,6 +55,19 @@ pub struct Composed {
     pub failure: Option<Box<crate::error::VariantError>>,
 }
 
+impl Composed {
+    /// A variant that has no program (its composer refused it). Its text is the error itself,
+    /// so that variants failing alike (same stage, message and places) share one text and are
+    /// one failure with many keyword sets, as variants with one program are.
+    pub fn failed(error: crate::error::VariantError) -> Composed {
+        Composed {
+            text: format!("// {:?} {} {:?}\n", error.stage, error.message, error.labels),
+            failure: Some(Box::new(error)),
+            ..Composed::default()
+        }
+    }
+}
+
 /// Composes `body` (nodes of module `module`) with `defines` in effect at the start.
 ///
 /// Each module is emitted once, at its first import; later imports of it are no-ops.

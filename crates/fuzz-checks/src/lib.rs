@@ -64,6 +64,89 @@ pub fn pragmas(data: &[u8]) {
     }
 }
 
+/// A declaration file (`wgsl-variants.toml`) of any text, over a fixed tree of two modules
+/// (`lit.wgsl`, `lib/color.wgsl`): loading never panics (malformed TOML, wrong types, huge or
+/// odd values, excludes, constraints are diagnostics), and a tree that loads lists, plans and
+/// composes its variants without panicking.
+pub fn declaration(data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let files = [
+        (
+            "lit.wgsl",
+            "#import lib::color::tint\n@fragment fn fs() -> @location(0) vec4f {\n#ifdef A\n    return tint();\n#endif\n    return vec4f(1.0);\n}\n",
+        ),
+        (
+            "lib/color.wgsl",
+            "#define_import_path lib::color\nfn tint() -> vec4f { return vec4f(0.5); }\n",
+        ),
+    ];
+    if let Ok(lib) = Library::from_declared_sources(&text, files) {
+        for pass in lib.passes() {
+            for choice in Space::full(pass).iter().take(16) {
+                let _ = lib.wgsl(&Variant { pass, choice });
+            }
+        }
+    }
+}
+
+/// Shard reports for `merge` (`validate --json` output, edited or not): the input is split at
+/// `\0` into at most four reports, named `K/N`. Merging never panics; a merge that succeeds
+/// gives totals that agree with its passes and failures (a shard that contradicts itself is
+/// refused, never summed).
+pub fn merge(data: &[u8]) {
+    let parts: Vec<String> = data
+        .split(|&b| b == 0)
+        .take(4)
+        .map(|b| String::from_utf8_lossy(b).into_owned())
+        .collect();
+    let n = parts.len();
+    let inputs: Vec<(String, String)> = parts
+        .into_iter()
+        .enumerate()
+        .map(|(k, text)| (format!("{}/{n}", k + 1), text))
+        .collect();
+    if let Ok((merged, ok)) = wgsl_variants::merge::validate::merge_reports(&inputs) {
+        let value: serde_json::Value =
+            serde_json::from_str(&merged).expect("a merged report is JSON");
+        let totals = &value["totals"];
+        let (built, valid, invalid) = (
+            totals["built"].as_u64().expect("built"),
+            totals["valid"].as_u64().expect("valid"),
+            totals["invalid"].as_u64().expect("invalid"),
+        );
+        assert_eq!(valid + invalid, built, "merged totals add up: {merged}");
+        assert_eq!(ok, invalid == 0, "ok says whether a variant failed");
+    }
+}
+
+/// A cache segment of any bytes, read by a cache that trusts one secret: opening and importing
+/// never panic, every record is either trusted or counted as corrupt, and nothing is trusted
+/// that was not signed with the secret (a record copied from a segment of another secret).
+pub fn cache(data: &[u8]) {
+    use wgsl_variants::cache::{Secret, ValidCache, import_with, key};
+    let secret = Secret::from_hex(&"3".repeat(64)).expect("64 hex digits");
+    let Ok(dir) = tempfile::tempdir() else { return };
+    let folder = dir.path().join(key());
+    if std::fs::create_dir_all(&folder).is_err()
+        || std::fs::write(folder.join("input.seg"), data).is_err()
+    {
+        return;
+    }
+    let cache = ValidCache::open_with(dir.path(), secret.clone());
+    // A segment's records are 48 bytes after its header: no more entries than that allows.
+    assert!(cache.len() <= data.len() / 48, "entries from nowhere");
+    let file = dir.path().join("export.bin");
+    if cache.export(&file).is_ok() {
+        let other = Secret::from_hex(&"4".repeat(64)).expect("64 hex digits");
+        let Ok(elsewhere) = tempfile::tempdir() else { return };
+        if let Ok(imported) = import_with(elsewhere.path(), &file, &other) {
+            // Signed with another secret: every record of the export is untrusted there.
+            assert_eq!(imported.entries, 0, "a record of another secret was trusted");
+        }
+    }
+    let _ = import_with(dir.path(), &folder.join("input.seg"), &secret);
+}
+
 /// Several modules with imports between them (cycles, diamonds, missing and escaping paths):
 /// the input is split into files at `\0`, named m0..mN. Loading never panics or hangs.
 pub fn loader(data: &[u8]) {

@@ -107,6 +107,17 @@ impl GpuContext {
             available,
         })?;
         let info = adapter.get_info();
+        // Shadow maps, depth pre-passes and G-buffer depth are read back to compare them with
+        // the reference: a GL adapter without depth copies fails later with a raw validation
+        // dump, so say so first, with the fix.
+        let downlevel = adapter.get_downlevel_capabilities().flags;
+        if !downlevel.contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES) {
+            return Err(GpuError::MissingCapability {
+                adapter: format!("{} ({:?})", info.name, info.backend),
+                what: "copy depth textures to buffers",
+                flag: "DEPTH_TEXTURE_AND_BUFFER_COPIES",
+            });
+        }
 
         let mut limits = wgpu::Limits::default().or_worse_values_from(&adapter.limits());
         // URP's G-buffer with its optional targets needs up to 48 bytes per sample (WebGPU's

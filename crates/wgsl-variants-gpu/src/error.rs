@@ -27,6 +27,19 @@ pub enum GpuError {
     /// The adapter refused to create a device.
     #[error("failed to create a GPU device: {0}")]
     RequestDevice(String),
+    /// The adapter lacks a capability the harness needs (a downlevel adapter: WebGL2-class GL,
+    /// such as llvmpipe's GL driver when no Vulkan driver is installed).
+    #[error(
+        "the adapter `{adapter}` cannot {what} (wgpu's downlevel flag {flag}), which the GPU check needs: install a Vulkan driver (on Debian, Mesa's lavapipe: `apt-get install mesa-vulkan-drivers`) or pick another adapter (--adapter NAME; WGPU_BACKEND=vulkan)"
+    )]
+    MissingCapability {
+        /// The adapter's name and backend.
+        adapter: String,
+        /// What it cannot do, in words.
+        what: &'static str,
+        /// The wgpu flag.
+        flag: &'static str,
+    },
     /// The device was lost (driver reset, destroyed, ...).
     #[error("GPU device lost: {0}")]
     DeviceLost(String),

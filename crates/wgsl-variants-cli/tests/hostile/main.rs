@@ -11,6 +11,7 @@ mod loading;
 mod messages;
 mod nesting;
 mod pipe;
+mod scale;
 mod watch;
 
 use std::io::Read;

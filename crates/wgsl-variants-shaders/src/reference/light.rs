@@ -19,7 +19,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::brdf::direct;
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
-use super::surface::view_and_reflection;
+use super::vector::view_and_reflection;
 
 /// The light keywords of Unity's `multi_compile_lightpass` and `multi_compile_fwdadd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

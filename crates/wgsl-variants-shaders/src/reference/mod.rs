@@ -23,6 +23,7 @@
 //! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
 //! | [`shadow`] | shadows: the host API with its errors, spot and cube-face matrices, depth comparison, PCF footprints and weights, strength |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
+//! | [`vector`] | `reflect` and the view and reflection directions |
 //! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
 //!
 //! Everything is linear colour, `f32`, one pixel at a time. Special values (NaN, ±∞, zero
@@ -53,6 +54,7 @@ pub mod shadow;
 pub mod surface;
 pub mod tolerance;
 pub mod urp;
+pub mod vector;
 
 pub use cube::CubeFaces;
 pub use gbuffer::{DecodedSurface, GBuffer, GBufferTexel, Rt3Texel, decode_normal, encode_normal};

@@ -572,31 +572,7 @@ pub fn surface(kw: &Keywords, mat: &Material, tex: &Texels, geo: &Geometry) -> S
     }
 }
 
-/// `reflect(i, n) = i − 2 · dot(n, i) · n` (WGSL's `reflect`).
-///
-/// ```
-/// use glam::Vec3;
-/// use wgsl_variants_shaders::reference::surface::reflect;
-/// assert_eq!(reflect(Vec3::new(1.0, -1.0, 0.0), Vec3::Y), Vec3::new(1.0, 1.0, 0.0));
-/// ```
-pub fn reflect(i: Vec3, n: Vec3) -> Vec3 {
-    i - 2.0 * n.dot(i) * n
-}
-
-/// The view vector `v = normalize(camera_position − world_position)` and the reflection
-/// direction `r = reflect(−v, n)`.
-///
-/// ```
-/// use glam::Vec3;
-/// use wgsl_variants_shaders::reference::surface::view_and_reflection;
-/// let (v, r) = view_and_reflection(Vec3::new(0.0, 2.0, 2.0), Vec3::ZERO, Vec3::Y);
-/// assert!((v - Vec3::new(0.0, 1.0, 1.0).normalize()).length() < 1e-6);
-/// assert!((r - Vec3::new(0.0, 1.0, -1.0).normalize()).length() < 1e-6);
-/// ```
-pub fn view_and_reflection(camera_position: Vec3, world_position: Vec3, n: Vec3) -> (Vec3, Vec3) {
-    let v = (camera_position - world_position).normalize();
-    (v, reflect(-v, n))
-}
+pub use super::vector::{reflect, view_and_reflection};
 
 /// The forward probe result (docs/shading.md §6), before occlusion: each probe's cube map
 /// sampled in the box-projected (un-grown box) direction at `mip_from_smoothness`, RGBM-decoded

@@ -1,0 +1,56 @@
+//! Case 9: work that grows with the input grows linearly, and work that cannot finish soon is
+//! refused up front with its size, not started.
+
+use std::time::{Duration, Instant};
+
+use super::{assert_clean_exit, bin, run_within};
+
+fn tree(sets: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("s.wgsl"),
+        format!(
+            "#shader s\n#pass P\n{sets}@fragment fn fs() -> @location(0) vec4f {{ return vec4f(1.0); }}\n#endpass\n"
+        ),
+    )
+    .unwrap();
+    dir
+}
+
+/// One set of 100,000 options: 28 s before (a quadratic duplicate check), well under a second
+/// now. The limit leaves room for a loaded machine; quadratic would not fit it.
+#[test]
+fn a_set_of_a_hundred_thousand_options_lists_at_once() {
+    let names: Vec<String> = (0..100_000).map(|i| format!("K{i}")).collect();
+    let dir = tree(&format!("#pragma multi_compile _ {}\n", names.join(" ")));
+    let mut cmd = bin();
+    cmd.arg("--root").arg(dir.path()).arg("list");
+    let start = Instant::now();
+    let out = run_within(cmd, Duration::from_secs(20));
+    assert_clean_exit(&out, 0);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("100001 full space"), "{stdout}");
+    eprintln!("list of 100,000 options: {:?}", start.elapsed());
+}
+
+/// 202 two-option sets at t = 4: over a billion combinations to cover. Refused at once with
+/// the count, the limit and what t = 3 would cover, instead of running for many minutes.
+#[test]
+fn a_covering_set_too_costly_to_generate_is_refused_with_its_size() {
+    let sets: String = (0..202)
+        .map(|i| format!("#pragma multi_compile _ K{i}\n"))
+        .collect();
+    let dir = tree(&sets);
+    let mut cmd = bin();
+    cmd.arg("--root")
+        .arg(dir.path())
+        .args(["validate", "--cover", "4", "--no-cache"]);
+    let out = run_within(cmd, Duration::from_secs(20));
+    assert_clean_exit(&out, 1);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("must cover 1077306400 combinations of options, past the limit of 200000000")
+            && stderr.contains("t = 3 covers 10827200"),
+        "{stderr}"
+    );
+}
