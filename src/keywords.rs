@@ -45,6 +45,15 @@ pub enum KeywordError {
         /// The second occurrence.
         span: Span,
     },
+    /// A set with more options than a variant can index (65,535): its count and its
+    /// variants would otherwise be silently wrong.
+    #[error("a keyword set has {options} options, past the limit of {}", u16::MAX)]
+    TooManyOptions {
+        /// The options the set would have.
+        options: usize,
+        /// The set's pragma.
+        span: Span,
+    },
     /// Two placeholders (`_`, `__`) in one set would build the same variant twice.
     #[error("a keyword set has two \"none\" placeholders (`{placeholder}`)")]
     TwoPlaceholders {
@@ -124,6 +133,7 @@ impl KeywordError {
     pub fn diagnostic(&self) -> Diagnostic {
         match self {
             KeywordError::DuplicateInSet { span, .. }
+            | KeywordError::TooManyOptions { span, .. }
             | KeywordError::TwoPlaceholders { span, .. }
             | KeywordError::UnknownSkip { span, .. }
             | KeywordError::UnknownConstraintKeyword { span, .. }
@@ -314,6 +324,13 @@ impl KeywordSet {
                 }
                 options.push(Some(name.to_string()));
             }
+        }
+        // A variant holds one option index per set in 16 bits.
+        if options.len() > usize::from(u16::MAX) {
+            return Err(KeywordError::TooManyOptions {
+                options: options.len(),
+                span,
+            });
         }
         Ok(KeywordSet {
             kind,

@@ -21,6 +21,7 @@ fn kind(problem: &LoadProblem) -> &'static str {
     match problem {
         LoadProblem::Dir(DirError::Io { .. }) => "dir::io",
         LoadProblem::Dir(DirError::TooManyFiles { .. }) => "dir::too_many_files",
+        LoadProblem::Dir(DirError::TooLarge { .. }) => "dir::too_large",
         LoadProblem::Source(SourceError::NotUtf8 { .. }) => "source::not_utf8",
         LoadProblem::Parse(e) => match e {
             ParseError::UnknownDirective { .. } => "parse::unknown_directive",
@@ -47,6 +48,7 @@ fn kind(problem: &LoadProblem) -> &'static str {
         },
         LoadProblem::Keyword(e) => match e {
             KeywordError::DuplicateInSet { .. } => "keyword::duplicate_in_set",
+            KeywordError::TooManyOptions { .. } => "keyword::too_many_options",
             KeywordError::TwoPlaceholders { .. } => "keyword::two_placeholders",
             KeywordError::InTwoSets { .. } => "keyword::in_two_sets",
             KeywordError::UnknownSkip { .. } => "keyword::unknown_skip",

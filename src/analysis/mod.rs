@@ -5,7 +5,7 @@
 //!
 //! It sits below [`crate::validate`] (which skips its index of seen texts when
 //! [`proves_all_distinct`] holds) and [`crate::audit`] (which reports it); it reads the tree
-//! through [`crate::Library`] and [`crate::preprocess::compose::ModuleGraph`] only.
+//! through [`crate::Library`] and the preprocessor's module graph only.
 
 pub(crate) mod bits;
 pub(crate) mod compose;

@@ -7,7 +7,7 @@
 //!
 //! The build set is a product of independent factors ([`Space`]'s keyword sets, with the sets
 //! that constraints or materials couple merged into one factor whose values are their allowed
-//! combinations). A covering array over those factors ([`mod@array`]) is a covering set of the
+//! combinations). A covering array over those factors (`covering::array`) is a covering set of the
 //! keyword sets, and every row is a variant of the build set by construction.
 //!
 //! ```

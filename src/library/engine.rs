@@ -2,7 +2,9 @@
 //! dialect, naga_oil for naga_oil trees, the `wesl` crate for WESL trees — or, when this build
 //! lacks the dialect's cargo feature, an engine that says so for every variant.
 
-use crate::error::{Stage, VariantError};
+use crate::error::Stage;
+#[cfg(any(feature = "naga-oil", feature = "wesl"))]
+use crate::error::VariantError;
 use crate::preprocess::compose::{ModuleGraph, compose};
 use crate::preprocess::{Composed, Dialect};
 
@@ -63,6 +65,7 @@ impl Engine for Unavailable {
 }
 
 /// An engine's result as a [`Composed`]: the program's text, or the failure.
+#[cfg(any(feature = "naga-oil", feature = "wesl"))]
 pub(crate) fn composed(result: Result<String, VariantError>) -> Composed {
     match result {
         Ok(text) => Composed {

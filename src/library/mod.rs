@@ -1,8 +1,8 @@
 //! A loaded library: its modules, shaders and passes, and composing variants.
 
+mod engine;
 mod error;
 mod load;
-mod engine;
 #[cfg(feature = "naga-oil")]
 mod naga_oil;
 #[cfg(feature = "wesl")]
@@ -15,7 +15,7 @@ use crate::error::VariantError;
 use crate::lookup::{LookupError, suggest};
 use crate::materials::{self, Material, MaterialsError};
 use crate::preprocess::Composed;
-use crate::preprocess::compose::{ModuleGraph, compose};
+use crate::preprocess::compose::ModuleGraph;
 use crate::preprocess::tree::ParsedModule;
 use crate::shader::{Pass, Shader};
 use crate::source::{self, Origin, RawFile};
@@ -104,7 +104,11 @@ fn raw_files<P: Into<String>, T: Into<String>>(
 }
 
 /// A variant's failure that has no place in the sources.
-pub(crate) fn unlocated(variant: &Variant<'_>, stage: crate::error::Stage, message: String) -> VariantError {
+pub(crate) fn unlocated(
+    variant: &Variant<'_>,
+    stage: crate::error::Stage,
+    message: String,
+) -> VariantError {
     VariantError {
         variant: variant.label(),
         stage,
@@ -471,8 +475,11 @@ impl Library {
     }
 
     fn compose_with(&self, variant: &Variant<'_>, with_map: bool, prune: bool) -> Composed {
-        self.engine
-            .compose(&self.module_graph(), variant, engine::How { with_map, prune })
+        self.engine.compose(
+            &self.module_graph(),
+            variant,
+            engine::How { with_map, prune },
+        )
     }
 
     /// The source files a pass's variants are composed from: its module and every module it

@@ -197,10 +197,11 @@ pub fn order_shards(inputs: &[ShardInfo]) -> Result<Vec<usize>, MergeError> {
 /// Parses the optional `K/N` field of input `name`.
 pub fn parse_shard(name: &str, text: Option<&str>) -> Result<Option<Shard>, MergeError> {
     text.map(|t| {
-        t.parse().map_err(|e: crate::variants::ShardError| MergeError::Mismatch {
-            shard: name.to_string(),
-            message: e.to_string(),
-        })
+        t.parse()
+            .map_err(|e: crate::variants::ShardError| MergeError::Mismatch {
+                shard: name.to_string(),
+                message: e.to_string(),
+            })
     })
     .transpose()
 }

@@ -61,7 +61,10 @@ impl Composed {
     /// one failure with many keyword sets, as variants with one program are.
     pub fn failed(error: crate::error::VariantError) -> Composed {
         Composed {
-            text: format!("// {:?} {} {:?}\n", error.stage, error.message, error.labels),
+            text: format!(
+                "// {:?} {} {:?}\n",
+                error.stage, error.message, error.labels
+            ),
             failure: Some(Box::new(error)),
             ..Composed::default()
         }

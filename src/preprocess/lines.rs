@@ -175,6 +175,7 @@ pub(crate) fn comment_step(rest: &str, depth: &mut u32) -> Option<usize> {
 /// Parsers that build a tree recursively (wgsl-parse, read for WESL trees) overflow the stack
 /// on deep enough nesting, and a stack overflow aborts the process; this scan runs first, in
 /// constant stack, so such text is refused with a location instead.
+#[cfg_attr(not(feature = "wesl"), allow(dead_code))]
 pub(crate) fn nesting_past(text: &str, limit: usize) -> Option<usize> {
     let mut depth = 0usize;
     let mut run = 0usize;

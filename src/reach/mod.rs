@@ -24,7 +24,7 @@
 //! redefinition).
 //!
 //! What pruning hides: a broken item no entry point reaches is not validated. The audit lists
-//! the items that no variant of a pass reaches ([`unreached()`]), and `validate --strict` also
+//! the items that no variant of a pass reaches ([`crate::analysis::unreached()`]), and `validate --strict` also
 //! validates each distinct unpruned text ([`crate::Library::compose_unpruned`]).
 
 pub(crate) mod items;

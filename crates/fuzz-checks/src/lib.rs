@@ -138,10 +138,15 @@ pub fn cache(data: &[u8]) {
     let file = dir.path().join("export.bin");
     if cache.export(&file).is_ok() {
         let other = Secret::from_hex(&"4".repeat(64)).expect("64 hex digits");
-        let Ok(elsewhere) = tempfile::tempdir() else { return };
+        let Ok(elsewhere) = tempfile::tempdir() else {
+            return;
+        };
         if let Ok(imported) = import_with(elsewhere.path(), &file, &other) {
             // Signed with another secret: every record of the export is untrusted there.
-            assert_eq!(imported.entries, 0, "a record of another secret was trusted");
+            assert_eq!(
+                imported.entries, 0,
+                "a record of another secret was trusted"
+            );
         }
     }
     let _ = import_with(dir.path(), &folder.join("input.seg"), &secret);

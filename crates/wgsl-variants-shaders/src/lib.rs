@@ -3,10 +3,10 @@
 //! The shading library of [wgsl-variants](wgsl_variants): Unity's deferred shading paths —
 //! the built-in pipeline's G-buffer, lighting, forward and shadow caster passes, and URP's Lit
 //! shader with its StencilDeferred lighting — written as a WGSL keyword tree in
-//! wgsl-variants' own dialect, and a CPU [`reference`] of their math.
+//! wgsl-variants' own dialect, and a CPU [`reference`](mod@reference) of their math.
 //!
 //! This crate is the *content*; the engine that builds and validates its variants is
-//! `wgsl-variants`, and the GPU proof that the WGSL equals the [`reference`] per texel is
+//! `wgsl-variants`, and the GPU proof that the WGSL equals the [`reference`](mod@reference) per texel is
 //! `wgsl-variants-gpu`. A renderer that uses these shaders depends on this crate and on the
 //! engine; a build script that bakes them calls [`bake`].
 //!

@@ -150,7 +150,7 @@ pub const KERNELS: [Kernel; 12] = [
     },
 ];
 
-/// The kernel library: the files of `lib` (for [`Library::bundled`], the bundled files) plus
+/// The kernel library: the files of `lib` (for [`wgsl_variants_shaders::library`], its files) plus
 /// the kernel files, so the kernels run the very modules the passes were checked with.
 pub fn kernel_library(lib: &Library) -> Result<Library, GpuError> {
     let files = lib.files();
