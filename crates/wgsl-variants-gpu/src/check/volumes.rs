@@ -26,7 +26,7 @@ use super::scene::{TestScene, push_mat4};
 use crate::light_volume::{LightDraw, LightVolume};
 use std::sync::Arc;
 
-use crate::pass::pipeline;
+use crate::render::pipeline;
 use crate::{
     BoundResource, CheckError, GpuContext, GpuError, Resource, VertexBuffer,
     encode_texture_readback, finish_readbacks, map_buffers,
