@@ -11,7 +11,7 @@
 //!   [`Reflection`](wgsl_variants::reflect::Reflection) into wgpu layouts.
 //! - [`GpuContext`] owns instance, adapter, device and queue; create it once.
 //! - [`run_compute`] dispatches a compute shader over one input and one output storage buffer.
-//! - [`render`] / [`render_with`] draw a [`RenderJob`] into up to eight colour targets and
+//! - [`render()`] / [`render_with`] draw a [`RenderJob`] into up to eight colour targets and
 //!   return their bytes; [`TargetFormat`] decodes them.
 //! - [`render_pass`] records many [`Draw`]s (each its own variant, mesh and resources) into
 //!   one pass over shared targets and a depth buffer: a frame.

@@ -7,7 +7,7 @@ use crate::context::GpuContext;
 use crate::error::GpuError;
 use crate::format::TargetFormat;
 
-/// One colour target of a [`RenderJob`].
+/// One colour target of a [`RenderJob`](crate::RenderJob).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColorTarget {
     /// Texture format of the target.
@@ -53,7 +53,7 @@ impl ColorTarget {
     }
 }
 
-/// One vertex buffer of a [`RenderJob`]: per-vertex data and the layout the vertex shader
+/// One vertex buffer of a [`RenderJob`](crate::RenderJob): per-vertex data and the layout the vertex shader
 /// reads it with (`@location`s of its attributes).
 #[derive(Debug, Clone, PartialEq)]
 pub struct VertexBuffer {
