@@ -11,7 +11,7 @@
 //!   [`Reflection`](wgsl_variants::reflect::Reflection) into wgpu layouts.
 //! - [`GpuContext`] owns instance, adapter, device and queue; create it once.
 //! - [`run_compute`] dispatches a compute shader over one input and one output storage buffer.
-//! - [`render`] / [`render_with`] draw a [`RenderJob`] into up to eight colour targets and
+//! - [`render()`] / [`render_with`] draw a [`RenderJob`] into up to eight colour targets and
 //!   return their bytes; [`TargetFormat`] decodes them.
 //! - [`render_pass`] records many [`Draw`]s (each its own variant, mesh and resources) into
 //!   one pass over shared targets and a depth buffer: a frame.
@@ -33,7 +33,6 @@ mod context;
 mod error;
 mod format;
 mod layout;
-mod pass;
 mod readback;
 mod render;
 mod resources;
@@ -52,10 +51,12 @@ pub use layout::{
     create_bind_group_layouts, create_pipeline_layout, layout_entries, layout_entry, stage_flags,
     storage_format, view_dimension,
 };
-pub use pass::{DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, render_pass};
 pub use readback::{
     PendingReadback, encode_texture_readback, finish_readbacks, map_buffers, read_texture,
 };
-pub use render::{ColorTarget, RenderJob, VertexBuffer, render, render_with};
+pub use render::{
+    ColorTarget, DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, RenderJob, VertexBuffer,
+    render, render_pass, render_with,
+};
 pub use resources::{BoundResource, GpuResources, Resource};
 pub use urp::urp_gbuffer_formats;

@@ -93,7 +93,7 @@ enum GpuResource {
 }
 
 /// Resources uploaded to the GPU once, to be bound by any number of pipelines
-/// (see [`super::render::render_with`]).
+/// (see [`crate::render_with`]).
 #[derive(Debug, Default)]
 pub struct GpuResources {
     slots: BTreeMap<Slot, GpuResource>,

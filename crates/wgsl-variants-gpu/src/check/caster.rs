@@ -22,7 +22,8 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::passes::keyword_coverage;
+use super::coverage::keyword_coverage;
+use super::pass_check::{PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::shadows::{
     CUBE_SIZE, CUTOFF, MAP_SIZE, OCCLUDERS, occluder_texture, render_caster, rig_params,
@@ -271,4 +272,30 @@ pub fn check_shadow_caster(
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// `standard/ShadowCaster` in the check's registry.
+pub(crate) struct ShadowCaster;
+
+/// The entry of `standard/ShadowCaster`: the rig's spot and point lights' maps.
+pub(crate) static SHADOW_CASTER: ShadowCaster = ShadowCaster;
+
+impl PassCheck for ShadowCaster {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        &[("standard", "ShadowCaster")]
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        let rig = setup.rig;
+        Ok(vec![check_shadow_caster(
+            setup.ctx,
+            setup.lib,
+            &rig.spot_light,
+            &rig.point_light,
+        )?])
+    }
 }

@@ -3,6 +3,7 @@
 
 use glam::Vec4;
 
+use super::report::{Mismatch, PassReport};
 use crate::TargetFormat;
 use wgsl_variants_shaders::reference::gbuffer::{RGB10A2, RGBA8};
 use wgsl_variants_shaders::reference::tolerance::{
@@ -67,4 +68,31 @@ pub fn format_name(format: TargetFormat) -> &'static str {
         TargetFormat::R32Float => "R32Float",
         TargetFormat::R32Uint => "R32Uint",
     }
+}
+
+/// Records the comparison of one texel.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn compare_texel(
+    report: &mut PassReport,
+    keywords: &str,
+    target: &str,
+    format: TargetFormat,
+    bytes: &[u8],
+    index: usize,
+    width: u32,
+    expected: Vec4,
+) {
+    let (raw, got) = pixel(format, bytes, index);
+    let ok = texel_within(format, raw, expected);
+    let (shader, pass) = (report.shader.clone(), report.pass.clone());
+    report.record(ok, || Mismatch {
+        shader,
+        pass,
+        keywords: keywords.to_owned(),
+        target: target.to_owned(),
+        pixel: [index as u32 % width, index as u32 / width],
+        expected: expected.to_array().to_vec(),
+        got: got.to_vec(),
+        got_raw: raw.to_vec(),
+    });
 }

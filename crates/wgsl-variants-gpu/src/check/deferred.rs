@@ -9,14 +9,16 @@
 
 use std::time::Instant;
 
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 
-use super::compare::{format_name, pixel, texel_within};
-use super::lights::{LightingCamera, depth_camera_resources};
-use super::passes::{StandardOutput, keyword_coverage, standard_job};
+use super::camera::{LightingCamera, depth_camera_resources};
+use super::compare::{compare_texel, format_name, pixel};
+use super::coverage::keyword_coverage;
+use super::gbuffer::{CHAIN_INPUTS, GBufferImage, render_gbuffer, rt3_blend};
+use super::pass_check::{PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
-use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource, push_probe};
-use super::volumes::{depth_fill_draw, over_volume};
+use super::scene::{MIN_FACE_MARGIN, TestScene, cube_resource, push_probe, texture};
+use super::volume_draw::{depth_fill_draw, over_volume};
 use crate::light_volume::{LightDraw, probe_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, Draw, DrawPass, GpuContext, GpuError, RenderJob,
@@ -25,102 +27,16 @@ use crate::{
 use wgsl_variants::Library;
 use wgsl_variants::variants::Choice;
 use wgsl_variants_shaders::reference::cube::face_margin;
-use wgsl_variants_shaders::reference::gbuffer::{GBufferTexel, Rt3Texel, decode_normal};
+use wgsl_variants_shaders::reference::gbuffer::{GBufferTexel, decode_normal};
 use wgsl_variants_shaders::reference::probe::{box_project_grown, composite, draw_order, falloff};
 use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
 use wgsl_variants_shaders::reference::surface::{
-    Keywords, SmoothnessSource, final_ldr, reflection_probe_pixel, reflections_add,
-    view_and_reflection,
+    Keywords, final_ldr, reflection_probe_pixel, reflections_add, view_and_reflection,
 };
 use wgsl_variants_shaders::reference::tolerance::{f16_blend_error, f16_store_error};
 
-/// The keywords of the G-buffers the deferred chain starts from (with
-/// `UNITY_ENABLE_REFLECTION_BUFFERS`, so RT3 holds no indirect specular yet): every map on, and
-/// a plain material whose smoothness comes from the albedo's alpha.
-pub const CHAIN_INPUTS: [Keywords; 2] = [
-    Keywords {
-        reflection_buffers: true,
-        ..Keywords::EVERY_MAP
-    },
-    Keywords {
-        smoothness: SmoothnessSource::Albedo,
-        normal_map: true,
-        reflection_buffers: true,
-        ..Keywords::NONE
-    },
-];
-
 /// Side of the synthetic RT3 the final pass decodes: 32 × 32 texels cover every 10-bit value.
 pub const FINAL_RAMP_SIZE: u32 = 32;
-
-/// A G-buffer read back from the GPU: the bytes of RT0..RT3.
-#[derive(Clone, Debug)]
-pub struct GBufferImage {
-    /// The keywords it was rendered with.
-    pub keywords: Vec<String>,
-    /// Whether RT3 is `Rgba16Float` (`UNITY_HDR_ON`).
-    pub hdr: bool,
-    /// Tightly packed RT0, RT1, RT2, RT3, and RT4 with `SHADOWS_SHADOWMASK`.
-    pub targets: Vec<Vec<u8>>,
-}
-
-impl GBufferImage {
-    /// The stored texels of pixel `i`.
-    pub fn texel(&self, i: usize) -> GBufferTexel {
-        let rt3_size = if self.hdr { 8 } else { 4 };
-        let four = |t: usize| -> [u8; 4] {
-            let b = &self.targets[t][i * 4..i * 4 + 4];
-            [b[0], b[1], b[2], b[3]]
-        };
-        let rt3 = &self.targets[3][i * rt3_size..(i + 1) * rt3_size];
-        GBufferTexel::from_bytes(four(0), four(1), four(2), rt3).unwrap_or(GBufferTexel {
-            rt0: [0; 4],
-            rt1: [0; 4],
-            rt2: [0; 4],
-            rt3: Rt3Texel::Ldr([0; 4]),
-        })
-    }
-
-    /// RT4's stored texel of pixel `i` (the baked occlusion; `SHADOWS_SHADOWMASK`), `None`
-    /// without RT4.
-    pub fn shadowmask(&self, i: usize) -> Option<Vec4> {
-        let rt4 = self.targets.get(4)?;
-        let b = &rt4[i * 4..i * 4 + 4];
-        Some(Vec4::from_array(
-            [b[0], b[1], b[2], b[3]].map(|c| unorm_to_f32(u32::from(c), 8)),
-        ))
-    }
-
-    /// RT3's format.
-    pub fn rt3_format(&self) -> TargetFormat {
-        if self.hdr {
-            TargetFormat::Rgba16Float
-        } else {
-            TargetFormat::Rgb10a2Unorm
-        }
-    }
-}
-
-/// Renders one `standard/Deferred` variant of the scene and reads its G-buffer back.
-pub fn render_gbuffer(
-    ctx: &GpuContext,
-    lib: &Library,
-    scene: &TestScene,
-    keywords: &[&str],
-) -> Result<GBufferImage, GpuError> {
-    let variant = lib
-        .variant("standard", "Deferred", keywords)
-        .map_err(|e| CheckError::lookup(format!("standard/Deferred {keywords:?}"), e))?;
-    let output = StandardOutput::gbuffer_of(keywords);
-    let hdr = keywords.contains(&"UNITY_HDR_ON");
-    let mut job = standard_job(scene, &variant.label(), &lib.wgsl(&variant), output);
-    job.resources = scene.standard_resources();
-    Ok(GBufferImage {
-        keywords: keywords.iter().map(|k| (*k).to_owned()).collect(),
-        hdr,
-        targets: render(ctx, &job)?,
-    })
-}
 
 /// The composed text of a pass with no keywords (or `keywords`), checked to exist.
 fn pass_wgsl(
@@ -148,43 +64,6 @@ fn fullscreen_job(
     job.height = height;
     job.targets = vec![target];
     job
-}
-
-/// A 2D texture resource from target bytes.
-pub(crate) fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
-    Resource::Texture2d {
-        format: format.wgpu_format(),
-        width,
-        height,
-        data: data.to_vec(),
-    }
-}
-
-/// Records the comparison of one texel.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn compare_texel(
-    report: &mut PassReport,
-    keywords: &str,
-    target: &str,
-    format: TargetFormat,
-    bytes: &[u8],
-    index: usize,
-    width: u32,
-    expected: Vec4,
-) {
-    let (raw, got) = pixel(format, bytes, index);
-    let ok = texel_within(format, raw, expected);
-    let (shader, pass) = (report.shader.clone(), report.pass.clone());
-    report.record(ok, || Mismatch {
-        shader,
-        pass,
-        keywords: keywords.to_owned(),
-        target: target.to_owned(),
-        pixel: [index as u32 % width, index as u32 / width],
-        expected: expected.to_array().to_vec(),
-        got: got.to_vec(),
-        got_raw: raw.to_vec(),
-    });
 }
 
 /// The reflection buffer after the probes' draws, for one G-buffer.
@@ -378,25 +257,6 @@ fn run_reflections(
         last: previous.unwrap_or_else(|| vec![0; (w * h * 8) as usize]),
         boxes,
     })
-}
-
-/// How a pass adds light to RT3: One/One onto the `Rgba16Float` RT3 (`hdr`), DstColor/Zero
-/// onto the `exp2(−c)` `Rgb10a2Unorm` one (the light then adds in the exponent).
-pub(crate) fn rt3_blend(hdr: bool) -> wgpu::BlendState {
-    let (src_factor, dst_factor) = if hdr {
-        (wgpu::BlendFactor::One, wgpu::BlendFactor::One)
-    } else {
-        (wgpu::BlendFactor::Dst, wgpu::BlendFactor::Zero)
-    };
-    let blend = wgpu::BlendComponent {
-        src_factor,
-        dst_factor,
-        operation: wgpu::BlendOperation::Add,
-    };
-    wgpu::BlendState {
-        color: blend,
-        alpha: blend,
-    }
 }
 
 /// Adds `refl` onto the G-buffer's RT3 with the Add pass of its HDR mode; compares when
@@ -704,6 +564,31 @@ pub fn check_deferred_chain(
         reports.push(fin);
     }
     Ok(reports)
+}
+
+/// The deferred chain in the check's registry: `Reflections`, `Add` and `Final` are one entry,
+/// since each pass's output is the next one's input.
+pub(crate) struct DeferredChain;
+
+/// The entry of the deferred chain.
+pub(crate) static CHAIN: DeferredChain = DeferredChain;
+
+impl PassCheck for DeferredChain {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        &[
+            ("deferred_reflections", "Reflections"),
+            ("deferred_reflections", "Add"),
+            ("deferred_final", "Final"),
+        ]
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        check_deferred_chain(setup.ctx, setup.lib, setup.scene, selected)
+    }
 }
 
 /// The `Probe` uniform of the deferred reflection pass (`deferred/probe`'s record).

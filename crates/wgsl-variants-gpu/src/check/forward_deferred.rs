@@ -10,11 +10,13 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use super::camera::LightingCamera;
 use super::compare::pixel;
-use super::deferred::render_gbuffer;
-use super::lights::{LightRig, LightingCamera, render_lighting};
-use super::passes::{StandardOutput, standard_job};
+use super::gbuffer::render_gbuffer;
+use super::lighting::render_lighting;
+use super::rig::LightRig;
 use super::scene::TestScene;
+use super::standard::{StandardOutput, standard_job};
 use crate::{CheckError, ColorTarget, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::diffuse_and_specular_from_metallic;

@@ -30,6 +30,10 @@ use wgsl_variants_shaders::reference::tolerance::{
     F32_ABS, F32_ULP, f32_within, f32_within_ulp, unorm_within,
 };
 
+/// The pseudo-shader name that selects the kernels (`check::KERNELS`), and that their
+/// mismatches name as their shader.
+pub(crate) const PSEUDO_SHADER: &str = "kernels";
+
 /// The kernel sources, as library files under `check/`.
 pub const KERNEL_FILES: [(&str, &str); 4] = [
     ("check/io.wgsl", include_str!("../kernels/io.wgsl")),
@@ -150,8 +154,9 @@ pub const KERNELS: [Kernel; 12] = [
     },
 ];
 
-/// The kernel library: the files of `lib` (for [`wgsl_variants_shaders::library`], its files) plus
-/// the kernel files, so the kernels run the very modules the passes were checked with.
+/// The kernel library: the files of `lib` (for [`wgsl_variants_shaders::library`], the bundled
+/// files) plus the kernel files, so the kernels run the very modules the passes were checked
+/// with.
 pub fn kernel_library(lib: &Library) -> Result<Library, GpuError> {
     let files = lib.files();
     let mut raw: Vec<RawFile> = (0..files.len())
@@ -990,7 +995,7 @@ pub fn check_kernel(
                 }
             };
             report.record(ok, || Mismatch {
-                shader: super::KERNELS.to_owned(),
+                shader: PSEUDO_SHADER.to_owned(),
                 pass: kernel.name.to_owned(),
                 keywords: description.clone(),
                 target: name.to_owned(),

@@ -4,22 +4,21 @@
 //! pixel with the CPU reference of its keyword set; then, per keyword, whether toggling it
 //! changed any output.
 
-use std::collections::{HashMap, HashSet};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::collections::HashMap;
 use std::time::Instant;
 
 use glam::Vec4;
 
-use super::compare::{clear_value, format_name, pixel, texel_within};
-use super::lights::{LightRig, shadowed};
-use super::report::{KeywordCoverage, Mismatch, PassReport};
+use super::compare::{clear_value, pixel, texel_within};
+use super::coverage::{MAX_VARIANTS, add_partners, keyword_coverage, space_size};
+use super::pass_check::{Needs, PassCheck, Setup};
+use super::report::{Mismatch, PassReport};
+use super::rig::{LightRig, shadowed};
 use super::scene::TestScene;
 use super::shadows::within;
-use crate::{
-    CheckError, ColorTarget, GpuContext, GpuError, GpuResources, RenderJob, TargetFormat,
-    render_with,
-};
+use super::standard::{StandardOutput, standard_job};
+use super::workers::{Worker, render_all};
+use crate::{CheckError, GpuError, GpuResources, RenderJob};
 use wgsl_variants::shader::Pass;
 use wgsl_variants::variants::{Choice, Space};
 use wgsl_variants::{Library, Variant};
@@ -28,82 +27,6 @@ use wgsl_variants_shaders::reference::shadow::ShadowKeywords;
 use wgsl_variants_shaders::reference::surface::{
     Keywords, shade_deferred, shade_forward, shade_forward_add,
 };
-
-/// The clear colours of the G-buffer targets RT0..RT4 (and of the forward target: RT0's):
-/// values no lit pixel of the scene produces, so a discarded pixel that was written shows.
-pub const CLEAR: [[f64; 4]; 5] = [
-    [0.25, 0.5, 0.75, 0.125],
-    [0.875, 0.625, 0.375, 0.25],
-    [0.125, 0.25, 0.375, 0.0],
-    [0.0625, 0.75, 0.5, 0.0],
-    [0.375, 0.125, 0.625, 0.875],
-];
-
-/// The most variants any check enumerates in one pass.
-pub(crate) const MAX_VARIANTS: u64 = 100_000;
-
-/// What a standard pass's variant writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StandardOutput {
-    /// `ForwardBase` / `ForwardAdd`: one `Rgba8Unorm` colour.
-    Forward,
-    /// `Deferred`: the G-buffer.
-    GBuffer {
-        /// `UNITY_HDR_ON`: RT3 is `Rgba16Float` (else `Rgb10a2Unorm`).
-        hdr: bool,
-        /// `SHADOWS_SHADOWMASK`: RT4 (`Rgba8Unorm`, the baked occlusion) too.
-        shadowmask: bool,
-    },
-}
-
-impl StandardOutput {
-    /// The G-buffer a `Deferred` variant with these keywords writes.
-    pub fn gbuffer_of(keywords: &[&str]) -> StandardOutput {
-        StandardOutput::GBuffer {
-            hdr: keywords.contains(&"UNITY_HDR_ON"),
-            shadowmask: keywords.contains(&"SHADOWS_SHADOWMASK"),
-        }
-    }
-
-    /// The colour targets, named: RT0..RT3 (and RT4) of the G-buffer, or the forward colour.
-    pub fn targets(self) -> Vec<(String, ColorTarget)> {
-        let formats = match self {
-            StandardOutput::Forward => {
-                return vec![(
-                    String::from("out Rgba8Unorm"),
-                    ColorTarget::new(TargetFormat::Rgba8Unorm).with_clear(CLEAR[0]),
-                )];
-            }
-            StandardOutput::GBuffer { hdr, shadowmask } => {
-                let rt3 = if hdr {
-                    TargetFormat::Rgba16Float
-                } else {
-                    TargetFormat::Rgb10a2Unorm
-                };
-                let mut formats = vec![
-                    TargetFormat::Rgba8Unorm,
-                    TargetFormat::Rgba8Unorm,
-                    TargetFormat::Rgb10a2Unorm,
-                    rt3,
-                ];
-                if shadowmask {
-                    formats.push(TargetFormat::Rgba8Unorm);
-                }
-                formats
-            }
-        };
-        formats
-            .into_iter()
-            .enumerate()
-            .map(|(i, format)| {
-                (
-                    format!("RT{i} {}", format_name(format)),
-                    ColorTarget::new(format).with_clear(CLEAR[i]),
-                )
-            })
-            .collect()
-    }
-}
 
 /// Whether `pass` is the standard shader's G-buffer pass (else its forward base pass).
 fn is_deferred(pass: &Pass) -> bool {
@@ -166,87 +89,6 @@ pub fn forward_add_output(
         light,
         Some(cookies),
     )
-}
-
-/// The render job of one variant's composed text.
-pub fn standard_job(
-    scene: &TestScene,
-    label: &str,
-    wgsl: &str,
-    output: StandardOutput,
-) -> RenderJob {
-    let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
-    job.width = scene.width;
-    job.height = scene.height;
-    job.targets = output.targets().into_iter().map(|(_, t)| t).collect();
-    job.vertex_buffers = vec![scene.quad()];
-    job.vertex_count = 6;
-    job
-}
-
-/// One GPU worker: a context (its own device and queue) and the resources its jobs bind,
-/// uploaded to that device.
-///
-/// Lavapipe compiles a pipeline's shaders when the first draw executes, on the queue's thread
-/// of the device; one device per worker is what lets several cores compile at once.
-#[derive(Debug)]
-pub(crate) struct Worker<'c> {
-    /// The worker's context.
-    pub(crate) ctx: &'c GpuContext,
-    /// Resources uploaded to `ctx`'s device.
-    pub(crate) resources: GpuResources,
-}
-
-/// Renders `jobs` on `workers`, one thread per worker (wgpu error scopes are per thread, so
-/// each job's errors stay its own). The first error stops the remaining jobs and is returned.
-pub fn render_all(
-    workers: &[Worker<'_>],
-    jobs: &[RenderJob],
-) -> Result<Vec<Vec<Vec<u8>>>, GpuError> {
-    let next = AtomicUsize::new(0);
-    let failed = AtomicBool::new(false);
-    type Slot = Option<Result<Vec<Vec<u8>>, GpuError>>;
-    let results: Mutex<Vec<Slot>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
-    let work = |worker: &Worker<'_>| loop {
-        let i = next.fetch_add(1, Ordering::Relaxed);
-        if i >= jobs.len() || failed.load(Ordering::Relaxed) {
-            break;
-        }
-        let out = render_with(worker.ctx, &jobs[i], &worker.resources);
-        if out.is_err() {
-            failed.store(true, Ordering::Relaxed);
-        }
-        results
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)[i] = Some(out);
-    };
-    std::thread::scope(|s| {
-        for worker in workers.iter().skip(1) {
-            s.spawn(move || work(worker));
-        }
-        if let Some(first) = workers.first() {
-            work(first);
-        }
-    });
-    let results = results
-        .into_inner()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    let mut out = Vec::with_capacity(jobs.len());
-    let mut first_error = None;
-    for r in results {
-        match r {
-            Some(Ok(v)) => out.push(v),
-            Some(Err(e)) => {
-                first_error.get_or_insert(e);
-            }
-            None => {}
-        }
-    }
-    match (first_error, out.len() == jobs.len()) {
-        (Some(e), _) => Err(e),
-        (None, true) => Ok(out),
-        (None, false) => Err(GpuError::from(CheckError::NoWorker)),
-    }
 }
 
 /// A standard pass's variant as the reference sees it.
@@ -499,6 +341,73 @@ pub fn check_standard_pass(
     Ok(report)
 }
 
+/// A standard pass's entry in the check's registry: its variants spread over the workers,
+/// which every standard pass of a run shares.
+pub(crate) struct StandardPass {
+    passes: &'static [(&'static str, &'static str)],
+    needs: Needs,
+}
+
+/// `standard/Deferred`: the G-buffer.
+pub(crate) static DEFERRED: StandardPass = StandardPass {
+    passes: &[("standard", "Deferred")],
+    needs: Needs {
+        workers: true,
+        ..Needs::NOTHING
+    },
+};
+
+/// `standard/ForwardBase`: its main light reads the directional light's `SHADOWS_SCREEN` mask.
+pub(crate) static FORWARD_BASE: StandardPass = StandardPass {
+    passes: &[("standard", "ForwardBase")],
+    needs: Needs {
+        workers: true,
+        screen_masks: true,
+        ..Needs::NOTHING
+    },
+};
+
+/// `standard/ForwardAdd`: the rig's lights, shadowed by their maps and the directional masks.
+pub(crate) static FORWARD_ADD: StandardPass = StandardPass {
+    passes: &[("standard", "ForwardAdd")],
+    needs: Needs {
+        workers: true,
+        screen_masks: true,
+        shadow_maps: true,
+    },
+};
+
+impl PassCheck for StandardPass {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        self.passes
+    }
+
+    fn needs(&self) -> Needs {
+        self.needs
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        let workers = setup.standard_workers()?;
+        let (shader, name) = self.passes[0];
+        let pass = setup.pass(shader, name)?;
+        let options = setup.options;
+        Ok(vec![check_standard_pass(
+            workers,
+            setup.lib,
+            setup.scene,
+            setup.rig,
+            pass,
+            options.sample,
+            options.shard,
+            options.cover_for(space_size(pass)),
+        )?])
+    }
+}
+
 /// Renders `jobs`; those with a light keyword (`job_light[i]`, ForwardAdd) on workers whose
 /// resources add the rig's light of that type, one group per light type.
 fn render_grouped_by_light(
@@ -539,91 +448,4 @@ fn render_grouped_by_light(
         .into_iter()
         .map(|o| o.ok_or_else(|| GpuError::from(CheckError::NoWorker)))
         .collect()
-}
-
-/// For each keyword of `pass`: the variant pairs that differ only in that keyword's set (the
-/// keyword on, against the set's first option), and how many of them `differs` says changed.
-pub fn keyword_coverage(
-    pass: &Pass,
-    choices: &[Choice],
-    differs: impl Fn(usize, usize) -> bool,
-) -> Vec<KeywordCoverage> {
-    let index: HashMap<&Choice, usize> = choices.iter().enumerate().map(|(i, c)| (c, i)).collect();
-    let mut out = Vec::new();
-    for (s, set) in pass.sets.iter().enumerate() {
-        for (o, name) in set.options.iter().enumerate().skip(1) {
-            let Some(name) = name else { continue };
-            let mut coverage = KeywordCoverage {
-                keyword: name.clone(),
-                pairs: 0,
-                pairs_changed: 0,
-            };
-            for (v, choice) in choices.iter().enumerate() {
-                if usize::from(choice.0[s]) != o {
-                    continue;
-                }
-                let mut partner = choice.0.clone();
-                partner[s] = 0;
-                if let Some(&p) = index.get(&Choice(partner)) {
-                    coverage.pairs += 1;
-                    coverage.pairs_changed += usize::from(differs(v, p));
-                }
-            }
-            out.push(coverage);
-        }
-    }
-    out
-}
-
-/// For each keyword: the first variant with it on whose reference changes when it is turned
-/// off, and that partner added to `choices` unless already there. Returns how many were
-/// added. With these, a covering set's keyword coverage can be judged: each keyword has a
-/// pair whose reference says it matters.
-pub(crate) fn add_partners<T: PartialEq>(
-    pass: &Pass,
-    choices: &mut Vec<Choice>,
-    image_of: &impl Fn(&Choice) -> Result<T, GpuError>,
-) -> Result<usize, GpuError> {
-    let mut present: HashSet<Choice> = choices.iter().cloned().collect();
-    let original = choices.len();
-    for (s, set) in pass.sets.iter().enumerate() {
-        for (o, name) in set.options.iter().enumerate().skip(1) {
-            if name.is_none() {
-                continue;
-            }
-            for v in 0..original {
-                if usize::from(choices[v].0[s]) != o {
-                    continue;
-                }
-                let mut partner = choices[v].0.clone();
-                partner[s] = 0;
-                let partner = Choice(partner);
-                if image_of(&partner)? == image_of(&choices[v])? {
-                    continue;
-                }
-                if present.insert(partner.clone()) {
-                    choices.push(partner);
-                }
-                break;
-            }
-        }
-    }
-    Ok(choices.len() - original)
-}
-
-/// `shader/pass` and every variant of its full space (at most 1000: the small passes the
-/// checks run whole).
-pub(crate) fn small_pass<'l>(
-    lib: &'l Library,
-    shader: &str,
-    pass: &str,
-) -> Result<(&'l Pass, Vec<Choice>), GpuError> {
-    let what = format!("{shader}/{pass}");
-    let pass = lib
-        .pass(shader, pass)
-        .map_err(|e| CheckError::lookup(&what, e))?;
-    let choices = wgsl_variants::Space::full(pass)
-        .enumerate(1000)
-        .map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
-    Ok((pass, choices))
 }

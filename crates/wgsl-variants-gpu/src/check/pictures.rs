@@ -6,11 +6,12 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 
 use super::compare::pixel;
-use super::deferred::{final_pass, render_chain, render_gbuffer};
+use super::deferred::{final_pass, render_chain};
 use super::frame::{FrameScene, reference_rgb, render_deferred, render_forward, render_shadows};
-use super::lights::LightRig;
-use super::passes::{StandardOutput, standard_job};
+use super::gbuffer::render_gbuffer;
+use super::rig::LightRig;
 use super::scene::TestScene;
+use super::standard::{StandardOutput, standard_job};
 use super::urp::{DEFAULT_SEED, UrpColorPass, UrpScene};
 use super::urp_forward::UrpForwardScene;
 use super::urp_lighting::{light_gbuffer, render_urp_gbuffer};
@@ -29,7 +30,7 @@ use wgsl_variants_shaders::reference::urp::normal::{
 /// The keyword set the pictures use by default: `standard/Deferred` with every map on and the
 /// per-pixel reflection probes, LDR (so the final frame goes through the final pass); its
 /// names are `DEFAULT_KEYWORDS.names()`.
-pub const DEFAULT_KEYWORDS: Keywords = super::deferred::CHAIN_INPUTS[0];
+pub const DEFAULT_KEYWORDS: Keywords = super::gbuffer::CHAIN_INPUTS[0];
 
 /// One picture: a name (the file stem) and 8-bit RGBA pixels, rows top to bottom.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -20,7 +20,7 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use crate::{BoundResource, Resource, VertexBuffer};
+use crate::{BoundResource, Resource, TargetFormat, VertexBuffer};
 use wgsl_variants_shaders::reference::cube::{CubeFaces, face_margin};
 use wgsl_variants_shaders::reference::gbuffer::{decode_normal, encode_normal};
 use wgsl_variants_shaders::reference::probe::{Probe, box_project, box_project_grown, falloff};
@@ -821,6 +821,16 @@ pub fn cube_resource(cube: &CubeFaces) -> Resource {
         format: wgpu::TextureFormat::Rgba8Unorm,
         size: CUBE_SIZE,
         levels,
+    }
+}
+
+/// A 2D texture resource from target bytes.
+pub(crate) fn texture(format: TargetFormat, width: u32, height: u32, data: &[u8]) -> Resource {
+    Resource::Texture2d {
+        format: format.wgpu_format(),
+        width,
+        height,
+        data: data.to_vec(),
     }
 }
 

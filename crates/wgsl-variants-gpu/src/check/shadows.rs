@@ -12,7 +12,7 @@
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::scene::{MapTexture, push_mat4, push_vec4};
-use crate::pass::pipeline;
+use crate::render::pipeline;
 use crate::{
     BoundResource, CheckError, GpuContext, GpuError, Resource, VertexBuffer, read_texture,
 };

@@ -24,9 +24,12 @@ use std::time::Instant;
 use glam::{Vec3, Vec4};
 
 use super::compare::format_name;
-use super::passes::{CLEAR, Worker, add_partners, keyword_coverage, render_all};
+use super::coverage::{add_partners, keyword_coverage, space_size};
+use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MapTexture, Rng, TestScene, cube_resource, push_mat4, push_vec4};
+use super::standard::CLEAR;
+use super::workers::{Worker, render_all};
 use crate::urp::writes_shadow_mask;
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat,
@@ -406,7 +409,7 @@ pub(crate) fn select(pass: &Pass, selection: Selection) -> Result<Vec<Choice>, G
             .covering(t)
             .map_err(|e| GpuError::from(CheckError::from(e)))?,
         None => space
-            .enumerate(super::passes::MAX_VARIANTS)
+            .enumerate(super::coverage::MAX_VARIANTS)
             .map_err(|source| {
                 GpuError::from(CheckError::Budget {
                     what: format!("{}/{}", pass.shader, pass.name),
@@ -558,4 +561,55 @@ pub(crate) fn check_urp_color_pass(
     report.notes.push(spec.note());
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// `universal_lit/UniversalGBuffer` in the check's registry.
+pub(crate) struct UniversalGBuffer;
+
+/// The entry of `universal_lit/UniversalGBuffer`.
+pub(crate) static UNIVERSAL_GBUFFER: UniversalGBuffer = UniversalGBuffer;
+
+impl PassCheck for UniversalGBuffer {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        &[("universal_lit", "UniversalGBuffer")]
+    }
+
+    fn needs(&self) -> Needs {
+        Needs {
+            workers: true,
+            ..Needs::NOTHING
+        }
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        let urp = UrpScene::new(setup.scene, DEFAULT_SEED);
+        check_color_entry(setup, "UniversalGBuffer", &urp)
+    }
+}
+
+/// Checks `universal_lit/<name>` over `spec` on workers with `spec`'s resources: what the
+/// entries of both URP colour passes share.
+pub(crate) fn check_color_entry(
+    setup: &Setup<'_>,
+    name: &str,
+    spec: &dyn UrpColorPass,
+) -> Result<Vec<PassReport>, GpuError> {
+    let pass = setup.pass("universal_lit", name)?;
+    let workers = setup.workers(&spec.resources(), name)?;
+    let options = setup.options;
+    Ok(vec![check_urp_color_pass(
+        &workers,
+        setup.lib,
+        spec,
+        pass,
+        Selection {
+            cover: options.cover_for(space_size(pass)),
+            sample: options.sample,
+            shard: options.shard,
+        },
+    )?])
 }

@@ -13,10 +13,11 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::passes::{keyword_coverage, small_pass};
+use super::coverage::{keyword_coverage, small_pass};
+use super::pass_check::{PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::scene::{TestScene, push_mat4, push_vec4};
-use super::screen_shadows::REGION_RADIUS;
+use super::screen_masks::REGION_RADIUS;
 use super::shadows::{MAP_SIZE, render_depth};
 use super::urp::{DEFAULT_SEED, UrpScene};
 use crate::{BoundResource, CheckError, GpuContext, GpuError, Resource};
@@ -54,7 +55,7 @@ struct CasterView {
 
 /// The views of the check from the rig's lights: directional, directional in a box tighter than
 /// the quad, spot.
-fn views(rig: &super::lights::LightRig, scene: &TestScene) -> Result<[CasterView; 3], GpuError> {
+fn views(rig: &super::rig::LightRig, scene: &TestScene) -> Result<[CasterView; 3], GpuError> {
     let refused = |message: &str| {
         GpuError::from(CheckError::UnknownToReference {
             variant: "universal_lit/ShadowCaster".to_owned(),
@@ -227,7 +228,7 @@ pub fn check_urp_shadow_caster(
     ctx: &GpuContext,
     lib: &Library,
     scene: &TestScene,
-    rig: &super::lights::LightRig,
+    rig: &super::rig::LightRig,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
     let (pass, choices) = small_pass(lib, "universal_lit", "ShadowCaster")?;
@@ -313,4 +314,29 @@ pub fn check_urp_shadow_caster(
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// `universal_lit/ShadowCaster` in the check's registry.
+pub(crate) struct UrpShadowCaster;
+
+/// The entry of `universal_lit/ShadowCaster`.
+pub(crate) static URP_SHADOW_CASTER: UrpShadowCaster = UrpShadowCaster;
+
+impl PassCheck for UrpShadowCaster {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        &[("universal_lit", "ShadowCaster")]
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        Ok(vec![check_urp_shadow_caster(
+            setup.ctx,
+            setup.lib,
+            setup.scene,
+            setup.rig,
+        )?])
+    }
 }

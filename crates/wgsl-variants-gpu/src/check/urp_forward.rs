@@ -16,10 +16,12 @@
 use glam::{Vec3, Vec4};
 
 use super::compare::format_name;
-use super::lights::LightRig;
-use super::passes::CLEAR;
-use super::screen_shadows::{ScreenShadow, shadow_map_resources};
-use super::urp::{RENDERING_LAYERS, UrpColorPass, UrpScene};
+use super::pass_check::{Needs, PassCheck, Setup};
+use super::report::PassReport;
+use super::rig::LightRig;
+use super::screen_masks::{ScreenShadow, shadow_map_resources};
+use super::standard::CLEAR;
+use super::urp::{DEFAULT_SEED, RENDERING_LAYERS, UrpColorPass, UrpScene, check_color_entry};
 use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, spot_inner_degrees};
 use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
 use wgsl_variants_shaders::reference::light::{Light, LightError};
@@ -226,5 +228,36 @@ impl UrpColorPass for UrpForwardScene {
             s.height,
             self.lights.additional().len()
         )
+    }
+}
+
+/// `universal_lit/UniversalForward` in the check's registry.
+pub(crate) struct UniversalForward;
+
+/// The entry of `universal_lit/UniversalForward`: its main light's map is the rig's
+/// `DIRECTIONAL` light's.
+pub(crate) static UNIVERSAL_FORWARD: UniversalForward = UniversalForward;
+
+impl PassCheck for UniversalForward {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        &[("universal_lit", "UniversalForward")]
+    }
+
+    fn needs(&self) -> Needs {
+        Needs {
+            workers: true,
+            screen_masks: true,
+            ..Needs::NOTHING
+        }
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        let urp = UrpScene::new(setup.scene, DEFAULT_SEED);
+        let forward = UrpForwardScene::new(&urp, setup.rig)?;
+        check_color_entry(setup, "UniversalForward", &forward)
     }
 }

@@ -21,13 +21,14 @@
 
 use std::time::Instant;
 
+use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
-use super::deferred::texture;
-use super::lights::{LightRig, LightingCamera, depth_camera_resources};
-use super::passes::{keyword_coverage, small_pass};
+use super::coverage::{keyword_coverage, small_pass};
+use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
-use super::scene::TestScene;
-use super::screen_shadows::{ScreenShadow, shadow_map_resources};
+use super::rig::LightRig;
+use super::scene::{TestScene, texture};
+use super::screen_masks::{ScreenShadow, shadow_map_resources};
 use super::shadows::within;
 use super::urp::UrpScene;
 use super::volumes::{LightPipelineInput, StencilScheme, render_volume};
@@ -705,6 +706,49 @@ pub fn compare_urp_volume(
             .filter(|&&s| u32::from(s) & STENCIL_LIGHT != 0)
             .count(),
     })
+}
+
+/// A `stencil_deferred` pass in the check's registry.
+pub(crate) struct StencilDeferred {
+    passes: &'static [(&'static str, &'static str)],
+}
+
+/// The entry of `stencil_deferred/PunctualLit`.
+pub(crate) static PUNCTUAL_LIT: StencilDeferred = StencilDeferred {
+    passes: &[("stencil_deferred", "PunctualLit")],
+};
+
+/// The entry of `stencil_deferred/DirectionalLit`.
+pub(crate) static DIRECTIONAL_LIT: StencilDeferred = StencilDeferred {
+    passes: &[("stencil_deferred", "DirectionalLit")],
+};
+
+impl PassCheck for StencilDeferred {
+    fn passes(&self) -> &'static [(&'static str, &'static str)] {
+        self.passes
+    }
+
+    /// The main light's map is the rig's `DIRECTIONAL` light's.
+    fn needs(&self) -> Needs {
+        Needs {
+            screen_masks: true,
+            ..Needs::NOTHING
+        }
+    }
+
+    fn check(
+        &self,
+        setup: &Setup<'_>,
+        _selected: &[(&str, &str)],
+    ) -> Result<Vec<PassReport>, GpuError> {
+        Ok(vec![check_stencil_deferred(
+            setup.ctx,
+            setup.lib,
+            setup.scene,
+            setup.rig,
+            self.passes[0].1,
+        )?])
+    }
 }
 
 #[cfg(test)]

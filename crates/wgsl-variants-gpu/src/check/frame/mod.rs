@@ -39,9 +39,11 @@ pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, 
 pub use shadow::{FrameShadow, FrameShadows, ShadowSpec, render_shadows};
 
 use super::compare::pixel;
-use super::deferred::{final_pass, rt3_blend, texture};
-use super::lights::shadowed;
-use super::volumes::{depth_fill_draw, over_volume};
+use super::deferred::final_pass;
+use super::gbuffer::rt3_blend;
+use super::rig::shadowed;
+use super::scene::texture;
+use super::volume_draw::{depth_fill_draw, over_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DepthTest, Draw, DrawPass, GpuContext, GpuError,

@@ -14,8 +14,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::super::deferred::texture;
-use super::super::scene::{push_mat4, push_vec4};
+use super::super::scene::{push_mat4, push_vec4, texture};
 use super::super::shadows::{CUBE_FORMAT, DEPTH, red_f16, refused, shadow_bindings};
 use super::{Drawer, FrameScene};
 use crate::{

@@ -2,7 +2,7 @@
 //! objects of a frame (each its own variant, mesh and resources) with the depth test, then
 //! lights blended onto what they left.
 //!
-//! [`render`](super::render::render) draws one variant; a frame needs many: [`render_pass`]
+//! [`render`](super::render()) draws one variant; a frame needs many: [`render_pass`]
 //! takes a [`DrawPass`] of [`Draw`]s, compiles each distinct pipeline once (same text, entry
 //! points, blend, depth test and vertex layout), uploads each distinct resource once (draws
 //! share equal ones: the camera, the probes, a light's uniform), records every
@@ -33,16 +33,16 @@
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
-use super::bindings::{Slot, used_bindings};
-use super::compile::{compile_scoped, wgsl_module};
-use super::context::GpuContext;
-use super::error::GpuError;
-use super::readback::{encode_texture_readback, finish_readbacks};
-use super::render::{
+use super::pipeline::{PipelineDesc, bind, create_pipeline};
+use super::target::{
     ColorTarget, VertexBuffer, check_targets, check_vertex_buffers, color_attachments,
-    create_bind_groups, create_targets, upload_vertex_buffers, vertex_layouts, views,
+    create_targets, upload_vertex_buffers, vertex_layouts, views,
 };
-use super::resources::{BoundResource, GpuResources, ResourcePool};
+use crate::bindings::Slot;
+use crate::context::GpuContext;
+use crate::error::GpuError;
+use crate::readback::{encode_texture_readback, finish_readbacks};
+use crate::resources::{BoundResource, GpuResources, ResourcePool};
 
 /// The depth buffer's format: 32-bit float, so the depth a deferred pass rebuilds positions
 /// from is the rasterizer's own value, not a 16- or 24-bit rounding of it.
@@ -259,7 +259,7 @@ impl<'a> PipelineKey<'a> {
 
 /// Renders every draw of `pass` in order and reads the targets (and depth) back.
 ///
-/// Each draw is checked like a [`RenderJob`](super::render::RenderJob): vertex buffers large
+/// Each draw is checked like a [`RenderJob`](super::RenderJob): vertex buffers large
 /// enough, a resource for every slot its entry points use ([`GpuError::Validation`] naming the
 /// draw), shaders that compile ([`GpuError::PipelineCompile`]). The wait is bounded by
 /// [`GpuContext::timeout`].
@@ -441,111 +441,4 @@ pub(crate) fn depth_state(format: wgpu::TextureFormat, test: DepthTest) -> wgpu:
         stencil: wgpu::StencilState::default(),
         bias: wgpu::DepthBiasState::default(),
     }
-}
-
-/// What a render pipeline is made of, for [`create_pipeline`].
-pub(crate) struct PipelineDesc<'a> {
-    pub(crate) label: &'a str,
-    pub(crate) wgsl: &'a str,
-    pub(crate) vertex: &'a str,
-    /// `None`: no fragment stage (depth and stencil only).
-    pub(crate) fragment: Option<&'a str>,
-    pub(crate) vertex_buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
-    pub(crate) cull: Option<wgpu::Face>,
-    pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
-    pub(crate) targets: &'a [Option<wgpu::ColorTargetState>],
-}
-
-/// Compiles a render pipeline with wgpu's automatic layout (errors are
-/// [`GpuError::PipelineCompile`]) and returns it with the slots its entry points use (what
-/// its bind groups must hold).
-pub(crate) fn create_pipeline(
-    ctx: &GpuContext,
-    desc: &PipelineDesc<'_>,
-) -> Result<(wgpu::RenderPipeline, BTreeSet<Slot>), GpuError> {
-    let entries: Vec<&str> = std::iter::once(desc.vertex).chain(desc.fragment).collect();
-    let used = used_bindings(desc.label, desc.wgsl, &entries)?;
-    let pipeline = compile_scoped(ctx, desc.label, || {
-        let module = wgsl_module(ctx, desc.label, desc.wgsl);
-        ctx.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(desc.label),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(desc.vertex),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: desc.vertex_buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: desc.cull,
-                    ..wgpu::PrimitiveState::default()
-                },
-                depth_stencil: desc.depth_stencil.clone(),
-                multisample: wgpu::MultisampleState::default(),
-                fragment: desc.fragment.map(|entry| wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    targets: desc.targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-    })?;
-    Ok((pipeline, used))
-}
-
-/// The bind groups of `pipeline` for the `used` slots, from `resources`; a used slot without a
-/// resource is a [`GpuError::Validation`].
-pub(crate) fn bind(
-    ctx: &GpuContext,
-    label: &str,
-    pipeline: &wgpu::RenderPipeline,
-    used: &BTreeSet<Slot>,
-    resources: &GpuResources,
-) -> Result<Vec<(u32, wgpu::BindGroup)>, GpuError> {
-    if let Some((group, binding)) = used.iter().find(|&&slot| !resources.contains(slot)) {
-        return Err(GpuError::Validation {
-            label: label.to_owned(),
-            message: format!(
-                "shader uses @group({group}) @binding({binding}) but no resource was given for it"
-            ),
-        });
-    }
-    ctx.scoped(label, || {
-        create_bind_groups(ctx, label, pipeline, used, resources)
-    })
-}
-
-/// A render pipeline over `wgsl`'s `vertex` / `fragment` entry points (no fragment stage:
-/// depth and stencil only), its bind groups from `resources`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn pipeline(
-    ctx: &GpuContext,
-    label: &str,
-    wgsl: &str,
-    (vertex, fragment): (&str, Option<&str>),
-    vertex_buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
-    cull: Option<wgpu::Face>,
-    depth_stencil: wgpu::DepthStencilState,
-    targets: &[Option<wgpu::ColorTargetState>],
-    resources: &[BoundResource],
-) -> Result<(wgpu::RenderPipeline, Vec<(u32, wgpu::BindGroup)>), GpuError> {
-    let (pipeline, used) = create_pipeline(
-        ctx,
-        &PipelineDesc {
-            label,
-            wgsl,
-            vertex,
-            fragment,
-            vertex_buffers,
-            cull,
-            depth_stencil: Some(depth_stencil),
-            targets,
-        },
-    )?;
-    let uploaded = GpuResources::upload(ctx, label, resources)?;
-    let groups = bind(ctx, label, &pipeline, &used, &uploaded)?;
-    Ok((pipeline, groups))
 }

@@ -1,0 +1,107 @@
+//! Which variants a check runs and how keyword coverage is judged over them: the pairs that
+//! differ in one keyword, the partners a covering set needs for that, and the small passes
+//! that are run whole.
+
+use std::collections::{HashMap, HashSet};
+
+use super::report::KeywordCoverage;
+use crate::{CheckError, GpuError};
+use wgsl_variants::Library;
+use wgsl_variants::shader::Pass;
+use wgsl_variants::variants::Choice;
+
+/// The most variants any check enumerates in one pass.
+pub(crate) const MAX_VARIANTS: u64 = 100_000;
+
+/// For each keyword of `pass`: the variant pairs that differ only in that keyword's set (the
+/// keyword on, against the set's first option), and how many of them `differs` says changed.
+pub fn keyword_coverage(
+    pass: &Pass,
+    choices: &[Choice],
+    differs: impl Fn(usize, usize) -> bool,
+) -> Vec<KeywordCoverage> {
+    let index: HashMap<&Choice, usize> = choices.iter().enumerate().map(|(i, c)| (c, i)).collect();
+    let mut out = Vec::new();
+    for (s, set) in pass.sets.iter().enumerate() {
+        for (o, name) in set.options.iter().enumerate().skip(1) {
+            let Some(name) = name else { continue };
+            let mut coverage = KeywordCoverage {
+                keyword: name.clone(),
+                pairs: 0,
+                pairs_changed: 0,
+            };
+            for (v, choice) in choices.iter().enumerate() {
+                if usize::from(choice.0[s]) != o {
+                    continue;
+                }
+                let mut partner = choice.0.clone();
+                partner[s] = 0;
+                if let Some(&p) = index.get(&Choice(partner)) {
+                    coverage.pairs += 1;
+                    coverage.pairs_changed += usize::from(differs(v, p));
+                }
+            }
+            out.push(coverage);
+        }
+    }
+    out
+}
+
+/// For each keyword: the first variant with it on whose reference changes when it is turned
+/// off, and that partner added to `choices` unless already there. Returns how many were
+/// added. With these, a covering set's keyword coverage can be judged: each keyword has a
+/// pair whose reference says it matters.
+pub(crate) fn add_partners<T: PartialEq>(
+    pass: &Pass,
+    choices: &mut Vec<Choice>,
+    image_of: &impl Fn(&Choice) -> Result<T, GpuError>,
+) -> Result<usize, GpuError> {
+    let mut present: HashSet<Choice> = choices.iter().cloned().collect();
+    let original = choices.len();
+    for (s, set) in pass.sets.iter().enumerate() {
+        for (o, name) in set.options.iter().enumerate().skip(1) {
+            if name.is_none() {
+                continue;
+            }
+            for v in 0..original {
+                if usize::from(choices[v].0[s]) != o {
+                    continue;
+                }
+                let mut partner = choices[v].0.clone();
+                partner[s] = 0;
+                let partner = Choice(partner);
+                if image_of(&partner)? == image_of(&choices[v])? {
+                    continue;
+                }
+                if present.insert(partner.clone()) {
+                    choices.push(partner);
+                }
+                break;
+            }
+        }
+    }
+    Ok(choices.len() - original)
+}
+
+/// `shader/pass` and every variant of its full space (at most 1000: the small passes the
+/// checks run whole).
+pub(crate) fn small_pass<'l>(
+    lib: &'l Library,
+    shader: &str,
+    pass: &str,
+) -> Result<(&'l Pass, Vec<Choice>), GpuError> {
+    let what = format!("{shader}/{pass}");
+    let pass = lib
+        .pass(shader, pass)
+        .map_err(|e| CheckError::lookup(&what, e))?;
+    let choices = wgsl_variants::Space::full(pass)
+        .enumerate(1000)
+        .map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
+    Ok((pass, choices))
+}
+
+/// The number of variants in a pass's full space (saturated at `u64::MAX`): what
+/// [`CheckOptions::cover_for`](super::options::CheckOptions::cover_for) decides on.
+pub(crate) fn space_size(pass: &Pass) -> u64 {
+    u64::try_from(wgsl_variants::Space::full(pass).count()).unwrap_or(u64::MAX)
+}
