@@ -11,8 +11,8 @@ use wgsl_variants::audit::budget::Budgets;
 use wgsl_variants::audit::{self, AuditOptions, AuditReport, AuditedPass, Method, PassAudit};
 use wgsl_variants::plan::select_passes;
 
+use super::context::{BuildArgs, Context, Failed, load_materials};
 use super::output::print_json;
-use super::{BuildArgs, Context, Failed, load_materials};
 
 /// Most variants the audit composes when the groups of coupled sets cannot give an exact count.
 const MAX_ENUMERATION: u64 = 1 << 22;

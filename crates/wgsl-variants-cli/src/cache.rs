@@ -6,8 +6,8 @@ use std::process::ExitCode;
 
 use wgsl_variants::cache::{ValidCache, import};
 
+use super::context::{Context, Failed};
 use super::output::print_json;
-use super::{Context, Failed};
 
 /// `cache` arguments.
 #[derive(clap::Args, Debug)]

@@ -8,8 +8,8 @@ use std::process::ExitCode;
 
 use wgsl_variants_gpu::check::{self, CheckOptions};
 
+use super::context::{Context, Failed};
 use super::output::print_json;
-use super::{Context, Failed};
 
 /// `check-gpu` arguments.
 #[derive(clap::Args, Debug)]

@@ -14,8 +14,8 @@ use wgsl_variants::emit::backends::{
 use wgsl_variants::emit::set::{self, SetError, WriteSummary};
 use wgsl_variants::emit::variant_source;
 
+use super::context::{BuildArgs, Context, Failed, load_materials};
 use super::output::print_json;
-use super::{BuildArgs, Context, Failed, load_materials};
 
 /// A naga back end, on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -242,7 +242,7 @@ fn write_build_set(
             "error: give SHADER and PASS to print one variant, or --out DIR to write the whole build set".into(),
         ));
     };
-    let plan_options = super::plan_options(&args.build, args.all, args.shard)?;
+    let plan_options = super::context::plan_options(&args.build, args.all, args.shard)?;
     let selection = ctx.plan(&plan_options)?;
     let origin = set::SetOrigin::new(&ctx.lib, &plan_options, targets, options);
     write_selection(ctx, &selection, &origin, targets, options, dir)

@@ -10,8 +10,8 @@ use wgsl_variants::emit::export::{ExportError, export_prefixed_module};
 use wgsl_variants::emit::naga_oil::{self, NagaOilModule};
 use wgsl_variants::emit::wesl::{self, WeslModule};
 
+use super::context::{Context, Failed};
 use super::output::print_json;
-use super::{Context, Failed};
 
 /// The output dialect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::context::{Context, Failed, load_materials};
 use super::output::print_json;
-use super::{Context, Failed, load_materials};
 
 pub fn run(ctx: &Context, materials: &Option<PathBuf>) -> Result<ExitCode, Failed> {
     let materials = load_materials(materials)?;

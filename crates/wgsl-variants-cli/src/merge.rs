@@ -6,8 +6,8 @@ use std::process::ExitCode;
 
 use wgsl_variants::merge::{MergeError, manifest, validate};
 
+use super::context::{Context, Failed};
 use super::output::print_json;
-use super::{Context, Failed};
 
 /// `merge` arguments.
 #[derive(clap::Args, Debug)]

@@ -1,7 +1,7 @@
 //! Shared output helpers: printing JSON, and progress bars.
 
 /// Prints a JSON value on stdout, pretty, with a trailing newline.
-pub fn print_json<T: serde::Serialize>(value: &T) -> Result<(), super::Failed> {
+pub fn print_json<T: serde::Serialize>(value: &T) -> Result<(), super::context::Failed> {
     let text = serde_json::to_string_pretty(value)?;
     println!("{text}");
     Ok(())

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::context::{Context, Failed, load_materials};
 use super::output::print_json;
-use super::{Context, Failed, load_materials};
 
 /// `reflect` arguments.
 #[derive(clap::Args, Debug)]

@@ -9,8 +9,8 @@ use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::FrameScene;
 use wgsl_variants_gpu::check::{TestScene, pictures};
 
+use super::context::{Context, Failed};
 use super::output::print_json;
-use super::{Context, Failed};
 
 /// `render` arguments.
 #[derive(clap::Args, Debug)]

@@ -11,8 +11,8 @@ use wgsl_variants::validate::validate_plan;
 use wgsl_variants::variants::Shard;
 use wgsl_variants::{Space, Variant};
 
+use super::context::{BuildArgs, Context, Failed};
 use super::output::{print_json, progress};
-use super::{BuildArgs, Context, Failed};
 
 /// How `validate` runs: sharding, the cache of valid texts and strictness.
 #[derive(clap::Args, Debug, Clone)]
@@ -53,7 +53,7 @@ impl CheckArgs {
 
 pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result<ExitCode, Failed> {
     let cache = run.check.cache_dir().map(|dir| super::cache::open(&dir));
-    let mut options = super::plan_options(build, all, run.shard)?;
+    let mut options = super::context::plan_options(build, all, run.shard)?;
     options.strict = run.check.strict;
     let plan = ctx.plan(&options)?;
     let bar = progress(plan.iter().map(|p| p.1.len() as u64).sum(), "validating");

@@ -18,7 +18,7 @@ use serde_json::json;
 use wgsl_variants::LoadOptions;
 use wgsl_variants::watch::{Event, Outcome, Session, Verdict, WatchError};
 
-use super::BuildArgs;
+use super::context::BuildArgs;
 use super::validate::CheckArgs;
 
 /// `wgsl-variants watch` arguments.
@@ -260,7 +260,7 @@ fn watch(
     // Event paths start with the path watched: watch absolute paths, compare absolute paths.
     let root = std::fs::canonicalize(root).map_err(|e| format!("`{}`: {e}", root.display()))?;
     let options = |args: &WatchArgs| {
-        super::plan_options(&args.build, args.all, None).map(|mut o| {
+        super::context::plan_options(&args.build, args.all, None).map(|mut o| {
             o.strict = args.check.strict;
             o
         })
@@ -339,7 +339,7 @@ fn watch(
         };
         // The materials file is read again at each change (it may be what changed).
         match materials.as_ref().map(|_| options(args)) {
-            Some(Err(super::Failed(message))) => printer.problem(
+            Some(Err(super::context::Failed(message))) => printer.problem(
                 &message,
                 (&format!("{message}\n"), &format!("{message}\n")),
                 Vec::new(),
