@@ -255,7 +255,7 @@ fn two_processes_writing_one_cache_lose_nothing() {
 
 /// Copies the bundled library to `dir` with one comment added: another library version.
 fn changed_library(dir: &Path) {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../wgsl");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../wgsl-variants-shaders/wgsl");
     for (rel, bytes) in tree(&src) {
         let path = dir.join(&rel);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
