@@ -49,6 +49,26 @@ fn map_spans<'a>(
         .collect()
 }
 
+/// naga's parse error message. Its internal errors ("internal WGSL front end error") carry what
+/// went wrong in a note and have no location: the note joins the message, so every report
+/// (text, JSON, `watch`) says which limit tripped.
+fn parse_message(e: &naga::front::wgsl::ParseError) -> String {
+    let message = e.message();
+    if e.labels().next().is_some() {
+        return message.to_string();
+    }
+    let notes: Vec<&str> = e.notes().collect();
+    if notes.is_empty() {
+        return message.to_string();
+    }
+    let hint = if notes.iter().any(|n| n.contains("recursion limit")) {
+        " (naga's WGSL parser nests expressions, blocks and types at most 200 levels deep: split the nesting with `let` bindings or functions)"
+    } else {
+        ""
+    };
+    format!("{message}: {}{hint}", notes.join("; "))
+}
+
 pub(crate) fn validate_with(
     composed: &Composed,
     variant: &str,
@@ -63,7 +83,7 @@ pub(crate) fn validate_with(
     let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| VariantError {
         variant: variant.to_string(),
         stage: Stage::Parse,
-        message: e.message().to_string(),
+        message: parse_message(&e),
         labels: map_spans(composed, e.labels()),
         notes: e.notes().map(str::to_string).collect(),
     })?;

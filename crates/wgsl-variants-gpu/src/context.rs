@@ -110,14 +110,10 @@ impl GpuContext {
         // Shadow maps, depth pre-passes and G-buffer depth are read back to compare them with
         // the reference: a GL adapter without depth copies fails later with a raw validation
         // dump, so say so first, with the fix.
-        let downlevel = adapter.get_downlevel_capabilities().flags;
-        if !downlevel.contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES) {
-            return Err(GpuError::MissingCapability {
-                adapter: format!("{} ({:?})", info.name, info.backend),
-                what: "copy depth textures to buffers",
-                flag: "DEPTH_TEXTURE_AND_BUFFER_COPIES",
-            });
-        }
+        check_downlevel(
+            adapter.get_downlevel_capabilities().flags,
+            &format!("{} ({:?})", info.name, info.backend),
+        )?;
 
         let mut limits = wgpu::Limits::default().or_worse_values_from(&adapter.limits());
         // URP's G-buffer with its optional targets needs up to 48 bytes per sample (WebGPU's
@@ -267,4 +263,38 @@ pub fn error_message(error: &wgpu::Error) -> String {
         source = s.source();
     }
     message
+}
+/// The downlevel capabilities the harness needs of `adapter` (named in the error).
+fn check_downlevel(flags: wgpu::DownlevelFlags, adapter: &str) -> Result<(), GpuError> {
+    if !flags.contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES) {
+        return Err(GpuError::MissingCapability {
+            adapter: adapter.to_owned(),
+            what: "copy depth textures to buffers",
+            flag: "DEPTH_TEXTURE_AND_BUFFER_COPIES",
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A WebGL2-class adapter (GL llvmpipe when no Vulkan driver is installed) lacks depth
+    /// copies: refused up front, naming the flag and the fix, instead of a validation dump.
+    #[test]
+    fn an_adapter_without_depth_copies_is_refused_with_the_fix() {
+        let gl =
+            wgpu::DownlevelFlags::all() - wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES;
+        let err = check_downlevel(gl, "llvmpipe (Gl)")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("`llvmpipe (Gl)`")
+                && err.contains("DEPTH_TEXTURE_AND_BUFFER_COPIES")
+                && err.contains("mesa-vulkan-drivers"),
+            "{err}"
+        );
+        assert!(check_downlevel(wgpu::DownlevelFlags::all(), "lavapipe (Vulkan)").is_ok());
+    }
 }

@@ -109,3 +109,29 @@ fn a_name_too_long_for_a_file_names_itself_not_the_folder() {
         "{stderr}"
     );
 }
+
+/// naga's parser gives up past 200 levels of nesting with "internal WGSL front end error",
+/// no location, and the reason in a note: the reason is part of the message.
+#[test]
+fn a_parser_recursion_limit_is_named_in_the_message() {
+    let tree = tempfile::tempdir().unwrap();
+    let deep = format!("{}1.0{}", "(".repeat(250), ")".repeat(250));
+    std::fs::write(
+        tree.path().join("s.wgsl"),
+        format!(
+            "#shader s\n#pass P\n@fragment fn fs() -> @location(0) vec4f {{ return vec4f({deep}); }}\n#endpass\n"
+        ),
+    )
+    .unwrap();
+    let out = run_on(tree.path(), &["--json", "validate", "--all"]);
+    assert_clean_exit(&out, 1);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let message = report["passes"][0]["failures"][0]["message"]
+        .as_str()
+        .unwrap();
+    assert!(
+        message.starts_with("internal WGSL front end error: Parser recursion limit exceeded")
+            && message.contains("at most 200 levels deep"),
+        "{message}"
+    );
+}
