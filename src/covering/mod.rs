@@ -335,6 +335,25 @@ pub fn shrink(
 }
 
 impl Space<'_> {
+    /// The t-way combinations of options a t-wise covering set of this space must cover
+    /// ([`interactions`] of its factors): what the generation's time grows with, for a caller
+    /// that wants to say how long it will take before it starts.
+    ///
+    /// ```
+    /// use wgsl_variants::{Library, Space};
+    /// let lib = Library::from_sources([(
+    ///     "s.wgsl",
+    ///     "#shader s\n#pass P\n#pragma multi_compile _ A\n#pragma multi_compile _ B\n\
+    ///      #pragma multi_compile _ C\n#endpass",
+    /// )])
+    /// .unwrap();
+    /// assert_eq!(Space::full(lib.pass("s", "P").unwrap()).covering_work(2), 12);
+    /// ```
+    pub fn covering_work(&self, t: usize) -> u128 {
+        let sizes: Vec<usize> = self.factors().iter().map(Factor::len).collect();
+        interactions(&sizes, t)
+    }
+
     /// A deterministic t-wise covering set of this space (t from 1 to 4): every variant is in
     /// the space, and every combination of options of every t keyword sets that occurs in
     /// the space occurs in one of them. Sets coupled by materials or constraints are covered

@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use wgsl_variants::Library;
+use wgsl_variants::covering::MAX_INTERACTIONS;
 use wgsl_variants::materials::{self, Material};
 
 /// Options shared by commands that build variants.
@@ -77,11 +78,15 @@ impl Context {
         Ok(variant)
     }
 
-    /// The plan of `options`. A pass over its budget is reported at its declaration.
+    /// The plan of `options`. A pass over its budget is reported at its declaration. A covering
+    /// set that will take a while to generate is announced first, with its size.
     pub fn plan(
         &self,
         options: &wgsl_variants::plan::PlanOptions,
     ) -> Result<wgsl_variants::plan::Plan<'_>, Failed> {
+        if let Some(t) = options.cover {
+            self.announce_cover(options, t);
+        }
         wgsl_variants::plan::plan(&self.lib, options).map_err(|e| match &e {
             wgsl_variants::plan::PlanError::Budget { shader, pass, .. } => {
                 match self.lib.pass(shader, pass) {
@@ -98,6 +103,32 @@ impl Context {
             }
             _ => Failed::from(e),
         })
+    }
+
+    /// A note on stderr for each pass whose t-wise covering set must cover more than ten
+    /// million combinations of options (a generation of seconds to minutes), with the estimate
+    /// measured on a 2-core machine (2026-11-27: 7.8 million combinations in about 2.7 s).
+    fn announce_cover(&self, options: &wgsl_variants::plan::PlanOptions, t: usize) {
+        let passes = wgsl_variants::plan::select_passes(
+            &self.lib,
+            options.shader.as_deref(),
+            options.pass.as_deref(),
+        )
+        .unwrap_or_default();
+        for pass in passes {
+            let space = wgsl_variants::Space::full(pass);
+            let covered = options
+                .cover_above
+                .is_none_or(|above| space.count() > above.into());
+            let work = space.covering_work(t);
+            if covered && t <= pass.sets.len() && work > 10_000_000 && work <= MAX_INTERACTIONS {
+                let seconds = work as f64 / 7.8e6 * 2.7;
+                eprintln!(
+                    "note: {}/{}: a t = {t} covering set must cover {work} combinations of options; generating it takes about {seconds:.0} s on 2 cores",
+                    pass.shader, pass.name
+                );
+            }
+        }
     }
 
     /// A failure about a pass, rendered at the pass's declaration with its keyword sets.

@@ -78,3 +78,24 @@ fn a_covering_set_too_costly_to_generate_is_refused_with_its_size() {
         "{stderr}"
     );
 }
+
+/// A covering set that takes seconds to generate is announced before it starts, with the
+/// number of combinations and the time it will take.
+#[test]
+fn a_long_covering_generation_is_announced_with_its_size() {
+    let sets: String = (0..200)
+        .map(|i| format!("#pragma multi_compile _ K{i}\n"))
+        .collect();
+    let dir = tree(&sets);
+    let mut cmd = bin();
+    cmd.arg("--root")
+        .arg(dir.path())
+        .args(["validate", "--cover", "3", "--no-cache"]);
+    let out = run_within(cmd, Duration::from_secs(120));
+    assert_clean_exit(&out, 0);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("note: s/P: a t = 3 covering set must cover 10507200 combinations of options; generating it takes about 4 s on 2 cores"),
+        "{stderr}"
+    );
+}
