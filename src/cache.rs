@@ -180,11 +180,13 @@ impl Secret {
 /// Segments in the folder past which a save compacts them into one.
 pub const COMPACT_AFTER: usize = 32;
 
-/// What a cache built by this crate is keyed by: `wgsl-variants-<version>-naga-<version>`,
-/// the name of its folder in the cache directory.
+/// What a cache built by this crate is keyed by:
+/// `wgsl-variants-<version>-naga-<version>-signed`, the name of its folder in the cache
+/// directory. `-signed` is the record format (MACs under a [`Secret`]): caches written before
+/// it live in another folder and are simply not read, rather than reported corrupt at every run.
 pub fn key() -> String {
     format!(
-        "wgsl-variants-{}-naga-{}",
+        "wgsl-variants-{}-naga-{}-signed",
         env!("CARGO_PKG_VERSION"),
         env!("WGSL_VARIANTS_NAGA_VERSION")
     )

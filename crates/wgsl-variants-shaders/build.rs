@@ -31,6 +31,8 @@ fn main() {
     println!("cargo:rerun-if-changed=wgsl");
     let mut files = Vec::new();
     collect(&root, &root, &mut files);
+    // By path as text (`standard.wgsl` before `standard/…`), the order `files()` promises.
+    files.sort_by(|a, b| a.0.cmp(&b.0));
     let mut code = String::from(
         "/// The shading library: (path relative to `wgsl/`, contents), sorted by path.\npub static FILES: &[(&str, &[u8])] = &[\n",
     );

@@ -128,10 +128,14 @@ fn merge(shards: Vec<(String, ReportJson)>) -> Result<ReportJson, MergeError> {
         check(&name, &r, &merged)?;
         for (i, p) in r.passes.into_iter().enumerate() {
             let m = &mut merged.passes[i];
-            m.built += p.built;
-            m.distinct += p.distinct;
-            m.valid += p.valid;
-            m.invalid += p.invalid;
+            for (sum, count) in [
+                (&mut m.built, p.built),
+                (&mut m.distinct, p.distinct),
+                (&mut m.valid, p.valid),
+                (&mut m.invalid, p.invalid),
+            ] {
+                add(sum, count, &name)?;
+            }
             match (&mut keys[i], p.texts) {
                 (Some(k), Some(t)) => k.extend(t),
                 (None, None) => {}
@@ -156,14 +160,25 @@ fn merge(shards: Vec<(String, ReportJson)>) -> Result<ReportJson, MergeError> {
         ..ValidateTotals::default()
     };
     for p in &merged.passes {
-        totals.built += p.built;
-        totals.distinct += p.distinct;
-        totals.valid += p.valid;
-        totals.invalid += p.invalid;
+        add(&mut totals.built, p.built, "the merged report")?;
+        add(&mut totals.distinct, p.distinct, "the merged report")?;
+        add(&mut totals.valid, p.valid, "the merged report")?;
+        add(&mut totals.invalid, p.invalid, "the merged report")?;
     }
     merged.ok = totals.invalid == 0;
     merged.totals = totals;
     Ok(merged)
+}
+
+/// `sum += count`, or an error naming `name` when no run could count that far.
+fn add(sum: &mut u64, count: u64, name: &str) -> Result<(), MergeError> {
+    *sum = sum.checked_add(count).ok_or_else(|| {
+        mismatch(
+            name,
+            "its counts add up past 2^64: not a real report".into(),
+        )
+    })?;
+    Ok(())
 }
 
 /// Checks that a report agrees with itself: the counts of each pass are those its failures
@@ -210,10 +225,10 @@ fn self_check(name: &str, r: &ReportJson, shard: Option<Shard>) -> Result<(), Me
                 return Err(at(format!("variant number {n} is not in shard {shard}")));
             }
         }
-        sums.built += p.built;
-        sums.distinct += p.distinct;
-        sums.valid += p.valid;
-        sums.invalid += p.invalid;
+        add(&mut sums.built, p.built, name)?;
+        add(&mut sums.distinct, p.distinct, name)?;
+        add(&mut sums.valid, p.valid, name)?;
+        add(&mut sums.invalid, p.invalid, name)?;
     }
     if sums != r.totals {
         return Err(mismatch(
