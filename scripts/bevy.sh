@@ -4,38 +4,54 @@
 # (default `--cover 2`). `bash scripts/bevy.sh --check` (CI) runs the default and compares its
 # summary lines with examples/bevy_pbr/expected.txt: the figures the README reports.
 #
-# The WGSL is fetched at run time from crates.io's static host (the published crates
-# bevy_pbr, bevy_render and bevy_core_pipeline 0.19.1, checksums pinned below), never
-# committed: only the declaration file is ours. The tree is assembled under
-# target/bevy-0.19.1/<crate>/src/…, so diagnostics name Bevy's own paths.
+# The WGSL is fetched at run time by cargo itself (a throwaway manifest that depends on the
+# published crates bevy_pbr, bevy_render and bevy_core_pipeline 0.19.1, then `cargo fetch`:
+# checksums and mirrors come from cargo), never committed: only the declaration file is ours.
+# The tree is assembled under target/bevy-0.19.1/<crate>/src/…, so diagnostics name Bevy's own
+# paths.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 version=0.19.1
 tree="target/bevy-$version"
-downloads="target/bevy-downloads"
-mkdir -p "$downloads"
+fetch="target/bevy-fetch"
+mkdir -p "$fetch"
 rm -rf "$tree"
 mkdir -p "$tree"
-while read -r crate sha; do
-    file="$downloads/$crate-$version.crate"
-    if [ ! -f "$file" ] || ! echo "$sha  $file" | sha256sum -c --quiet 2>/dev/null; then
-        echo "== fetching $crate $version"
-        curl -sSfL "https://static.crates.io/crates/$crate/$crate-$version.crate" -o "$file"
-        echo "$sha  $file" | sha256sum -c --quiet
-    fi
-    unpacked="$downloads/$crate-$version"
-    rm -rf "$unpacked"
-    tar xzf "$file" -C "$downloads"
-    (cd "$unpacked" && find src -name '*.wgsl' -print0) |
-        while IFS= read -r -d '' f; do
-            mkdir -p "$tree/$crate/$(dirname "$f")"
-            cp "$unpacked/$f" "$tree/$crate/$f"
-        done
-done <<'CRATES'
-bevy_pbr 244ae7d618b51a59c913c36b0564a295cd85ea91a5e777b542bb7bdb846a23d6
-bevy_render fc86a32b2eef9859e1e7d323c6d1a9150fe77aa17c30fd05abebc12f645929dc
-bevy_core_pipeline 2564f1ba766532e8eeb20059133ff6703e8dd5c3864b92378d0d1c541096ef12
-CRATES
+cat > "$fetch/Cargo.toml" <<MANIFEST
+[package]
+name = "bevy-shaders-fetch"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[lib]
+path = "lib.rs"
+
+[dependencies]
+bevy_pbr = { version = "=$version", default-features = false }
+bevy_render = { version = "=$version", default-features = false }
+bevy_core_pipeline = { version = "=$version", default-features = false }
+
+[workspace]
+MANIFEST
+touch "$fetch/lib.rs"
+echo "== cargo fetch: bevy_pbr, bevy_render, bevy_core_pipeline $version"
+cargo fetch -q --manifest-path "$fetch/Cargo.toml"
+# Where cargo unpacked each crate: its manifest's folder, from `cargo metadata`.
+cargo metadata -q --format-version 1 --manifest-path "$fetch/Cargo.toml" |
+    python3 -c '
+import json, sys
+for p in json.load(sys.stdin)["packages"]:
+    if p["name"] in ("bevy_pbr", "bevy_render", "bevy_core_pipeline") and p["version"] == sys.argv[1]:
+        print(p["name"], p["manifest_path"].rsplit("/", 1)[0])
+' "$version" |
+    while read -r crate unpacked; do
+        (cd "$unpacked" && find src -name '*.wgsl' -print0) |
+            while IFS= read -r -d '' f; do
+                mkdir -p "$tree/$crate/$(dirname "$f")"
+                cp "$unpacked/$f" "$tree/$crate/$f"
+            done
+    done
 cp examples/bevy_pbr/wgsl-variants.toml "$tree/"
 echo "== $(find "$tree" -name '*.wgsl' | wc -l) WGSL files in $tree"
 # WGSL_VARIANTS_BIN: a binary already built (CI passes the test build's, see .ci/run).
