@@ -68,9 +68,14 @@ pub fn run_within(mut cmd: Command, limit: Duration) -> Output {
 
 /// Runs `args` on the tree at `root` within 60 seconds.
 pub fn run_on(root: &Path, args: &[&str]) -> Output {
+    run_on_within(root, args, Duration::from_secs(60))
+}
+
+/// Runs `args` on the tree at `root` within `limit`.
+pub fn run_on_within(root: &Path, args: &[&str], limit: Duration) -> Output {
     let mut cmd = bin();
     cmd.arg("--root").arg(root).args(args);
-    run_within(cmd, Duration::from_secs(60))
+    run_within(cmd, limit)
 }
 
 /// Asserts the run ended with `code` and without a panic or abort.

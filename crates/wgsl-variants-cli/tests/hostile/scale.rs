@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::{assert_clean_exit, bin, run_within};
+use super::{assert_clean_exit, run_on_within};
 
 fn tree(sets: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
@@ -24,10 +24,8 @@ fn tree(sets: &str) -> tempfile::TempDir {
 fn a_set_of_sixty_thousand_options_lists_at_once() {
     let names: Vec<String> = (0..60_000).map(|i| format!("K{i}")).collect();
     let dir = tree(&format!("#pragma multi_compile _ {}\n", names.join(" ")));
-    let mut cmd = bin();
-    cmd.arg("--root").arg(dir.path()).arg("list");
     let start = Instant::now();
-    let out = run_within(cmd, Duration::from_secs(20));
+    let out = run_on_within(dir.path(), &["list"], Duration::from_secs(20));
     assert_clean_exit(&out, 0);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
@@ -44,9 +42,7 @@ fn a_set_of_sixty_thousand_options_lists_at_once() {
 fn a_set_past_sixty_five_thousand_options_is_refused_not_wrapped() {
     let names: Vec<String> = (0..100_000).map(|i| format!("K{i}")).collect();
     let dir = tree(&format!("#pragma multi_compile _ {}\n", names.join(" ")));
-    let mut cmd = bin();
-    cmd.arg("--root").arg(dir.path()).arg("list");
-    let out = run_within(cmd, Duration::from_secs(20));
+    let out = run_on_within(dir.path(), &["list"], Duration::from_secs(20));
     assert_clean_exit(&out, 1);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -64,11 +60,11 @@ fn a_covering_set_too_costly_to_generate_is_refused_with_its_size() {
         .map(|i| format!("#pragma multi_compile _ K{i}\n"))
         .collect();
     let dir = tree(&sets);
-    let mut cmd = bin();
-    cmd.arg("--root")
-        .arg(dir.path())
-        .args(["validate", "--cover", "4", "--no-cache"]);
-    let out = run_within(cmd, Duration::from_secs(20));
+    let out = run_on_within(
+        dir.path(),
+        &["validate", "--cover", "4", "--no-cache"],
+        Duration::from_secs(20),
+    );
     assert_clean_exit(&out, 1);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -87,11 +83,11 @@ fn a_long_covering_generation_is_announced_with_its_size() {
         .map(|i| format!("#pragma multi_compile _ K{i}\n"))
         .collect();
     let dir = tree(&sets);
-    let mut cmd = bin();
-    cmd.arg("--root")
-        .arg(dir.path())
-        .args(["validate", "--cover", "3", "--no-cache"]);
-    let out = run_within(cmd, Duration::from_secs(120));
+    let out = run_on_within(
+        dir.path(),
+        &["validate", "--cover", "3", "--no-cache"],
+        Duration::from_secs(120),
+    );
     assert_clean_exit(&out, 0);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
