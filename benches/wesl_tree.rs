@@ -10,7 +10,7 @@
 //! - this crate: `validate_pass` (wesl compiles each variant from the loaded tree, its
 //!   declarations are put in a fixed order, naga parses and validates it; then the validation
 //!   stage parses and validates that text: what is validated is what is emitted), one thread;
-//! - wesl alone: `Wesl::new(root)` reading the files itself, the same features and constants,
+//! - wesl alone: `wesl::Compiler` reading the files itself, the same features and constants,
 //!   `compile`, then naga's parse and validation of the output, one thread.
 //!
 //! Prints the ratio (this crate / wesl alone; lower is faster) and writes it to
@@ -53,9 +53,10 @@ fn main() {
     for pass in lib.passes() {
         let choices = variants_to_build(&lib, pass, &options).expect("covering set");
         let entry = &lib.module_paths()[pass.module()];
-        let module_path: wesl::ModulePath = format!("package::{}", entry.replace('/', "::"))
-            .parse()
-            .expect("module path");
+        let module_path: wesl::syntax::ModulePath =
+            format!("package::{}", entry.replace('/', "::"))
+                .parse()
+                .expect("module path");
         let mut ours = |slice: &[Choice]| {
             one.install(|| {
                 validate_pass(&lib, pass, slice, &|_| {});
@@ -67,17 +68,20 @@ fn main() {
                     pass,
                     choice: c.clone(),
                 };
-                let mut compiler = wesl::Wesl::new(&root);
+                // As the engine composes (src/library/wesl.rs): keywords off unless set, every
+                // def a constant, a Bool def a feature, a valued def a feature that is on.
+                let mut options = wesl::CompileOptions::default();
                 for k in pass.keywords() {
-                    compiler.set_feature(def_of(k).0, false);
+                    options.features.set(def_of(k).0, false);
                 }
                 for (name, value) in pass.defs(v.keywords()) {
-                    if let DefValue::Bool(on) = value {
-                        compiler.set_feature(name, on);
-                    }
-                    compiler.add_constant(name, literal(value));
+                    options
+                        .features
+                        .set(name, !matches!(value, DefValue::Bool(false)));
+                    options.constants.set(name, literal(value));
                 }
-                if let Ok(out) = compiler.compile(&module_path)
+                let compiler = wesl::Compiler::new(options);
+                if let Ok(out) = compiler.compile_module(&root, &module_path)
                     && let Ok(module) = naga::front::wgsl::parse_str(&out.to_string())
                 {
                     let _ = wgsl_variants::validate::validator().validate(&module);

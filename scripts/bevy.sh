@@ -1,19 +1,27 @@
 #!/usr/bin/env bash
-# Validates Bevy 0.19.1's PBR shaders (a tree no one here wrote) with the declaration file
-# examples/bevy_pbr/wgsl-variants.toml: `bash scripts/bevy.sh [validate options]`
-# (default `--cover 2`). `bash scripts/bevy.sh --check` (CI) runs the default and compares its
-# summary lines with examples/bevy_pbr/expected.txt: the figures the README reports.
+# Validates Bevy's PBR shaders (trees no one here wrote) with our declaration files:
+#   bash scripts/bevy.sh [--bevy 0.19.1|0.20.1] [--check] [validate options]   (default `--cover 2`)
+# - 0.19.1 (default): naga_oil's dialect, examples/bevy_pbr/wgsl-variants.toml.
+# - 0.20.1: WESL 0.6 across three packages (bevy_pbr, bevy_render, bevy_core_pipeline),
+#   examples/bevy-0.20/wgsl-variants.toml.
+# `--check` (CI) runs the default and compares its summary lines with the example's
+# expected.txt: the figures the README reports.
 #
-# The WGSL is fetched at run time by cargo itself (a throwaway manifest that depends on the
-# published crates bevy_pbr, bevy_render and bevy_core_pipeline 0.19.1, then `cargo fetch`:
-# checksums and mirrors come from cargo), never committed: only the declaration file is ours.
-# The tree is assembled under target/bevy-0.19.1/<crate>/src/…, so diagnostics name Bevy's own
-# paths.
+# The shaders are fetched at run time by cargo itself (a throwaway manifest that depends on the
+# published crates bevy_pbr, bevy_render and bevy_core_pipeline, then `cargo fetch`: checksums
+# and mirrors come from cargo), never committed: only the declaration files are ours. The tree
+# is assembled under target/bevy-<version>/<crate>/src/…, so diagnostics name Bevy's own paths.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 version=0.19.1
+if [ "${1:-}" = --bevy ]; then version="$2"; shift 2; fi
+case "$version" in
+    0.19.1) example=examples/bevy_pbr; ext=wgsl ;;
+    0.20.1) example=examples/bevy-0.20; ext=wesl ;;
+    *) echo "scripts/bevy.sh: no declaration for Bevy $version (0.19.1 or 0.20.1)" >&2; exit 2 ;;
+esac
 tree="target/bevy-$version"
-fetch="target/bevy-fetch"
+fetch="target/bevy-fetch-$version"
 mkdir -p "$fetch"
 rm -rf "$tree"
 mkdir -p "$tree"
@@ -46,18 +54,18 @@ for p in json.load(sys.stdin)["packages"]:
         print(p["name"], p["manifest_path"].rsplit("/", 1)[0])
 ' "$version" |
     while read -r crate unpacked; do
-        (cd "$unpacked" && find src -name '*.wgsl' -print0) |
+        (cd "$unpacked" && find src -name "*.$ext" -print0) |
             while IFS= read -r -d '' f; do
                 mkdir -p "$tree/$crate/$(dirname "$f")"
                 cp "$unpacked/$f" "$tree/$crate/$f"
             done
     done
-cp examples/bevy_pbr/wgsl-variants.toml "$tree/"
-echo "== $(find "$tree" -name '*.wgsl' | wc -l) WGSL files in $tree"
+cp "$example/wgsl-variants.toml" "$tree/"
+echo "== $(find "$tree" -name "*.$ext" | wc -l) .$ext files in $tree"
 # WGSL_VARIANTS_BIN: a binary already built (CI passes the test build's, see .ci/run).
 bin="${WGSL_VARIANTS_BIN:-}"
 if [ -z "$bin" ]; then
-    cargo build --release -q -p wgsl-variants-cli
+    cargo build --release --ignore-rust-version -q -p wgsl-variants-cli
     bin=target/release/wgsl-variants
 fi
 "$bin" --root "$tree" list
@@ -67,16 +75,16 @@ args=("$@")
 if [ ${#args[@]} -eq 0 ]; then args=(--cover 2); fi
 start=$(date +%s%N)
 status=0
-"$bin" --root "$tree" --color never validate "${args[@]}" --no-cache > target/bevy-validate.txt || status=$?
+"$bin" --root "$tree" --color never validate "${args[@]}" --no-cache > "target/bevy-validate-$version.txt" || status=$?
 end=$(date +%s%N)
-cat target/bevy-validate.txt
+cat "target/bevy-validate-$version.txt"
 echo "== validate ${args[*]}: $(( (end - start) / 1000000 )) ms (exit $status: 1 means some variants failed)"
 if $check; then
     # The summary lines (built, distinct, valid, invalid per pass and in total) are
     # deterministic: any change is a change in this tool or in the declaration.
-    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:)' target/bevy-validate.txt > target/bevy-summary.txt
-    diff -u examples/bevy_pbr/expected.txt target/bevy-summary.txt
-    echo "== the figures match examples/bevy_pbr/expected.txt"
+    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:)' "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    diff -u "$example/expected.txt" "target/bevy-summary-$version.txt"
+    echo "== the figures match $example/expected.txt"
     exit 0
 fi
 exit "$status"

@@ -29,7 +29,7 @@ export NODEVICE_SELECT=1
 
 # Every crate of the workspace (library, command line, GPU harness). --nocapture: the GPU tests
 # print how much they compared.
-cargo test --release --workspace -- --nocapture
+cargo test --release --ignore-rust-version --workspace -- --nocapture
 
 # The examples (README "Using the shaders in your renderer"): a wgpu program that builds its
 # layouts from reflection and writes a PNG, and a crate whose build.rs bakes the library. The
@@ -39,4 +39,4 @@ cargo test --release --workspace -- --nocapture
 echo "== example: render_variant"
 target/release/examples/render_variant target/render_variant.png
 echo "== example crate: examples/baked"
-CARGO_TARGET_DIR="$PWD/target" cargo run --release --manifest-path examples/baked/Cargo.toml
+CARGO_TARGET_DIR="$PWD/target" cargo run --release --ignore-rust-version --manifest-path examples/baked/Cargo.toml

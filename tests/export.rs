@@ -423,23 +423,22 @@ fn wesl_compile(
     pass: &wgsl_variants::Pass,
     on: &[&str],
 ) -> Result<String, String> {
-    let mut resolver = wesl::VirtualResolver::new();
+    let mut resolver = wesl::resolver::VirtualResolver::new();
     for m in p.modules.iter().chain([&p.root]) {
         resolver.add_module(
             m.module_path.parse().map_err(|e| format!("{e:?}"))?,
             std::borrow::Cow::Owned(m.source.clone()),
         );
     }
-    let mut compiler = wesl::Wesl::new("").set_custom_resolver(resolver);
+    let mut options = wesl::CompileOptions::default();
     for f in &p.features {
-        compiler.set_feature(f, true);
+        options.features.set(f, true);
     }
     for k in pass.keywords() {
-        compiler.set_feature(k, on.contains(&k));
+        options.features.set(k, on.contains(&k));
     }
     let root = p.root.module_path.parse().map_err(|e| format!("{e:?}"))?;
-    compiler
-        .compile(&root)
+    wesl::compile(&root, &options, &resolver)
         .map(|r| r.to_string())
         .map_err(|e| e.to_string())
 }

@@ -30,7 +30,7 @@ fn declaration_file_declares_the_passes() {
 /// The program the `wesl` crate itself compiles from the fixture's files for these features
 /// (its own resolver over the files; the host's numbers in the `constants` package).
 fn direct(on: &[&str]) -> String {
-    let mut resolver = wesl::VirtualResolver::new();
+    let mut resolver = wesl::resolver::VirtualResolver::new();
     for (path, file) in [
         ("package::lit", "lit.wesl"),
         ("package::common::lighting", "common/lighting.wesl"),
@@ -40,14 +40,13 @@ fn direct(on: &[&str]) -> String {
     }
     resolver.add_module(
         "constants".parse().unwrap(),
-        "const MAX_LIGHTS = 4u;\n".into(),
+        "public const MAX_LIGHTS = 4u;\n".into(),
     );
-    let mut compiler = wesl::Wesl::new("").set_custom_resolver(resolver);
+    let mut options = wesl::CompileOptions::default();
     for f in ["SKINNED", "FOG", "NORMAL_MAP", "VERTEX_COLORS"] {
-        compiler.set_feature(f, on.contains(&f));
+        options.features.set(f, on.contains(&f));
     }
-    compiler
-        .compile(&"package::lit".parse().unwrap())
+    wesl::compile(&"package::lit".parse().unwrap(), &options, &resolver)
         .unwrap()
         .to_string()
 }

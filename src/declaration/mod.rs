@@ -17,6 +17,12 @@
 //! MAX_LIGHTS = { uint = 4 }        # naga_oil's ShaderDefValue::UInt
 //! TONEMAP = true                   # Bool; a plain integer is Int
 //!
+//! [packages]                       # WESL trees of several packages: name = folder
+//! bevy_render = "bevy_render/src"  # `bevy_render::maths` is `bevy_render/src/maths.wesl`
+//!
+//! [wesl]                           # `wesl`'s compile options (WESL trees only)
+//! visibility = false               # as Bevy 0.20 composes (default: true, wesl's default)
+//!
 //! [[shader]]
 //! name = "pbr"
 //! entry = "render/pbr.wgsl"        # the module composed for each variant
@@ -80,8 +86,33 @@ pub(crate) struct Declaration {
     /// Paths (files or folders, relative to the root) left out of the tree, with where each
     /// is written.
     pub exclude: Vec<(String, Span)>,
+    /// WESL packages: each name with its folder (relative to the root, no trailing `/`).
+    pub packages: Vec<(String, String)>,
+    /// How `wesl` composes the tree (`[wesl]`).
+    pub wesl: WeslSettings,
     /// The shaders, in file order.
     pub shaders: Vec<ShaderSpec>,
+}
+
+/// The `[wesl]` table: the options of `wesl`'s compiler a tree sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct WeslSettings {
+    /// WESL's visibility rules (`public`, `package`, `private`): on by default, as `wesl`
+    /// compiles; Bevy 0.20 composes with them off (`bevy_shader` `ShaderCache::get`), so its
+    /// modules import each other's items without `public`.
+    pub visibility: bool,
+}
+
+impl Default for WeslSettings {
+    fn default() -> Self {
+        WeslSettings { visibility: true }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WeslToml {
+    visibility: Option<bool>,
 }
 
 /// The declaration file is malformed: TOML syntax or types, an unknown dialect, a constant out
@@ -108,6 +139,9 @@ struct FileToml {
     dialect: Option<Spanned<String>>,
     #[serde(default)]
     exclude: Vec<Spanned<String>>,
+    #[serde(default)]
+    packages: BTreeMap<Spanned<String>, Spanned<String>>,
+    wesl: Option<Spanned<WeslToml>>,
     #[serde(default)]
     constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
     #[serde(default, rename = "shader")]
@@ -178,7 +212,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
     let at = |range: std::ops::Range<usize>| Span::new(file, range);
     let parsed: FileToml = toml::from_str(text).map_err(|e| {
         vec![DeclarationError {
-            message: e.message().to_string(),
+            message: toml_message(e.message()),
             span: at(e.span().unwrap_or(0..text.len().min(1))),
         }]
     })?;
@@ -222,6 +256,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
                         merged.push(c);
                     }
                     let mut decl = pass_decl(p, at, &mut errors);
+                    shadowed_keywords(&decl, &merged, &mut errors);
                     decl.constants = merged;
                     decl
                 })
@@ -243,15 +278,80 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             });
         }
     }
+    let packages = packages(&parsed.packages, dialect, at, &mut errors);
+    let mut wesl = WeslSettings::default();
+    if let Some(table) = &parsed.wesl {
+        if dialect != crate::preprocess::Dialect::Wesl {
+            errors.push(DeclarationError {
+                message: "`[wesl]` sets how `wesl` composes a WESL tree: this tree is not WESL (`dialect = \"wesl\"`)".into(),
+                span: at(table.span()),
+            });
+        }
+        if let Some(v) = table.get_ref().visibility {
+            wesl.visibility = v;
+        }
+    }
     if errors.is_empty() {
         Ok(Declaration {
             dialect,
             exclude,
+            packages,
+            wesl,
             shaders,
         })
     } else {
         Err(errors)
     }
+}
+
+/// The `[packages]` table: WESL only; each name a WESL package name (not one WESL reserves),
+/// each folder a path of the tree.
+fn packages(
+    table: &BTreeMap<Spanned<String>, Spanned<String>>,
+    dialect: crate::preprocess::Dialect,
+    at: impl Fn(std::ops::Range<usize>) -> Span,
+    errors: &mut Vec<DeclarationError>,
+) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    for (name, folder) in table {
+        if dialect != crate::preprocess::Dialect::Wesl {
+            errors.push(DeclarationError {
+                message: "`[packages]` maps WESL package names to folders: this tree is not WESL (`dialect = \"wesl\"`)".into(),
+                span: at(name.span()),
+            });
+            return Vec::new();
+        }
+        let n = name.get_ref();
+        let identifier = n
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_alphabetic() || c == '_')
+            && n.chars().all(|c| c.is_alphanumeric() || c == '_');
+        if !identifier || ["package", "self", "super", "constants"].contains(&n.as_str()) {
+            errors.push(DeclarationError {
+                message: format!(
+                    "package name `{n}`: a package is named by an identifier other than `package`, `self`, `super` and `constants` (which WESL reserves)"
+                ),
+                span: at(name.span()),
+            });
+        }
+        let f = folder.get_ref();
+        let why = if f.trim_matches('/').is_empty() {
+            Some("is the root (the root is the tree's own package, `package::`)")
+        } else {
+            not_a_tree_path(f)
+        };
+        if let Some(why) = why {
+            errors.push(DeclarationError {
+                message: format!(
+                    "package folder `{f}` {why}: a package is a folder of the tree, relative to the root"
+                ),
+                span: at(folder.span()),
+            });
+        }
+        out.push((n.clone(), f.trim_matches('/').to_string()));
+    }
+    out
 }
 
 /// Why `path` cannot name a file or folder of the tree, if it cannot: empty, a pattern, or a
@@ -299,6 +399,40 @@ fn constants(
         }
     }
     out
+}
+
+/// The TOML parser's message, with serde's words for a value of the wrong type ("did not match
+/// any variant of untagged enum …") replaced by what the value may be.
+fn toml_message(message: &str) -> String {
+    if message.contains("untagged enum ValueToml") {
+        "a constant's value is `true` or `false` (Bool), an integer (Int, i32) or `{ uint = N }` (UInt, u32)".into()
+    } else if message.contains("untagged enum ValuesToml") {
+        "a valued set's values are a list of integers (`[4, 8]`, Int) or `{ uint = [1, 2] }` (UInt), or `[true, false]`".into()
+    } else {
+        message.to_string()
+    }
+}
+
+/// A keyword whose def is also a constant of its pass: the constant would set the def in every
+/// variant, whichever option the variant has, so the keyword would change nothing.
+fn shadowed_keywords(decl: &PassDecl, constants: &[Constant], errors: &mut Vec<DeclarationError>) {
+    for pragma in &decl.pragmas {
+        let Pragma::Keywords { names, .. } = pragma else {
+            continue;
+        };
+        for (name, span) in names {
+            let def = def_of(name).0;
+            if constants.iter().any(|c| c.name == def) {
+                errors.push(DeclarationError {
+                    message: format!(
+                        "`{def}` is both a keyword of pass `{}` and a constant: the constant would set it in every variant, so the keyword would change nothing (remove one of them)",
+                        decl.name
+                    ),
+                    span: *span,
+                });
+            }
+        }
+    }
 }
 
 /// Whether `name` can be a keyword: a def name (letters, digits and `_`, not starting with a
@@ -489,6 +623,31 @@ constants = { B = false }
                 }
             ]
         );
+    }
+
+    #[test]
+    fn a_wrongly_typed_value_says_what_a_value_may_be() {
+        let e = parse(0, "[constants]\nN = \"four\"\n").unwrap_err();
+        assert!(
+            e[0].message
+                .contains("`true` or `false` (Bool), an integer (Int, i32) or `{ uint = N }`"),
+            "{}",
+            e[0].message
+        );
+        assert!(!e[0].message.contains("untagged"), "{}", e[0].message);
+    }
+
+    #[test]
+    fn a_keyword_that_is_also_a_constant_is_refused() {
+        let text = "[constants]\nFOG = true\n[[shader]]\nname = \"s\"\nentry = \"m.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"FOG\"]]\n";
+        let e = parse(0, text).unwrap_err();
+        assert!(
+            e[0].message
+                .contains("`FOG` is both a keyword of pass `P` and a constant"),
+            "{}",
+            e[0].message
+        );
+        assert_eq!(&text[e[0].span.range()], "\"FOG\"");
     }
 
     #[test]

@@ -102,9 +102,11 @@ impl LinkError {
     pub fn diagnostic(&self) -> Diagnostic {
         let d = Diagnostic::new(self.to_string());
         match self {
-            LinkError::MissingImport { span, path, .. } => d.at(*span, "imported here").note(
-                if path.starts_with("package::") {
-                    "WESL imports name a module by its path in the package (`package::a::b` is the file `a/b.wesl`), then optionally its items"
+            LinkError::MissingImport {
+                span, path, reason, ..
+            } => d.at(*span, "imported here").note(
+                if path.starts_with("package::") || reason.contains("package") {
+                    "WESL imports name a module by its package and its path in the package (`package::a::b` is the file `a/b.wesl` of the importing module's package; `bevy_render::maths` is `maths.wesl` in the folder `[packages]` maps `bevy_render` to), then optionally its items"
                 } else if path.contains("::") {
                     "naga_oil imports name a module's `#define_import_path`, then optionally its items"
                 } else {

@@ -43,6 +43,8 @@ impl Default for LoadOptions {
 pub(crate) struct Loaded {
     /// The dialect the modules are written in.
     pub dialect: Dialect,
+    /// How `wesl` composes a WESL tree.
+    pub wesl: crate::declaration::WeslSettings,
     /// What loads but is probably not meant (declared keywords no module reads).
     pub warnings: Vec<crate::diagnostic::Diagnostic>,
     pub files: SourceFiles,
@@ -65,9 +67,15 @@ pub(crate) fn load(
     let resolved = resolve_paths(&modules, &paths, escaping, &mut problems);
     if problems.is_empty() {
         problems.extend(
-            check_graph(&modules, &paths, &resolved, options.max_import_depth)
-                .into_iter()
-                .map(Into::into),
+            check_graph(
+                &modules,
+                &paths,
+                &resolved,
+                options.max_import_depth,
+                Cycles::Refused,
+            )
+            .into_iter()
+            .map(Into::into),
         );
     }
     let decls = modules
@@ -101,9 +109,9 @@ pub(crate) fn load_declared(
     // The declaration's file id comes after the modules'; its `exclude` list decides how many
     // modules there are, so it is parsed once for the list and again with its final id.
     let text = String::from_utf8_lossy(&declaration.bytes).into_owned();
-    let (exclude, dialect) = crate::declaration::parse(raw.len(), &text)
-        .map(|d| (d.exclude, d.dialect))
-        .unwrap_or((Vec::new(), Dialect::NagaOil));
+    let (exclude, dialect, packages) = crate::declaration::parse(raw.len(), &text)
+        .map(|d| (d.exclude, d.dialect, d.packages))
+        .unwrap_or((Vec::new(), Dialect::NagaOil, Vec::new()));
     let excludes = |path: &str, e: &str| {
         path == e || path.starts_with(&format!("{}/", e.trim_end_matches('/')))
     };
@@ -136,7 +144,7 @@ pub(crate) fn load_declared(
         .collect();
     let (mut files, paths, mut modules) = parse_all(raw, dialect, options)?;
     if dialect == Dialect::Wesl {
-        wesl_module_paths(&mut modules, &paths);
+        wesl_module_paths(&mut modules, &paths, &packages);
     }
     let (ids, errors) = source::decode(vec![declaration], &mut files);
     if let Some(e) = errors.into_iter().next() {
@@ -155,6 +163,7 @@ pub(crate) fn load_declared(
         }
     };
     let mut problems = Vec::new();
+    let decl_wesl = decl.wesl;
     // Each shader's entry module, and each pass's own where it names one.
     let mut decl = decl;
     let mut entries = Vec::new();
@@ -218,20 +227,34 @@ pub(crate) fn load_declared(
         .collect();
     let names = import_names(&modules);
     for module in &mut modules {
-        inline_imports(module, files.text(module.file), &names);
+        inline_imports(module, files.text(module.file), &names, dialect);
     }
     let resolved = resolve_names(&modules, &names, &roots, dialect, &mut problems);
     if problems.is_empty() {
+        let cycles = if dialect == Dialect::Wesl {
+            Cycles::Allowed
+        } else {
+            Cycles::Refused
+        };
         problems.extend(
-            check_graph(&modules, &paths, &resolved, options.max_import_depth)
-                .into_iter()
-                .map(Into::into),
+            check_graph(
+                &modules,
+                &paths,
+                &resolved,
+                options.max_import_depth,
+                cycles,
+            )
+            .into_iter()
+            .map(Into::into),
         );
     }
     if !problems.is_empty() {
         return Err(LoadError { files, problems });
     }
-    let mut warnings = unread_keywords(&decl, &modules, &resolved, &files);
+    let mut warnings = unread_keywords(&decl, &modules, &resolved, &files, &mut problems);
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
+    }
     for (path, span) in decl.exclude.iter().filter(|(e, _)| unmatched.contains(e)) {
         warnings.push(
             crate::diagnostic::Diagnostic::new(format!(
@@ -267,17 +290,21 @@ pub(crate) fn load_declared(
     let mut loaded = assemble(files, paths, modules, resolved, decls, problems)?;
     loaded.warnings = warnings;
     loaded.dialect = dialect;
+    loaded.wesl = decl_wesl;
     Ok(loaded)
 }
 
-/// One warning per pass whose declared keywords include defs that no module its entry reaches
-/// mentions (in a directive or a substitution): they change no variant, so they are probably a
-/// typo or meant for another tree.
+/// Declared keywords that no module a pass's entry reaches mentions (in a directive or a
+/// substitution): they change no variant. One whose def is within two edits of a name the
+/// modules' conditions read (and the pass does not declare) is a typo: an error naming the
+/// name read (`problems`). The rest are one warning per pass, every such keyword labelled:
+/// probably a def of another tree, or a marker.
 fn unread_keywords(
     decl: &crate::declaration::Declaration,
     modules: &[ParsedModule],
     resolved: &[Vec<usize>],
     files: &SourceFiles,
+    problems: &mut Vec<LoadProblem>,
 ) -> Vec<crate::diagnostic::Diagnostic> {
     let mut warnings = Vec::new();
     for shader in &decl.shaders {
@@ -296,7 +323,7 @@ fn unread_keywords(
                     })
                 })
             };
-            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
+            let declared: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
                 .pragmas
                 .iter()
                 .filter_map(|p| match p {
@@ -304,26 +331,85 @@ fn unread_keywords(
                     _ => None,
                 })
                 .flatten()
+                .collect();
+            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = declared
+                .iter()
+                .copied()
                 .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
                 .collect();
-            if let Some((_, first)) = unread.first() {
-                let list: Vec<&str> = unread.iter().map(|(k, _)| &**k).collect();
-                warnings.push(
-                    crate::diagnostic::Diagnostic::new(format!(
-                        "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
-                        list.len(),
-                        shader.name,
-                        pass.name,
-                        list.join(", ")
-                    ))
-                    .warning()
-                    .at(*first, "never read")
-                    .note("they change no variant: a typo, or a def of another tree? (the audit lists them as dead)"),
-                );
+            if unread.is_empty() {
+                continue;
             }
+            // Names the conditions read that the pass neither declares nor sets.
+            let mut read = std::collections::BTreeSet::new();
+            for &m in &reached {
+                condition_names(&modules[m].body, &mut read);
+            }
+            for (k, _) in &declared {
+                read.remove(crate::declaration::def_of(k).0);
+            }
+            for c in &pass.constants {
+                read.remove(c.name.as_str());
+            }
+            let mut rest = Vec::new();
+            for &(k, span) in &unread {
+                let def = crate::declaration::def_of(k).0;
+                let typo = read
+                    .iter()
+                    .map(|r| (strsim::levenshtein(def, r), r))
+                    .filter(|(d, _)| *d <= 2)
+                    .min();
+                match typo {
+                    Some((_, name)) => problems.push(
+                        crate::declaration::DeclarationError {
+                            message: format!(
+                                "keyword `{k}` of `{}/{}` is read by none of the modules it composes, which read `{name}`: a typo?",
+                                shader.name, pass.name
+                            ),
+                            span: *span,
+                        }
+                        .into(),
+                    ),
+                    None => rest.push((k, span)),
+                }
+            }
+            let Some((_, first)) = rest.first() else {
+                continue;
+            };
+            let list: Vec<&str> = rest.iter().map(|(k, _)| &***k).collect();
+            let mut warning = crate::diagnostic::Diagnostic::new(format!(
+                "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
+                list.len(),
+                shader.name,
+                pass.name,
+                list.join(", ")
+            ))
+            .warning()
+            .at(**first, "never read");
+            for (_, span) in &rest[1..] {
+                warning = warning.also(**span, "never read");
+            }
+            warnings.push(warning.note(
+                "they change no variant: a typo, or a def of another tree? (the audit lists them as dead)",
+            ));
         }
     }
     warnings
+}
+
+/// Adds every name the conditions of `nodes` read (`#ifdef X`, `#if X > 1`, `@if(X)`).
+fn condition_names(nodes: &[Node], out: &mut std::collections::BTreeSet<String>) {
+    for node in nodes {
+        if let Node::If(cond) = node {
+            for (e, body) in &cond.branches {
+                e.visit_names(&mut |n| {
+                    out.insert(n.to_string());
+                });
+                condition_names(body, out);
+            }
+            condition_names(&cond.otherwise, out);
+        }
+    }
 }
 
 /// The loaded library: its shaders built from `decls` (each with its file and the module its
@@ -346,6 +432,7 @@ fn assemble(
     }
     Ok(Loaded {
         dialect: Dialect::WgslVariants,
+        wesl: Default::default(),
         warnings: Vec::new(),
         files,
         modules,
@@ -462,30 +549,57 @@ fn extension(dialect: Dialect) -> &'static str {
     }
 }
 
-/// WESL: a module's name is its path in the package (`a/b.wesl` is `package::a::b`), and
-/// `self::` / `super::` in its imports are relative to that name (each `super` drops one
-/// component, as `wesl` joins relative paths).
-fn wesl_module_paths(modules: &mut [ParsedModule], paths: &[String]) {
+/// WESL: a module's name is its package and its path in the package: `a/b.wesl` is
+/// `package::a::b`, and in a tree whose declaration maps the package `bevy_render` to the
+/// folder `bevy_render/src`, `bevy_render/src/maths.wesl` is `bevy_render::maths`. Its
+/// imports are made absolute ([`wesl_absolute`]).
+fn wesl_module_paths(
+    modules: &mut [ParsedModule],
+    paths: &[String],
+    packages: &[(String, String)],
+) {
     for (m, path) in modules.iter_mut().zip(paths) {
-        let name = format!("package::{}", path.replace('/', "::"));
+        // The deepest package folder holding the file.
+        let package = packages
+            .iter()
+            .filter_map(|(name, folder)| {
+                let rest = path.strip_prefix(folder.as_str())?.strip_prefix('/')?;
+                Some((folder.len(), name.as_str(), rest))
+            })
+            .max_by_key(|(len, _, _)| *len);
+        let name = match package {
+            Some((_, package, rest)) => format!("{package}::{}", rest.replace('/', "::")),
+            None => format!("package::{}", path.replace('/', "::")),
+        };
         for import in &mut m.imports {
-            let mut rest = import.path.as_str();
-            let mut base: Vec<&str> = name.split("::").collect();
-            let relative = rest.starts_with("super::") || rest.starts_with("self::");
-            rest = rest.strip_prefix("self::").unwrap_or(rest);
-            while let Some(r) = rest.strip_prefix("super::") {
-                // `package` itself has no parent: such a path names nothing.
-                if base.len() > 1 {
-                    base.pop();
-                }
-                rest = r;
-            }
-            if relative {
-                import.path = format!("{}::{rest}", base.join("::"));
-            }
+            import.path = wesl_absolute(&name, &import.path);
         }
         m.import_name = Some((name, crate::diagnostic::Span::new(m.file, 0..0)));
     }
+}
+
+/// A WESL path as written in the module named `module`, made absolute: `package::x` names
+/// the module's own package, `self::` / `super::` are relative to the module's name (each
+/// `super` drops one component, as `wesl` joins relative paths); other packages' paths are
+/// already absolute.
+fn wesl_absolute(module: &str, path: &str) -> String {
+    let mut base: Vec<&str> = module.split("::").collect();
+    if let Some(rest) = path.strip_prefix("package::") {
+        return format!("{}::{rest}", base[0]);
+    }
+    let relative = path.starts_with("super::") || path.starts_with("self::");
+    if !relative {
+        return path.to_string();
+    }
+    let mut rest = path.strip_prefix("self::").unwrap_or(path);
+    while let Some(r) = rest.strip_prefix("super::") {
+        // A package itself has no parent: such a path names nothing.
+        if base.len() > 1 {
+            base.pop();
+        }
+        rest = r;
+    }
+    format!("{}::{rest}", base.join("::"))
 }
 
 /// naga_oil: the modules each `#define_import_path` name belongs to (more than one is an
@@ -559,12 +673,22 @@ fn resolve_names(
                         .map(|s| format!("; did you mean `{s}`?"))
                         .unwrap_or_default();
                     let reason = match dialect {
-                        Dialect::Wesl if import.path.starts_with("package::") => format!(
-                            "no module of the tree is this path or a prefix of it (`package::a::b` is the file `a/b.wesl` or `a/b.wgsl`){hint}"
+                        Dialect::Wesl if names.keys().any(|n| n.split("::").next() == import.path.split("::").next()) => format!(
+                            "no module of its package is this path or a prefix of it (`package::a::b` is the file `a/b.wesl` or `a/b.wgsl` of the module's package){hint}"
                         ),
-                        Dialect::Wesl => format!(
-                            "only `package::` and `super::` paths name modules of the tree (other packages are not read){hint}"
-                        ),
+                        Dialect::Wesl => {
+                            // A misspelt package: the closest declared package name.
+                            let (head, rest) =
+                                import.path.split_once("::").unwrap_or((&import.path, ""));
+                            let packages: std::collections::BTreeSet<&str> =
+                                names.keys().filter_map(|n| n.split("::").next()).collect();
+                            let hint = suggest(head, packages)
+                                .map(|p| format!("; did you mean `{p}::{rest}`?"))
+                                .unwrap_or(hint);
+                            format!(
+                                "no package of this name is declared (the declaration file's `[packages]` maps each package name to a folder of the tree){hint}"
+                            )
+                        }
                         _ => format!(
                             "no module of the tree has this `#define_import_path` or a prefix of it{hint}"
                         ),
@@ -593,16 +717,37 @@ fn resolve_names(
 /// naga_oil: items used by their full path (`my_lib::lighting::shade(…)`) import their module
 /// without an `#import` line; each such use becomes an import before its run of lines, under
 /// the same conditions, so the import graph and the audit see it.
-fn inline_imports(module: &mut ParsedModule, text: &str, names: &HashMap<String, Vec<usize>>) {
+fn inline_imports(
+    module: &mut ParsedModule,
+    text: &str,
+    names: &HashMap<String, Vec<usize>>,
+    dialect: Dialect,
+) {
     let ParsedModule {
         file,
         body,
         lines,
         comment_only,
         imports,
+        import_name,
         ..
     } = module;
-    add_inline(body, (*file, text), (lines, comment_only), imports, names);
+    // WESL paths are relative to the module (`package::`, `super::`).
+    let own = import_name
+        .as_ref()
+        .filter(|_| dialect == Dialect::Wesl)
+        .map(|(n, _)| n.as_str());
+    let absolute = |path: &str| own.map_or_else(|| path.to_string(), |m| wesl_absolute(m, path));
+    add_inline(
+        body,
+        (*file, text),
+        (lines, comment_only),
+        imports,
+        &|path| {
+            let path = absolute(path);
+            module_of(&path, names).map(|m| (m[0], path))
+        },
+    );
 }
 
 fn add_inline(
@@ -610,7 +755,7 @@ fn add_inline(
     (file, text): (crate::diagnostic::FileId, &str),
     (lines, comment_only): (&[std::ops::Range<u32>], &[bool]),
     imports: &mut Vec<ImportRef>,
-    names: &HashMap<String, Vec<usize>>,
+    module_of: &dyn Fn(&str) -> Option<(usize, String)>,
 ) {
     let mut out = Vec::with_capacity(nodes.len());
     for mut node in std::mem::take(nodes) {
@@ -631,13 +776,13 @@ fn add_inline(
                         .next()
                         .unwrap_or("");
                     for (at, path) in qualified_paths(code) {
-                        if let Some(m) = module_of(path, names)
-                            && !seen.contains(&m[0])
+                        if let Some((m, full)) = module_of(path)
+                            && !seen.contains(&m)
                         {
-                            seen.push(m[0]);
+                            seen.push(m);
                             out.push(Node::Import(imports.len()));
                             imports.push(ImportRef {
-                                path: path.to_string(),
+                                path: full,
                                 span: crate::diagnostic::Span::new(
                                     file,
                                     start + at..start + at + path.len(),
@@ -649,14 +794,20 @@ fn add_inline(
             }
             Node::If(cond) => {
                 for (_, branch) in &mut cond.branches {
-                    add_inline(branch, (file, text), (lines, comment_only), imports, names);
+                    add_inline(
+                        branch,
+                        (file, text),
+                        (lines, comment_only),
+                        imports,
+                        module_of,
+                    );
                 }
                 add_inline(
                     &mut cond.otherwise,
                     (file, text),
                     (lines, comment_only),
                     imports,
-                    names,
+                    module_of,
                 );
             }
             _ => {}
@@ -700,13 +851,22 @@ fn qualified_paths(line: &str) -> Vec<(usize, &str)> {
     out
 }
 
-/// Finds import cycles and chains deeper than `limit`, without recursion (trees can hold
-/// thousands of modules).
+/// Whether modules may import each other in a circle: WESL's may, this crate's dialect's and
+/// naga_oil's may not.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Cycles {
+    Allowed,
+    Refused,
+}
+
+/// Finds import cycles (where `cycles` refuses them) and chains deeper than `limit`, without
+/// recursion (trees can hold thousands of modules).
 fn check_graph(
     modules: &[ParsedModule],
     paths: &[String],
     resolved: &[Vec<usize>],
     limit: usize,
+    cycles: Cycles,
 ) -> Vec<LinkError> {
     #[derive(Clone, Copy, PartialEq)]
     enum State {
@@ -732,6 +892,10 @@ fn check_graph(
                         state[t] = State::Open;
                         stack.push((t, 0));
                     }
+                    // WESL modules may import each other (only declarations may not depend on
+                    // themselves, which `wesl` checks); every walk of the graph includes a
+                    // module once, so a cycle ends there.
+                    State::Open if cycles == Cycles::Allowed => {}
                     State::Open => {
                         let from = stack.iter().position(|&(s, _)| s == t).unwrap_or(0);
                         let mut cycle: Vec<(String, _)> = stack[from..]

@@ -275,7 +275,7 @@ impl Library {
                     .flat_map(|s| s.passes.iter().map(|p| p.module)),
             )),
             #[cfg(feature = "wesl")]
-            crate::preprocess::Dialect::Wesl => Box::new(wesl::WeslEngine::new(&l.modules)),
+            crate::preprocess::Dialect::Wesl => Box::new(wesl::WeslEngine::new(&l.modules, l.wesl)),
             #[allow(unreachable_patterns)]
             other => Box::new(engine::Unavailable(other)),
         };

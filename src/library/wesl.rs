@@ -1,28 +1,35 @@
-//! Composing variants of a WESL tree with the `wesl` crate itself (0.4, the `wesl` cargo
-//! feature): the program a WESL user's build gets for the same features, so what we validate
-//! and emit is what they run. Errors are located in the user's files.
+//! Composing variants of a WESL tree with the `wesl` crate itself (0.6, what Bevy 0.20
+//! composes with; the `wesl` cargo feature): the program a WESL user's build gets for the same
+//! features, so what we validate and emit is what they run. Errors are located in the user's
+//! files.
 //!
-//! Facts about `wesl` 0.4 this relies on (from its sources and the WESL specification): a
-//! program is compiled from a root module path (`package::a::b`, the file `a/b.wesl`) with
-//! modules supplied by a `Resolver`; features are booleans (`set_feature`), a feature never
-//! set is off; numbers reach a program through the virtual `constants` package
-//! (`import constants::N;`); the output keeps only the declarations the entry points reach
-//! and renames the imported ones, and its source map names each renamed declaration's
-//! module and item; errors of its own stages (parsing, imports, conditions, its checks)
-//! carry the module and the byte span in that module's source.
+//! Facts about `wesl` 0.6 this relies on (from its sources and the WESL specification): a
+//! program is compiled from a root module path (`package::a::b`, the file `a/b.wesl` of the
+//! root package; `bevy_render::maths`, the module `maths` of the package `bevy_render`) with
+//! modules supplied by a `Resolver`; inside a named package `package::` means that package,
+//! and a package named from inside another comes to the resolver as `outer/inner`;
+//! features are booleans (`CompileOptions::features`), a feature never set is off; numbers
+//! reach a program through the virtual `constants` package (`import constants::N;` or
+//! `constants::N` inline); the output keeps only the declarations the entry points reach and
+//! renames the imported ones, and its source map names each renamed declaration's module and
+//! item; errors of its own stages (parsing, imports, conditions, its checks) carry the module
+//! and the byte span in that module's source.
 //!
 //! A variant's keywords are features (every other keyword of its pass off), `Bool`
 //! constants are features too, and every def (constants and valued keywords) is also a
-//! `const` of the `constants` package. The output is parsed and validated by naga; naga's
-//! spans point into the output, so each is traced to the output declaration it is in, that
-//! declaration to its module and item by the source map, and the spanned text is looked up
-//! in the item's original text (the item itself when the text was rewritten).
+//! `const` of the `constants` package and a feature that is on (as Bevy's shader cache sets
+//! them, `bevy_shader` 0.20 `ShaderCache::get`). The output is parsed and validated by naga;
+//! naga's spans point into the output, so each is traced to the output declaration it is in,
+//! that declaration to its module and item by the source map, and the spanned text is looked
+//! up in the item's original text (the item itself when the text was rewritten).
 
 use std::borrow::Cow;
 use std::collections::HashMap;
 
+use wesl::error::ResolveError;
+use wesl::sourcemap::{BasicSourceMap, SourceMap};
 use wesl::syntax::{ModulePath, PathOrigin};
-use wesl::{ResolveError, Resolver, SourceMap};
+use wesl::{CompileOptions, Resolver};
 use wgsl_parse::SyntaxNode;
 
 use crate::declaration::DefValue;
@@ -47,6 +54,8 @@ type NagaError = (
 pub(crate) struct WeslEngine {
     /// `package::a::b` → module id.
     by_name: HashMap<String, usize>,
+    /// The compile options the declaration file sets.
+    settings: crate::declaration::WeslSettings,
 }
 
 /// Supplies the tree's modules (and the variant's `constants` package) to the compiler.
@@ -59,22 +68,33 @@ struct TreeResolver<'a> {
 
 impl TreeResolver<'_> {
     fn module(&self, path: &ModulePath) -> Option<usize> {
-        match &path.origin {
-            PathOrigin::Absolute => {
-                let name = std::iter::once("package")
-                    .chain(path.components.iter().map(String::as_str))
-                    .collect::<Vec<_>>()
-                    .join("::");
-                self.by_name.get(&name).copied()
-            }
-            _ => None,
-        }
+        module_name(path).and_then(|name| self.by_name.get(&name).copied())
     }
+}
+
+/// The name the loader gives the module a path of the compiler names: `package::a::b` for
+/// the tree's own package, `bevy_render::maths` for a named package. A package imported
+/// from inside another comes as `bevy_pbr/bevy_render` (how `wesl` 0.6 joins two package
+/// paths): its last part is the package.
+fn module_name(path: &ModulePath) -> Option<String> {
+    let package = match &path.origin {
+        PathOrigin::Absolute => "package",
+        PathOrigin::Package(p) => p.rsplit('/').next().unwrap_or(p),
+        PathOrigin::Relative(_) => return None,
+    };
+    Some(
+        std::iter::once(package)
+            .chain(path.components.iter().map(String::as_str))
+            .collect::<Vec<_>>()
+            .join("::"),
+    )
 }
 
 impl Resolver for TreeResolver<'_> {
     fn resolve_source<'a>(&'a self, path: &ModulePath) -> Result<Cow<'a, str>, ResolveError> {
-        if matches!(&path.origin, PathOrigin::Package(p) if p == "constants") {
+        if path.components.is_empty()
+            && matches!(&path.origin, PathOrigin::Package(p) if p.rsplit('/').next() == Some("constants"))
+        {
             return Ok(Cow::Borrowed(self.constants.as_str()));
         }
         match self.module(path) {
@@ -90,17 +110,30 @@ impl Resolver for TreeResolver<'_> {
         self.module(path)
             .map(|m| self.files.path(self.modules[m].file).to_string())
     }
+
+    fn canonical_path(&self, path: &ModulePath) -> ModulePath {
+        match &path.origin {
+            PathOrigin::Package(p) if p.contains('/') => ModulePath {
+                origin: PathOrigin::Package(p.rsplit('/').next().unwrap_or(p).to_string()),
+                components: path.components.clone(),
+            },
+            _ => path.clone(),
+        }
+    }
 }
 
 impl WeslEngine {
     /// An engine for a loaded WESL tree (module names set by the loader).
-    pub(crate) fn new(modules: &[ParsedModule]) -> WeslEngine {
+    pub(crate) fn new(
+        modules: &[ParsedModule],
+        settings: crate::declaration::WeslSettings,
+    ) -> WeslEngine {
         let by_name = modules
             .iter()
             .enumerate()
             .filter_map(|(id, m)| m.import_name.as_ref().map(|(n, _)| (n.clone(), id)))
             .collect();
-        WeslEngine { by_name }
+        WeslEngine { by_name, settings }
     }
 
     /// The variant's program as the `wesl` crate compiles it, validated by naga.
@@ -113,7 +146,7 @@ impl WeslEngine {
         let defs = variant.pass.defs(variant.keywords());
         let mut constants = String::new();
         for (name, value) in &defs {
-            constants.push_str(&format!("const {name} = {value};\n"));
+            constants.push_str(&format!("public const {name} = {value};\n"));
         }
         let resolver = TreeResolver {
             files,
@@ -121,15 +154,22 @@ impl WeslEngine {
             by_name: &self.by_name,
             constants,
         };
-        let mut compiler = wesl::Wesl::new("").set_custom_resolver(resolver);
-        compiler.use_sourcemap(true);
+        // `wesl`'s defaults (imports, conditions, visibility, stripping, a source map) but for
+        // what the declaration sets; a feature never set is off.
+        let mut options = CompileOptions {
+            visibility: self.settings.visibility,
+            ..CompileOptions::default()
+        };
         for k in variant.pass.keywords() {
-            compiler.set_feature(crate::declaration::def_of(k).0, false);
+            options.features.set(crate::declaration::def_of(k).0, false);
         }
+        // A valued def is also a feature that is on, as Bevy's shader cache sets it.
         for (name, value) in &defs {
-            if let DefValue::Bool(on) = value {
-                compiler.set_feature(name, *on);
-            }
+            let on = match value {
+                DefValue::Bool(on) => *on,
+                _ => true,
+            };
+            options.features.set(name, on);
         }
         let root_name = modules[variant.pass.module]
             .import_name
@@ -139,10 +179,11 @@ impl WeslEngine {
             super::unlocated(variant, Stage::Compose, format!("module path: {e:?}"))
         })?;
         // The compiler may panic on input it does not expect: one variant's failure.
-        let compiled =
-            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| compiler.compile(&root)))
-                .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?
-                .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
+        let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            wesl::compile(&root, &options, &resolver)
+        }))
+        .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?
+        .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
         let compiled = canonical(compiled, &root);
         let text = compiled.to_string();
         let module = naga::front::wgsl::parse_str(&text).map_err(|e| {
@@ -189,7 +230,7 @@ impl WeslEngine {
         path: &ModulePath,
         modules: &[ParsedModule],
     ) -> Option<crate::diagnostic::FileId> {
-        let name = path.to_string();
+        let name = module_name(path)?;
         self.by_name.get(&name).map(|&m| modules[m].file)
     }
 
@@ -238,9 +279,25 @@ impl WeslEngine {
                 notes.push(format!("in declaration `{decl}`"));
             }
         }
+        // `wesl`'s own check of a name no declaration has names the declaration it is in but
+        // gives no span: point at the name in that declaration.
+        if labels.is_empty()
+            && let wesl::Error::ValidateError(wesl::error::ValidateError::UndefinedSymbol(name)) =
+                inner
+            && let Some(decl) = detail.and_then(|d| d.declaration.as_ref())
+            && let Some((file, range)) = modules.iter().find_map(|m| {
+                let text = files.text(m.file);
+                locate(text, decl, name)
+                    .filter(|r| text.get(r.clone()) == Some(name.as_str()))
+                    .map(|r| (m.file, r))
+            })
+        {
+            labels.push((Span::new(file, range), "not declared".into()));
+        }
         // An item a variant's conditions removed has no span of its own: point at the
         // imports that name it.
-        if let wesl::Error::ImportError(wesl::ImportError::MissingDecl(path, item)) = inner {
+        if let wesl::Error::UsageError(wesl::error::UsageError::NotFound(path, item)) = inner {
+            let path = module_name(path).unwrap_or_else(|| path.to_string());
             let full = format!("{path}::{item}");
             for m in modules {
                 for import in m.imports.iter().filter(|i| i.path == full) {
@@ -284,7 +341,10 @@ impl WeslEngine {
                     .iter()
                     .find(|d| d.span().range().contains(&range.start))?;
                 let name = decl.ident()?.name().to_string();
-                let (module, item) = match map.and_then(|m| m.get_decl(&name)) {
+                let (module, item) = match map
+                    .and_then(|m| m.item(&name))
+                    .map(|e| (&e.path, e.name.as_str()))
+                {
                     Some((path, item)) => (self.file_of(path, modules)?, item.to_string()),
                     None => (modules[variant.pass.module].file, name.clone()),
                 };
@@ -309,7 +369,7 @@ impl WeslEngine {
     }
 }
 
-/// The compiled program with its declarations in one order. `wesl` 0.4 appends each
+/// The compiled program with its declarations in one order. `wesl` appends each
 /// imported module's declarations in an order that follows hash-map iteration, so the same
 /// variant can come out in different orders from one run to the next; module-scope
 /// declarations of WGSL do not depend on their order, so they are put in a fixed one: the
@@ -320,12 +380,10 @@ fn canonical(mut compiled: wesl::CompileResult, root: &ModulePath) -> wesl::Comp
     let map = compiled.sourcemap.as_ref();
     let key = |decl: &wgsl_parse::syntax::GlobalDeclarationNode| -> (u8, String) {
         match decl.ident() {
-            Some(ident) => {
-                match map.and_then(|m| m.get_decl(&ident.name()).map(|(p, _)| p.clone())) {
-                    Some(path) if path != *root => (1, path.to_string()),
-                    _ => (0, String::new()),
-                }
-            }
+            Some(ident) => match map.and_then(|m| m.item(&ident.name()).map(|e| e.path.clone())) {
+                Some(path) if path != *root => (1, path.to_string()),
+                _ => (0, String::new()),
+            },
             None => (2, decl.to_string()),
         }
     };
@@ -370,12 +428,15 @@ fn whole_word(text: &str, word: &str) -> Option<usize> {
 }
 
 /// `text` with each renamed declaration written as `package::module::item`.
-fn unmangle(text: &str, map: &wesl::BasicSourceMap) -> String {
+fn unmangle(text: &str, map: &BasicSourceMap) -> String {
     let mut out = String::with_capacity(text.len());
     let mut word = String::new();
     let flush = |word: &mut String, out: &mut String| {
-        match map.get_decl(word) {
-            Some((path, item)) if item != word.as_str() => out.push_str(&format!("{path}::{item}")),
+        match map.item(word) {
+            Some(e) if e.name != word.as_str() => {
+                let path = module_name(&e.path).unwrap_or_else(|| e.path.to_string());
+                out.push_str(&format!("{path}::{}", e.name))
+            }
             _ => out.push_str(word),
         }
         word.clear();

@@ -1,5 +1,5 @@
 //! Build + validate of the bundled `standard/Deferred` pass's whole space (6144 variants):
-//! this crate vs the naga floor vs WESL (`wesl` 0.4.0) composing a hand-written WESL dialect
+//! this crate vs the naga floor vs WESL (`wesl` 0.6.0) composing a hand-written WESL dialect
 //! copy of the same module tree (`benches/wesl/wesl/`).
 //!
 //! From the repository root:
@@ -17,7 +17,7 @@
 //! Then the contestants build the same slices of the space in turn, round after round
 //! (`BENCH_ROUNDS`, default 5), on one thread, interleaved as in `benches/build.rs`:
 //! (a) the naga floor (parse + validate) of our final texts, (b) this crate's compose +
-//! validate, (c) WESL as `Wesl::new` sets it up (compile + `to_string`) + naga parse + validate,
+//! validate, (c) WESL as `Compiler::new` sets it up (compile + `to_string`) + naga parse + validate,
 //! (d) the naga floor of WESL's own outputs, (e) WESL tuned: no source map and no WESL-side
 //! validation (naga validates). Ratios are medians over rounds of the ratio within a round;
 //! they and the times are merged into `target/bench-summary.json` under `wesl_*` keys and
@@ -34,7 +34,8 @@ use std::time::Duration;
 use naga::valid::{ModuleInfo, Validator};
 use serde_json::json;
 use wesl::syntax::ModulePath;
-use wesl::{Resolver, VirtualResolver, Wesl};
+use wesl::resolver::VirtualResolver;
+use wesl::{Compiler, Resolver};
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space, Variant};
 
@@ -102,17 +103,22 @@ fn virtual_resolver() -> VirtualResolver<'static> {
 
 /// One variant's WESL features: the pass's define, and every keyword of the pass on or off
 /// (all of them set each time, since the compiler keeps the previous variant's flags).
-fn set_features<R: Resolver>(wesl: &mut Wesl<R>, define: &str, keywords: &[&str], on: &[&str]) {
-    wesl.set_feature(define, true);
+fn set_features<R: Resolver>(
+    wesl: &mut Compiler<R>,
+    define: &str,
+    keywords: &[&str],
+    on: &[&str],
+) {
+    wesl.options.features.set(define, true);
     for k in keywords {
-        wesl.set_feature(k, on.contains(k));
+        wesl.options.features.set(k, on.contains(k));
     }
 }
 
 /// WESL's build of some variants: compile, write WGSL, and naga parse + validate it (WESL
 /// does not validate fully; naga is what a wgpu renderer would run on the text).
 fn wesl_build<R: Resolver>(
-    wesl: &mut Wesl<R>,
+    wesl: &mut Compiler<R>,
     root: &ModulePath,
     keywords: &[&str],
     on: &[Vec<&str>],
@@ -120,7 +126,7 @@ fn wesl_build<R: Resolver>(
 ) {
     for variant in on {
         set_features(wesl, PASS_DEFINE, keywords, variant);
-        let text = wesl.compile(root).expect("WESL compiles").to_string();
+        let text = wesl.compile_module(root).expect("WESL compiles").to_string();
         let module = naga::front::wgsl::parse_str(&text).expect("parses");
         validator.validate(&module).expect("valid");
     }
@@ -285,7 +291,7 @@ struct Check {
     examples: Vec<String>,
 }
 
-/// Checks every variant of `pass` (`define` its `#define`): WESL, as [`Wesl::new`] sets it
+/// Checks every variant of `pass` (`define` its `#define`): WESL, as `Compiler::new` sets it
 /// up and tuned, must compile it, naga must validate the output, which must show a renderer
 /// what our text shows it. Returns the counts and WESL's output texts.
 fn check_pass(
@@ -307,13 +313,13 @@ fn check_pass(
         let variant = choice.keywords(pass);
         let label = format!("standard/{} {{{}}}", pass.name, variant.join(" "));
         set_features(&mut wesl, define, &keywords, &variant);
-        let text = match wesl.compile(root) {
+        let text = match wesl.compile_module(root) {
             Ok(out) => out.to_string(),
             Err(e) => panic!("{label}: WESL does not compile:\n{e}"),
         };
         set_features(&mut wesl_tuned, define, &keywords, &variant);
         let tuned = wesl_tuned
-            .compile(root)
+            .compile_module(root)
             .expect("tuned WESL compiles")
             .to_string();
         // The same declarations; their order may differ (WESL's module order is not fixed).
@@ -360,23 +366,20 @@ fn check_pass(
     (check, wesl_texts)
 }
 
-/// A WESL compiler over [`virtual_resolver`], as [`Wesl::new`] sets it up, or `tuned`: no
+/// A WESL compiler over [`virtual_resolver`], as `Compiler::new` sets it up, or `tuned`: no
 /// source map and no WESL-side validation, which only make WESL's own error messages better
 /// (naga validates the output anyway, in every contestant).
 ///
 /// Parsed modules cannot be kept between compiles: wgsl-parse's identifiers are shared
 /// (`Arc<RwLock<String>>`) and WESL's mangling renames them in place, so a cloned tree comes
 /// back renamed; every compile parses the modules again, as with any of WESL's resolvers.
-fn compiler(tuned: bool) -> Wesl<VirtualResolver<'static>> {
-    let mut wesl = Wesl::new("").set_custom_resolver(virtual_resolver());
+fn compiler(tuned: bool) -> Compiler<VirtualResolver<'static>> {
+    let mut options = wesl::CompileOptions::default();
     if tuned {
-        wesl.set_options(wesl::CompileOptions {
-            validate: false,
-            ..Default::default()
-        });
-        wesl.use_sourcemap(false);
+        options.validate = false;
+        options.sourcemap = false;
     }
-    wesl
+    Compiler::new(options).with_resolver(virtual_resolver())
 }
 
 /// Checks every variant, then times the contestants and writes the summary.
@@ -504,7 +507,7 @@ fn main() {
         ("(a) naga floor: parse + validate our final texts", floor),
         ("(b) wgsl-variants: compose + validate", ours),
         (
-            "(c) WESL (Wesl::new) compile + naga parse + validate",
+            "(c) WESL (Compiler::new) compile + naga parse + validate",
             wesl_t,
         ),
         ("(d) naga floor on WESL's own outputs", wesl_floor),
@@ -544,7 +547,7 @@ fn main() {
         "wesl_version": WESL_VERSION,
         "wesl_rounds": rounds,
         "wesl_variants": choices.len(),
-        "wesl_method": "1 thread; contestants interleaved slice by slice; ratios are medians of per-round ratios; WESL = Wesl::new + VirtualResolver built once, compile + to_string + naga parse + validate",
+        "wesl_method": "1 thread; contestants interleaved slice by slice; ratios are medians of per-round ratios; WESL = Compiler::new + VirtualResolver built once, compile + to_string + naga parse + validate",
         "wesl_check": check.json(),
         "wesl_check_forward_base": forward.json(),
         "wesl_ours_ms_per_variant": per(timing::median_of(ours)),

@@ -3,8 +3,8 @@
 //!
 //! The module is parsed by `wgsl-parse` (the parser of the `wesl` crate that composes WESL
 //! variants). Facts of WESL's conditional translation this follows (the WESL specification
-//! and `wesl` 0.4's `condcomp`): a condition decorates one syntax node of a list — an
-//! import, a directive, a global declaration, a struct member, a function parameter, a
+//! and `wesl` 0.6's `condcomp`): a condition decorates one syntax node of a list — an
+//! import, a directive, a global declaration (a block of declarations too, `@if(A) { … }`), a struct member, a function parameter, a
 //! statement, a switch clause, a `continuing` block or a `break if` — at most one condition
 //! per node; `@elif` and `@else` continue the chain of the node just before them; conditions
 //! are feature names, `true`, `false`, `!`, `&&`, `||` and parentheses, a feature being on
@@ -81,7 +81,7 @@ pub(super) fn parse(
         }
         Err(_) => {
             return Err(vec![ParseError::Syntax {
-                message: "the WESL parser (wgsl-parse 0.4) panicked on this file".into(),
+                message: "the WESL parser (wgsl-parse 0.6) panicked on this file".into(),
                 span: Span::new(file, 0..0),
             }]);
         }
@@ -175,24 +175,25 @@ impl Walker<'_> {
             at += 1;
             r
         }));
-        pieces.extend(
-            self.spanned_list(
-                &unit.global_declarations,
-                0,
-                &mut |w, decl, depth| match decl.node() {
-                    syn::GlobalDeclaration::Struct(s) => {
-                        w.spanned_list(&s.members, depth, &mut |_, _, _| Vec::new())
-                    }
-                    syn::GlobalDeclaration::Function(f) => {
-                        let mut inner = w.unspanned_list(&f.parameters, depth, Extent::Parameter);
-                        inner.extend(w.statements(&f.body.statements, depth));
-                        inner
-                    }
-                    _ => Vec::new(),
-                },
-            ),
-        );
+        pieces.extend(self.declarations(&unit.global_declarations, 0));
         pieces
+    }
+
+    /// A list of module-scope declarations and the lists inside them; a block of
+    /// declarations (`@if(A) { … }`, WESL 0.6) is one node whose list is read the same way.
+    fn declarations(&mut self, decls: &[syn::GlobalDeclarationNode], depth: usize) -> Vec<Piece> {
+        self.spanned_list(decls, depth, &mut |w, decl, depth| match decl.node() {
+            syn::GlobalDeclaration::Struct(s) => {
+                w.spanned_list(&s.members, depth, &mut |_, _, _| Vec::new())
+            }
+            syn::GlobalDeclaration::Function(f) => {
+                let mut inner = w.unspanned_list(&f.parameters, depth, Extent::Parameter);
+                inner.extend(w.statements(&f.body.statements, depth));
+                inner
+            }
+            syn::GlobalDeclaration::Compound(c) => w.declarations(&c.body, depth),
+            _ => Vec::new(),
+        })
     }
 
     /// A list of statements and the lists inside them.
@@ -789,6 +790,23 @@ mod tests {
             joined.contains("if Name(\"B\") {\n@if(B) {\n        r += 1.0;\n    }\n}"),
             "{joined}"
         );
+    }
+
+    #[test]
+    fn module_scope_blocks_are_one_conditional_with_their_declarations_inside() {
+        let t = tree(
+            "@if(A) {\n    var<private> x: f32;\n    @if(B) fn f() {}\n}\n@else {\n    fn g() {}\n}\nfn h() {}\n",
+        );
+        let joined = t.join("\n");
+        assert!(
+            joined.contains("if Name(\"A\") {\n@if(A) {\n    var<private> x: f32;\nif Name(\"B\") {\n@if(B) fn f() {}\n}\nelse {\n}\n}\n}"),
+            "{joined}"
+        );
+        assert!(
+            joined.contains("else {\n@else {\n    fn g() {}\n}\n}"),
+            "{joined}"
+        );
+        assert_eq!(t.last().unwrap(), "fn h() {}");
     }
 
     #[test]
