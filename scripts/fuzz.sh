@@ -19,7 +19,20 @@ seconds="${1:-60}"
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 export RUSTC_BOOTSTRAP=1
 summary=""
-for target in preprocess expr pragmas loader lean naga_oil wesl declaration merge cache; do
+# The `wesl` target needs the fuzz crate's `wesl` feature (the `wesl` crate 0.6, which declares
+# Rust 1.97.1); cargo-fuzz cannot pass `--ignore-rust-version`, so on older rustc the target is
+# skipped, loudly (the saved inputs still run through `cargo test --test fuzz_regressions`).
+features=()
+targets=(preprocess expr pragmas loader lean naga_oil declaration merge cache)
+rustc_version=$(rustc --version | grep -Eo '[0-9]+\.[0-9]+\.[0-9]+' | head -1)
+if [ "$(printf '%s\n1.97.1\n' "$rustc_version" | sort -V | head -1)" = 1.97.1 ]; then
+    features=(--features wesl)
+    targets+=(wesl)
+else
+    echo "== fuzz target wesl SKIPPED: rustc $rustc_version is older than 1.97.1, which wesl 0.6 declares (cargo-fuzz cannot pass --ignore-rust-version)"
+    summary+="fuzz wesl: SKIPPED (rustc $rustc_version < 1.97.1)"$'\n'
+fi
+for target in "${targets[@]}"; do
     corpus="fuzz/corpus/$target"
     mkdir -p "$corpus"
     cp -n fuzz/initial/"$target"/* "$corpus"/ 2>/dev/null || true
@@ -28,7 +41,7 @@ for target in preprocess expr pragmas loader lean naga_oil wesl declaration merg
         for m in $(grep -rL '^#shader' crates/wgsl-variants-shaders/wgsl --include='*.wgsl'); do cp -n "$m" "$corpus/$(echo "$m" | tr / _)"; done
     fi
     log="$(mktemp)"
-    cargo fuzz run --release --sanitizer address "$target" "$corpus" -- \
+    cargo fuzz run --release --sanitizer address "${features[@]}" "$target" "$corpus" -- \
         -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 2>&1 | tee "$log" | grep -E "^(Done|==|SUMMARY|#[0-9]+ +(INITED|DONE))" || true
     status=${PIPESTATUS[0]}
     runs=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || echo 0)

@@ -17,6 +17,11 @@ use crate::library::Library;
 /// ```
 pub fn fingerprint(lib: &Library, stage: &str, options: &str) -> String {
     let files = lib.files();
+    // The device, when it is not the default: outputs made for two devices never merge.
+    let profile = match lib.profile() {
+        crate::validator::Profile::WebGpu => None,
+        other => Some(format!("profile {}", other.name())),
+    };
     let versions = [
         env!("CARGO_PKG_VERSION").as_bytes(),
         env!("WGSL_VARIANTS_NAGA_VERSION").as_bytes(),
@@ -25,9 +30,14 @@ pub fn fingerprint(lib: &Library, stage: &str, options: &str) -> String {
     ];
     let sources =
         (0..files.len()).flat_map(|id| [files.path(id).as_bytes(), files.text(id).as_bytes()]);
-    hash_parts(versions.into_iter().chain(sources))
-        .to_hex()
-        .to_string()
+    hash_parts(
+        versions
+            .into_iter()
+            .chain(profile.as_deref().map(str::as_bytes))
+            .chain(sources),
+    )
+    .to_hex()
+    .to_string()
 }
 
 /// The BLAKE3 hash of a list of byte strings, each length-prefixed so that no two lists hash

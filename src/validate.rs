@@ -16,7 +16,7 @@ use crate::variants::{Choice, Shard, Space};
 
 pub use crate::error::{Stage, VariantError};
 use crate::validator::validate_with;
-pub use crate::validator::{validate_composed, validator};
+pub use crate::validator::{Profile, ProfileError, validate_composed, validate_for, validator};
 
 /// Composes, validates and compacts a variant (unused items removed, then validated again):
 /// the module every back end writes and snapshots are made of.
@@ -33,13 +33,17 @@ pub fn compile(
 ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
     let (mut module, _) = lib.naga_module(variant)?;
     naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
-    let info = validator().validate(&module).map_err(|e| VariantError {
-        variant: variant.label(),
-        stage: Stage::Validate,
-        message: format!("after compaction: {}", e.as_inner()),
-        labels: Vec::new(),
-        notes: Vec::new(),
-    })?;
+    let info = lib
+        .profile()
+        .validator()
+        .validate(&module)
+        .map_err(|e| VariantError {
+            variant: variant.label(),
+            stage: Stage::Validate,
+            message: format!("after compaction: {}", e.as_inner()),
+            labels: Vec::new(),
+            notes: Vec::new(),
+        })?;
     Ok((module, info))
 }
 
@@ -384,7 +388,7 @@ pub(crate) fn validate_keyed(
                     pass,
                     choice: c.clone(),
                 });
-                (crate::cache::hash(&composed.text), composed)
+                (text_hash(lib, &composed.text), composed)
             })
             .collect();
         let keys: Vec<u128> = composed.iter().map(|(h, _)| key(h)).collect();
@@ -392,9 +396,22 @@ pub(crate) fn validate_keyed(
             .filter(|&j| seen.as_mut().is_none_or(|s| s.insert(keys[j])))
             .collect();
         distinct += fresh.len() as u64;
-        let results = validate_fresh(pass, &chunk, &fresh, |variant, j, validator| {
-            check(variant, &composed[j], cache, validator, |v| lib.compose(v))
-        });
+        let results = validate_fresh(
+            pass,
+            &chunk,
+            &fresh,
+            lib.profile(),
+            |variant, j, validator| {
+                check(
+                    variant,
+                    &composed[j],
+                    cache,
+                    validator,
+                    lib.profile(),
+                    |v| lib.compose(v),
+                )
+            },
+        );
         drop(composed);
         for (j, error) in results {
             record(error, keys[j], &mut failing, &mut failures);
@@ -413,7 +430,7 @@ pub(crate) fn validate_keyed(
                             },
                             false,
                         );
-                        (crate::cache::hash(&text.text), text)
+                        (text_hash(lib, &text.text), text)
                     })
                 })
                 .collect();
@@ -423,17 +440,24 @@ pub(crate) fn validate_keyed(
             let fresh: Vec<usize> = (0..chunk.len())
                 .filter(|&j| unpruned_keys[j].is_some_and(|k| seen_unpruned.insert(k)))
                 .collect();
-            let results = validate_fresh(pass, &chunk, &fresh, |variant, j, validator| {
-                let text = texts[j].as_ref().expect("composed above");
-                check(variant, text, cache, validator, |v| {
-                    lib.compose_unpruned(v, true)
-                })
-                .map(|mut e| {
-                    e.notes
-                        .push("in code no entry point of this variant reaches (--strict)".into());
-                    e
-                })
-            });
+            let results = validate_fresh(
+                pass,
+                &chunk,
+                &fresh,
+                lib.profile(),
+                |variant, j, validator| {
+                    let text = texts[j].as_ref().expect("composed above");
+                    check(variant, text, cache, validator, lib.profile(), |v| {
+                        lib.compose_unpruned(v, true)
+                    })
+                    .map(|mut e| {
+                        e.notes.push(
+                            "in code no entry point of this variant reaches (--strict)".into(),
+                        );
+                        e
+                    })
+                },
+            );
             for (j, error) in results {
                 let k = unpruned_keys[j].expect("composed above");
                 record(error, k, &mut failing, &mut failures);
@@ -488,23 +512,37 @@ fn validate_fresh(
     pass: &Pass,
     chunk: &[Choice],
     fresh: &[usize],
+    profile: crate::validator::Profile,
     validate: impl Fn(&Variant<'_>, usize, &mut naga::valid::Validator) -> Option<VariantError> + Sync,
 ) -> Vec<(usize, VariantError)> {
     let results: Vec<Option<VariantError>> = fresh
         .par_iter()
-        .map_init(validator, |validator, &j| {
-            let variant = Variant {
-                pass,
-                choice: chunk[j].clone(),
-            };
-            validate(&variant, j, validator)
-        })
+        .map_init(
+            || profile.validator(),
+            |validator, &j| {
+                let variant = Variant {
+                    pass,
+                    choice: chunk[j].clone(),
+                };
+                validate(&variant, j, validator)
+            },
+        )
         .collect();
     fresh
         .iter()
         .zip(results)
         .filter_map(|(&j, r)| r.map(|e| (j, e)))
         .collect()
+}
+
+/// A composed text's hash (its dedup key and its key in the cache of valid texts): the text's
+/// for WebGPU, the text's with the profile's name for any other profile, so that a text valid
+/// on one device is never taken as valid on another.
+fn text_hash(lib: &Library, text: &str) -> Hash {
+    match lib.profile() {
+        crate::validator::Profile::WebGpu => crate::cache::hash(text),
+        other => crate::cache::hash(&format!("{text}\0profile {}", other.name())),
+    }
 }
 
 /// Composes and validates one variant (unless `cache` knows its text valid): its text's
@@ -516,8 +554,15 @@ pub(crate) fn validate_variant(
     validator: &mut naga::valid::Validator,
 ) -> (u128, Option<VariantError>) {
     let text = lib.compose_text(variant);
-    let hash = crate::cache::hash(&text.text);
-    let error = check(variant, &(hash, text), cache, validator, |v| lib.compose(v));
+    let hash = text_hash(lib, &text.text);
+    let error = check(
+        variant,
+        &(hash, text),
+        cache,
+        validator,
+        lib.profile(),
+        |v| lib.compose(v),
+    );
     (key(&hash), error)
 }
 
@@ -529,14 +574,15 @@ fn check(
     (hash, text): &(Hash, Composed),
     cache: Option<&ValidCache>,
     validator: &mut naga::valid::Validator,
+    profile: crate::validator::Profile,
     with_map: impl Fn(&Variant<'_>) -> Composed,
 ) -> Option<VariantError> {
     if cache.is_some_and(|c| c.contains(hash)) {
         return None;
     }
-    let result = match validate_with(text, &variant.label(), validator) {
+    let result = match validate_with(text, &variant.label(), validator, profile) {
         Ok(_) => None,
-        Err(_) => validate_with(&with_map(variant), &variant.label(), validator).err(),
+        Err(_) => validate_with(&with_map(variant), &variant.label(), validator, profile).err(),
     };
     if let (None, Some(cache)) = (&result, cache) {
         cache.insert(*hash);

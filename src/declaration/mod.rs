@@ -12,6 +12,7 @@
 //! ```toml
 //! dialect = "naga-oil"
 //! exclude = ["meshlet/dummy.wgsl"]  # files or folders left out (e.g. one of two alternatives)
+//! profile = "desktop"              # the device: webgpu (default), webgl2, desktop, or naga's capability names
 //!
 //! [constants]                      # shader defs every variant gets
 //! MAX_LIGHTS = { uint = 4 }        # naga_oil's ShaderDefValue::UInt
@@ -90,6 +91,8 @@ pub(crate) struct Declaration {
     pub packages: Vec<(String, String)>,
     /// How `wesl` composes the tree (`[wesl]`).
     pub wesl: WeslSettings,
+    /// The device the tree is validated for (`profile`).
+    pub profile: crate::validator::Profile,
     /// The shaders, in file order.
     pub shaders: Vec<ShaderSpec>,
 }
@@ -137,6 +140,7 @@ impl DeclarationError {
 #[serde(deny_unknown_fields)]
 struct FileToml {
     dialect: Option<Spanned<String>>,
+    profile: Option<Spanned<String>>,
     #[serde(default)]
     exclude: Vec<Spanned<String>>,
     #[serde(default)]
@@ -279,6 +283,19 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         }
     }
     let packages = packages(&parsed.packages, dialect, at, &mut errors);
+    let profile = match &parsed.profile {
+        None => crate::validator::Profile::default(),
+        Some(p) => p
+            .get_ref()
+            .parse()
+            .unwrap_or_else(|e: crate::validator::ProfileError| {
+                errors.push(DeclarationError {
+                    message: e.to_string(),
+                    span: at(p.span()),
+                });
+                crate::validator::Profile::default()
+            }),
+    };
     let mut wesl = WeslSettings::default();
     if let Some(table) = &parsed.wesl {
         if dialect != crate::preprocess::Dialect::Wesl {
@@ -297,6 +314,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             exclude,
             packages,
             wesl,
+            profile,
             shaders,
         })
     } else {

@@ -25,7 +25,6 @@ use crate::lookup::suggest;
 use crate::preprocess::Composed;
 use crate::preprocess::compose::compose;
 use crate::preprocess::tree::Node;
-use crate::validator::validate_composed;
 
 /// Why a module could not be exported.
 #[derive(Debug, thiserror::Error)]
@@ -294,9 +293,11 @@ pub fn export_prefixed(
     let composed = compose_module(lib, path, keywords)?;
     let path = path.trim().trim_end_matches(".wgsl");
     let label = format!("module {path} {{{}}}", keywords.join(", "));
-    let (mut module, _) = validate_composed(&composed, &label)?;
+    let (mut module, _) = crate::validator::validate_for(&composed, &label, lib.profile())?;
     prefix_names(&mut module, prefix);
-    let info = crate::validator::validator()
+    let info = lib
+        .profile()
+        .validator()
         .validate(&module)
         .map_err(|e| ExportError::Renamed(Box::new(e)))?;
     let body =

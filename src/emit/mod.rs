@@ -30,7 +30,6 @@ use std::path::Path;
 
 use crate::error::VariantError;
 use crate::library::{Library, Variant};
-use crate::validator::validate_composed;
 
 /// One variant's composed WGSL, as written (what `emit SHADER PASS --json` prints).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
@@ -64,7 +63,7 @@ pub fn variant_source(
     // A variant that could not be composed (naga_oil's error) has no text to give, validated
     // or not.
     if validate || composed.failure.is_some() {
-        validate_composed(&composed, &variant.label())?;
+        crate::validator::validate_for(&composed, &variant.label(), lib.profile())?;
     }
     Ok(VariantSource {
         shader: variant.pass.shader.clone(),

@@ -18,6 +18,8 @@ pub(crate) struct How {
     pub with_map: bool,
     /// Leave out the items the entry points do not reach ([`crate::reach`]).
     pub prune: bool,
+    /// The device the engines that validate while composing (naga_oil, WESL) validate for.
+    pub profile: crate::validator::Profile,
 }
 
 /// What turns a variant of a loaded tree into WGSL.

@@ -45,6 +45,8 @@ pub struct Library {
     origin: Origin,
     dialect: crate::preprocess::Dialect,
     warnings: Vec<crate::diagnostic::Diagnostic>,
+    /// The device its variants are validated for.
+    profile: crate::validator::Profile,
     /// What composes its variants (chosen by the dialect when it loaded).
     engine: Box<dyn engine::Engine>,
 }
@@ -288,6 +290,7 @@ impl Library {
             origin,
             dialect,
             warnings: l.warnings,
+            profile: l.profile,
             engine,
         }
     }
@@ -478,7 +481,11 @@ impl Library {
         self.engine.compose(
             &self.module_graph(),
             variant,
-            engine::How { with_map, prune },
+            engine::How {
+                with_map,
+                prune,
+                profile: self.profile,
+            },
         )
     }
 
@@ -534,6 +541,35 @@ impl Library {
         &self,
         variant: &Variant<'_>,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-        crate::validator::validate_composed(&self.compose(variant), &variant.label())
+        crate::validator::validate_for(&self.compose(variant), &variant.label(), self.profile)
+    }
+
+    /// The device this library's variants are validated for: the declaration file's
+    /// `profile`, or WebGPU ([`Profile::WebGpu`](crate::validate::Profile)).
+    pub fn profile(&self) -> crate::validator::Profile {
+        self.profile
+    }
+
+    /// Validates this library's variants for another device from now on (`--profile`).
+    ///
+    /// ```
+    /// use wgsl_variants::validate::Profile;
+    /// let mut lib = wgsl_variants::Library::from_sources([
+    ///     (
+    ///         "count.wgsl",
+    ///         "@group(0) @binding(0) var<storage, read_write> out: array<u32>;\n\
+    ///          @compute @workgroup_size(1) fn main() { out[0] = 1u; }\n",
+    ///     ),
+    ///     ("main.wgsl", "#shader s\n#pass P\n#import count\n#endpass\n"),
+    /// ])
+    /// .unwrap();
+    /// let none: &[&str] = &[];
+    /// assert!(lib.naga_module(&lib.variant("s", "P", none).unwrap()).is_ok());
+    /// lib.set_profile(Profile::WebGl2);
+    /// let e = lib.naga_module(&lib.variant("s", "P", none).unwrap()).unwrap_err();
+    /// assert!(e.message.contains("storage buffer"), "{}", e.message);
+    /// ```
+    pub fn set_profile(&mut self, profile: crate::validator::Profile) {
+        self.profile = profile;
     }
 }

@@ -75,11 +75,14 @@ impl NagaOilEngine {
         &self,
         files: &SourceFiles,
         modules: &[ParsedModule],
+        capabilities: naga::valid::Capabilities,
     ) -> Result<Composer, Box<ComposerError>> {
         // Not validating: the program is validated here, and composed again by a validating
         // composer only when it fails, for naga_oil's located error (one validation per
-        // variant on the path that passes, not two).
-        let mut composer = Composer::non_validating();
+        // variant on the path that passes, not two). naga_oil reads the capabilities as it
+        // adds each module (as Bevy 0.19 builds its composer with the device's), so they are
+        // set first.
+        let mut composer = Composer::non_validating().with_capabilities(capabilities);
         for &m in &self.order {
             if modules[m].import_name.is_none() {
                 continue;
@@ -103,12 +106,22 @@ impl NagaOilEngine {
         files: &SourceFiles,
         modules: &[ParsedModule],
         variant: &Variant<'_>,
+        profile: crate::validator::Profile,
     ) -> Result<String, VariantError> {
-        let taken = self.pool.lock().map(|mut p| p.pop()).unwrap_or(None);
+        let capabilities = profile.capabilities();
+        // A composer built for this profile's capabilities.
+        let taken = self
+            .pool
+            .lock()
+            .map(|mut p| {
+                let at = p.iter().rposition(|c| c.capabilities == capabilities)?;
+                Some(p.swap_remove(at))
+            })
+            .unwrap_or(None);
         let mut composer = match taken {
             Some(c) => c,
             None => self
-                .composer(files, modules)
+                .composer(files, modules, capabilities)
                 .map_err(|e| error(&e, &Composer::default(), files, variant))?,
         };
         let defs: HashMap<String, ShaderDefValue> = variant
@@ -130,7 +143,7 @@ impl NagaOilEngine {
             let module = composer
                 .make_naga_module(descriptor())
                 .map_err(|e| error(&e, &composer, files, variant))?;
-            match crate::validator::validator().validate(&module) {
+            match profile.validator().validate(&module) {
                 Ok(info) => naga::back::wgsl::write_string(
                     &module,
                     &info,
@@ -334,9 +347,9 @@ impl super::engine::Engine for NagaOilEngine {
         &self,
         tree: &crate::preprocess::compose::ModuleGraph<'_>,
         variant: &Variant<'_>,
-        _: super::engine::How,
+        how: super::engine::How,
     ) -> crate::preprocess::Composed {
-        super::engine::composed(self.compose(tree.files, tree.modules, variant))
+        super::engine::composed(self.compose(tree.files, tree.modules, variant, how.profile))
     }
 }
 

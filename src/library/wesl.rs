@@ -142,6 +142,7 @@ impl WeslEngine {
         files: &SourceFiles,
         modules: &[ParsedModule],
         variant: &Variant<'_>,
+        profile: crate::validator::Profile,
     ) -> Result<String, VariantError> {
         let defs = variant.pass.defs(variant.keywords());
         let mut constants = String::new();
@@ -198,7 +199,7 @@ impl WeslEngine {
                 variant,
             )
         })?;
-        if let Err(invalid) = crate::validator::validator().validate(&module) {
+        if let Err(invalid) = profile.validator().validate(&module) {
             let labels = invalid
                 .spans()
                 .map(|(s, m)| (s.to_range().unwrap_or(0..0), m.clone()))
@@ -279,20 +280,35 @@ impl WeslEngine {
                 notes.push(format!("in declaration `{decl}`"));
             }
         }
-        // `wesl`'s own check of a name no declaration has names the declaration it is in but
-        // gives no span: point at the name in that declaration.
+        // `wesl`'s own checks (a name no declaration has, declarations that depend on
+        // themselves) name the declaration but give no span: point at the name in that
+        // declaration, in the module named (any module of the tree when none is).
         if labels.is_empty()
-            && let wesl::Error::ValidateError(wesl::error::ValidateError::UndefinedSymbol(name)) =
-                inner
             && let Some(decl) = detail.and_then(|d| d.declaration.as_ref())
-            && let Some((file, range)) = modules.iter().find_map(|m| {
-                let text = files.text(m.file);
-                locate(text, decl, name)
-                    .filter(|r| text.get(r.clone()) == Some(name.as_str()))
-                    .map(|r| (m.file, r))
-            })
         {
-            labels.push((Span::new(file, range), "not declared".into()));
+            let (word, label) = match inner {
+                wesl::Error::ValidateError(wesl::error::ValidateError::UndefinedSymbol(name)) => {
+                    (name.as_str(), "not declared")
+                }
+                _ => (decl.as_str(), "here"),
+            };
+            let named = detail
+                .and_then(|d| d.module_path.as_ref())
+                .and_then(|p| self.file_of(p, modules));
+            let found = modules
+                .iter()
+                .map(|m| m.file)
+                .filter(|f| named.is_none_or(|n| n == *f))
+                .find_map(|file| {
+                    let text = files.text(file);
+                    locate(text, decl, word)
+                        .filter(|r| text.get(r.clone()) == Some(word))
+                        .map(|r| (file, r))
+                });
+            if let Some((file, range)) = found {
+                labels.push((Span::new(file, range), label.into()));
+                notes.retain(|n| !n.starts_with("in `"));
+            }
         }
         // An item a variant's conditions removed has no span of its own: point at the
         // imports that name it.
@@ -458,8 +474,8 @@ impl super::engine::Engine for WeslEngine {
         &self,
         tree: &crate::preprocess::compose::ModuleGraph<'_>,
         variant: &Variant<'_>,
-        _: super::engine::How,
+        how: super::engine::How,
     ) -> crate::preprocess::Composed {
-        super::engine::composed(self.compose(tree.files, tree.modules, variant))
+        super::engine::composed(self.compose(tree.files, tree.modules, variant, how.profile))
     }
 }

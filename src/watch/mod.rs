@@ -167,6 +167,7 @@ pub struct Session {
     done: HashMap<(String, String), Done>,
     recent: Vec<Recent>,
     library: Option<Library>,
+    profile: Option<crate::validator::Profile>,
 }
 
 impl Session {
@@ -190,7 +191,13 @@ impl Session {
             done: HashMap::new(),
             recent: Vec::new(),
             library: None,
+            profile: None,
         }
+    }
+
+    /// Validates for `profile` instead of the declaration file's (`--profile`).
+    pub fn set_profile(&mut self, profile: crate::validator::Profile) {
+        self.profile = Some(profile);
     }
 
     /// Plans the next runs with `options` (a shard in them is left out), e.g. after a
@@ -218,7 +225,10 @@ impl Session {
         cancel: &AtomicBool,
         on: &(dyn Fn(Event<'_>) + Sync),
     ) -> Result<Outcome, WatchError> {
-        let lib = Library::from_dir_with(&self.root, &self.load)?;
+        let mut lib = Library::from_dir_with(&self.root, &self.load)?;
+        if let Some(profile) = self.profile {
+            lib.set_profile(profile);
+        }
         let plan = crate::plan::plan(&lib, &self.options)?;
         let options_text = self.options.fingerprint_text();
         let inputs: Vec<Hash> = plan

@@ -46,6 +46,10 @@ pub struct Cli {
     /// Worker threads (default: one per core). Output does not depend on it.
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
+    /// The device variants are validated for: webgpu (the default), webgl2, desktop, or naga
+    /// capability names joined by `,` (overrides the declaration file's `profile`).
+    #[arg(long, global = true, value_name = "NAME")]
+    profile: Option<wgsl_variants::validate::Profile>,
     #[command(subcommand)]
     command: Command,
 }
@@ -233,13 +237,20 @@ fn main() -> ExitCode {
     // `watch` loads the tree itself, again at each change (a tree that does not load yet is
     // waited on, not the end).
     if let Command::Watch(args) = &cli.command {
-        return watch::run(cli.root.as_deref(), options, cli.json, color, args);
+        return watch::run(
+            cli.root.as_deref(),
+            options,
+            cli.profile,
+            cli.json,
+            color,
+            args,
+        );
     }
     let loaded = match &cli.root {
         Some(root) => Library::from_dir_with(root, &options),
         None => Library::from_raw(wgsl_variants_shaders::files(), &options),
     };
-    let lib = match loaded {
+    let mut lib = match loaded {
         Ok(lib) => lib,
         Err(e) => {
             eprint!("{}", e.render(color));
@@ -265,6 +276,9 @@ fn main() -> ExitCode {
     };
     for warning in lib.warnings() {
         eprint!("{}", warning.render(lib.files(), color));
+    }
+    if let Some(profile) = cli.profile {
+        lib.set_profile(profile);
     }
     let json = cli.json;
     let ctx = Context { lib, json, color };

@@ -228,6 +228,7 @@ fn next_change(changes: &Receiver<Instant>, quiet: Duration) -> Option<Instant> 
 pub fn run(
     root: Option<&Path>,
     load: LoadOptions,
+    profile: Option<wgsl_variants::validate::Profile>,
     json: bool,
     color: bool,
     args: &WatchArgs,
@@ -238,7 +239,7 @@ pub fn run(
         );
         return ExitCode::from(1);
     };
-    match watch(root, load, json, color, args) {
+    match watch(root, load, profile, json, color, args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -250,6 +251,7 @@ pub fn run(
 fn watch(
     root: &Path,
     load: LoadOptions,
+    profile: Option<wgsl_variants::validate::Profile>,
     json: bool,
     color: bool,
     args: &WatchArgs,
@@ -319,6 +321,9 @@ fn watch(
             .map_err(|e| format!("cannot watch `{}`: {e}", folder.display()))?;
     }
     let mut session = Session::new(&root, load, planned, cache_dir.as_deref());
+    if let Some(profile) = profile {
+        session.set_profile(profile);
+    }
     let quiet = Duration::from_millis(args.debounce);
     let mut since = Instant::now();
     if !json {
