@@ -257,6 +257,7 @@ impl WeslEngine {
             message: format!("wesl: {inner}"),
             labels,
             notes,
+            source: None,
         }
     }
 
@@ -305,6 +306,7 @@ impl WeslEngine {
             message: format!("naga (on wesl's output): {}", unmangle(&message)),
             labels,
             notes,
+            source: None,
         }
     }
 }
