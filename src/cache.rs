@@ -25,7 +25,7 @@
 //! once per user in `$XDG_CONFIG_HOME/wgsl-variants/cache-secret`, mode 0600). A record written
 //! without the secret is not trusted: it counts as corrupt and its text is validated again.
 //! Machines that share a cache folder (CI jobs) share the secret through their secret store;
-//! without it they still share nothing wrong, only nothing at all. Past [`COMPACT_AFTER`] segments, a save writes one
+//! without it they still share nothing wrong, only nothing at all. Past 32 segments, a save writes one
 //! segment with everything and removes the segments it read (segments written meanwhile by
 //! others are kept, so no entry is lost). [`ValidCache::export`] writes the whole cache as one
 //! segment file and [`import`] adds one, so a CI cache step can carry the cache between runs.
@@ -47,7 +47,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 /// A content hash of a composed text.
-pub type Hash = [u8; 32];
+pub(crate) type Hash = [u8; 32];
 
 /// Hashes a composed text.
 pub fn hash(text: &str) -> Hash {
@@ -178,7 +178,7 @@ impl Secret {
     }
 }
 /// Segments in the folder past which a save compacts them into one.
-pub const COMPACT_AFTER: usize = 32;
+pub(crate) const COMPACT_AFTER: usize = 32;
 
 /// What a cache built by this crate is keyed by:
 /// `wgsl-variants-<version>-naga-<version>-signed`, the name of its folder in the cache
@@ -471,7 +471,7 @@ impl ValidCache {
     }
 
     /// Writes the hashes added since opening as a new segment (nothing when none is new).
-    /// Past [`COMPACT_AFTER`] segments, writes everything as one segment and removes the
+    /// Past 32 segments (`COMPACT_AFTER`), writes everything as one segment and removes the
     /// segments read at open. Safe with other processes saving into the same folder at once.
     /// An [in-memory](Self::in_memory) cache writes nothing.
     pub fn save(&self) -> std::io::Result<()> {

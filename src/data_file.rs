@@ -9,14 +9,15 @@ use serde::de::DeserializeOwned;
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
     /// The file could not be read.
-    #[error("cannot read {what} file `{path}`: {message}")]
+    #[error("cannot read {what} file `{path}`: {source}")]
     Io {
         /// What the file is, for messages: `materials`, `budget`.
         what: &'static str,
         /// The file.
         path: String,
         /// The OS error.
-        message: String,
+        #[source]
+        source: std::io::Error,
     },
     /// Not valid JSON/TOML of the expected shape.
     #[error("{path}:{line}:{column}: {message}")]
@@ -46,7 +47,7 @@ pub(crate) fn read(path: &Path, what: &'static str) -> Result<String, FileError>
     std::fs::read_to_string(path).map_err(|e| FileError::Io {
         what,
         path: path.display().to_string(),
-        message: e.to_string(),
+        source: e,
     })
 }
 

@@ -280,13 +280,7 @@ pub(crate) fn resolve_constraints(
 }
 
 /// Whether a name is a "none" placeholder: made only of underscores.
-///
-/// ```
-/// use wgsl_variants::keywords::is_placeholder;
-/// assert!(is_placeholder("_") && is_placeholder("__"));
-/// assert!(!is_placeholder("_NORMAL_MAP"));
-/// ```
-pub fn is_placeholder(name: &str) -> bool {
+pub(crate) fn is_placeholder(name: &str) -> bool {
     !name.is_empty() && name.bytes().all(|b| b == b'_')
 }
 
@@ -466,6 +460,12 @@ pub struct Constant {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn placeholders() {
+        assert!(is_placeholder("_") && is_placeholder("__"));
+        assert!(!is_placeholder("_NORMAL_MAP"));
+    }
 
     fn names(list: &[&str]) -> Vec<(Box<str>, Span)> {
         list.iter()

@@ -47,8 +47,7 @@
 //! 6. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
 //!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests; [`merge`] puts
 //!    the outputs of `--shard K/N` runs back together, byte for byte; [`watch`] validates a
-//!    tree again as it changes (`wgsl-variants watch`, hot reload). [`json`] serializes exact
-//!    counts.
+//!    tree again as it changes (`wgsl-variants watch`, hot reload).
 //!
 //! `docs/api.md` in the repository lists the main items of each stage.
 
@@ -65,7 +64,7 @@ pub mod diagnostic;
 pub mod emit;
 pub mod error;
 pub mod fingerprint;
-pub mod json;
+pub(crate) mod json;
 pub mod keywords;
 pub mod library;
 pub mod lookup;

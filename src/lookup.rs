@@ -83,7 +83,10 @@ fn hint(suggestion: &Option<String>) -> String {
 }
 
 /// The closest of `candidates` to `name` by edit distance, if reasonably close.
-pub fn suggest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
+pub(crate) fn suggest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<String> {
     let limit = (name.len() / 3).max(2);
     candidates
         .into_iter()

@@ -151,7 +151,7 @@ pub fn parse(text: &str, toml: bool, path: &str) -> Result<Vec<Material>, Materi
 
 /// Checks materials against the library's shaders: every shader exists and every keyword is
 /// declared by some pass of it.
-pub fn check(materials: &[Material], shaders: &[Shader]) -> Result<(), MaterialsError> {
+pub(crate) fn check(materials: &[Material], shaders: &[Shader]) -> Result<(), MaterialsError> {
     for m in materials {
         let Some(shader) = shaders.iter().find(|s| s.name == m.shader) else {
             return Err(MaterialsError::UnknownShader {
@@ -178,7 +178,7 @@ pub fn check(materials: &[Material], shaders: &[Shader]) -> Result<(), Materials
 /// The `shader_feature` combinations the materials of `pass`'s shader use: for each material,
 /// one option per shader_feature set (the material's keyword of that set, else the set's
 /// "none" option, else its first option, as Unity does).
-pub fn feature_combinations(
+pub(crate) fn feature_combinations(
     pass: &Pass,
     materials: &[Material],
 ) -> Result<BTreeSet<Vec<u16>>, MaterialsError> {

@@ -420,7 +420,7 @@ fn binding_kind(
 }
 
 /// The entry points of a module, in declaration order.
-pub fn entry_points(module: &naga::Module) -> Vec<EntryPoint> {
+pub(crate) fn entry_points(module: &naga::Module) -> Vec<EntryPoint> {
     module
         .entry_points
         .iter()
@@ -437,7 +437,7 @@ pub fn entry_points(module: &naga::Module) -> Vec<EntryPoint> {
 
 /// The bindings a validated module's entry points use, sorted by (group, binding). `info`
 /// must be the validation result of `module`.
-pub fn bindings(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Binding> {
+pub(crate) fn bindings(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Binding> {
     // Per global: the stages that use it, and whether some entry point samples it.
     let mut used: BTreeMap<naga::Handle<naga::GlobalVariable>, (Vec<Stage>, bool)> =
         BTreeMap::new();

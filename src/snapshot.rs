@@ -41,12 +41,16 @@ pub fn canonical_wgsl(lib: &Library, variant: &Variant<'_>) -> Result<String, Va
     let (module, info) = crate::validate::compile(lib, variant)?;
     let label = variant.label();
     naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty()).map_err(
-        |e| VariantError {
-            variant: label,
-            stage: crate::error::Stage::Validate,
-            message: format!("naga's WGSL writer failed: {e}"),
-            labels: Vec::new(),
-            notes: Vec::new(),
+        |e| {
+            VariantError {
+                variant: label,
+                stage: crate::error::Stage::Validate,
+                message: format!("naga's WGSL writer failed: {e}"),
+                labels: Vec::new(),
+                notes: Vec::new(),
+                source: None,
+            }
+            .with_source(e)
         },
     )
 }

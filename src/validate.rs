@@ -33,17 +33,17 @@ pub fn compile(
 ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
     let (mut module, _) = lib.naga_module(variant)?;
     naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
-    let info = lib
-        .profile()
-        .validator()
-        .validate(&module)
-        .map_err(|e| VariantError {
+    let info = lib.profile().validator().validate(&module).map_err(|e| {
+        VariantError {
             variant: variant.label(),
             stage: Stage::Validate,
             message: format!("after compaction: {}", e.as_inner()),
             labels: Vec::new(),
             notes: Vec::new(),
-        })?;
+            source: None,
+        }
+        .with_source(e)
+    })?;
     Ok((module, info))
 }
 

@@ -254,12 +254,16 @@ pub(crate) fn validate_with(
             ..(**failure).clone()
         });
     }
-    let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| VariantError {
-        variant: variant.to_string(),
-        stage: Stage::Parse,
-        message: parse_message(&e),
-        labels: map_spans(composed, e.labels()),
-        notes: e.notes().map(str::to_string).collect(),
+    let module = naga::front::wgsl::parse_str(&composed.text).map_err(|e| {
+        VariantError {
+            variant: variant.to_string(),
+            stage: Stage::Parse,
+            message: parse_message(&e),
+            labels: map_spans(composed, e.labels()),
+            notes: e.notes().map(str::to_string).collect(),
+            source: None,
+        }
+        .with_source(e)
     })?;
     let info = validator.validate(&module).map_err(|e| {
         let mut labels = map_spans(composed, e.spans().map(|(s, l)| (*s, l.as_str())));
@@ -271,7 +275,9 @@ pub(crate) fn validate_with(
             message: error_chain(e.as_inner()),
             labels,
             notes: Vec::new(),
+            source: None,
         }
+        .with_source(e)
     })?;
     if let Some((message, span)) = profile.refuses(&module) {
         return Err(VariantError {
@@ -280,6 +286,7 @@ pub(crate) fn validate_with(
             message: format!("on profile `{}`: {message}", profile.name()),
             labels: map_spans(composed, std::iter::once((span, "here"))),
             notes: Vec::new(),
+            source: None,
         });
     }
     Ok((module, info))

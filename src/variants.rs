@@ -356,7 +356,7 @@ impl Factor {
 }
 
 /// Most combinations of the keyword sets that constraints couple together (they are listed).
-pub const MAX_COUPLED: u128 = 1 << 16;
+pub(crate) const MAX_COUPLED: u128 = 1 << 16;
 
 /// Checks a pass's constraints against its full space: the sets they couple have at most
 /// [`MAX_COUPLED`] combinations, and every keyword a constraint names is on in some variant.

@@ -11,7 +11,6 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use wgsl_variants::Library;
-use wgsl_variants::preprocess::lines;
 
 const SHADER: &str = "#shader t\n#pass P\n#import m\n#endpass\n";
 
@@ -70,9 +69,18 @@ fn wgsl_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// A line whose first non-blank character is `#`: another preprocessor's dialect.
+/// A line whose first non-blank character is `#`: another preprocessor's dialect. WGSL's line
+/// breaks and blankspace, not Rust's (the preprocessor's line splitting is internal).
 fn has_directive_line(text: &str) -> bool {
-    lines::split(text).any(|(range, _)| lines::trim_blank_start(&text[range]).starts_with('#'))
+    let line_break = |c| {
+        matches!(
+            c,
+            '\u{000a}'..='\u{000d}' | '\u{0085}' | '\u{2028}' | '\u{2029}'
+        )
+    };
+    let blank = |c| matches!(c, ' ' | '\t' | '\u{200e}' | '\u{200f}') || line_break(c);
+    text.split(line_break)
+        .any(|line| line.trim_start_matches(blank).starts_with('#'))
 }
 
 #[derive(Default)]

@@ -156,3 +156,58 @@ fn distinct_counts_match_the_texts_themselves() {
         assert_eq!(proved, r.distinct == r.built, "{body}");
     }
 }
+
+/// naga's own error stays reachable as the source of a variant's error: the text is the
+/// report's, the source is the typed error.
+#[test]
+fn variant_errors_keep_naga_errors_as_their_source() {
+    use std::error::Error as _;
+    let syntax = lib("@fragment fn fs() -> @location(0) vec4f { return vec4f(1.0) }");
+    let pass = syntax.pass("s", "P").expect("pass");
+    let v = Variant {
+        pass,
+        choice: Space::full(pass).iter().next().expect("a variant"),
+    };
+    let err = syntax.naga_module(&v).expect_err("a syntax error");
+    let source = err.source().expect("naga's error kept");
+    assert!(
+        source
+            .downcast_ref::<naga::front::wgsl::ParseError>()
+            .is_some()
+    );
+    assert_eq!(err, err.clone(), "the source is shared, not compared");
+
+    let typed = lib("@fragment fn fs() -> vec4f { return vec4f(1.0); }");
+    let pass = typed.pass("s", "P").expect("pass");
+    let v = Variant {
+        pass,
+        choice: Space::full(pass).iter().next().expect("a variant"),
+    };
+    let err = typed
+        .naga_module(&v)
+        .expect_err("an output without a location");
+    let source = err.source().expect("naga's error kept");
+    assert!(
+        source
+            .downcast_ref::<naga::WithSpan<naga::valid::ValidationError>>()
+            .is_some(),
+        "{source:?}"
+    );
+}
+
+/// A merge input that cannot be read keeps the OS error.
+#[test]
+fn merge_read_errors_keep_the_io_error() {
+    use std::error::Error as _;
+    let missing = std::env::temp_dir().join("wgsl-variants-no-such-shard-folder");
+    let err = wgsl_variants::merge::manifest::merge_folders(&[missing], &std::env::temp_dir())
+        .expect_err("no such folder");
+    let io = err
+        .source()
+        .and_then(|s| s.downcast_ref::<std::io::Error>());
+    assert_eq!(
+        io.map(std::io::Error::kind),
+        Some(std::io::ErrorKind::NotFound),
+        "{err}"
+    );
+}

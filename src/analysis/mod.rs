@@ -11,8 +11,8 @@ pub(crate) mod bits;
 pub(crate) mod compose;
 pub(crate) mod deps;
 pub(crate) mod distinct;
-pub mod regions;
-pub mod unreached;
+mod regions;
+mod unreached;
 
 use crate::library::Library;
 use crate::shader::Pass;

@@ -178,7 +178,7 @@ impl Budgets {
 }
 
 /// The gate for one pass: the tightest of `max_variants` and the file's budget.
-pub fn verdict(
+pub(crate) fn verdict(
     audit: &PassAudit,
     max_variants: Option<u64>,
     budgets: Option<&Budgets>,

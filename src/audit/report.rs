@@ -244,7 +244,7 @@ pub struct AuditReport {
 
 impl AuditReport {
     /// Judges each audit against the tightest of `max_variants` and its budget in `budgets`
-    /// (see [`verdict`]), and sums the counts.
+    /// (see [`budget::Verdict`](crate::audit::budget::Verdict)), and sums the counts.
     pub fn new(
         audits: Vec<PassAudit>,
         max_variants: Option<u64>,

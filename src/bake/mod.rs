@@ -120,12 +120,13 @@ pub enum BakeError {
         rendered: String,
     },
     /// An output could not be written.
-    #[error("error: cannot write `{}`: {message}", .path.display())]
+    #[error("error: cannot write `{}`: {source}", .path.display())]
     Io {
         /// The path.
         path: PathBuf,
         /// The OS error.
-        message: String,
+        #[source]
+        source: std::io::Error,
     },
 }
 
@@ -367,7 +368,7 @@ const PRELUDE: &str = include_str!("prelude.rs");
 fn io(path: &Path, e: std::io::Error) -> BakeError {
     BakeError::Io {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        source: e,
     }
 }
 

@@ -26,7 +26,7 @@ const SEEDS: [u64; 4] = [0x9E37_79B9_7F4A_7C15, 1, 2, 3];
 /// A covering array of strength `t` for factors with `levels` values each (every level at
 /// least 1); rows hold one value per factor. `t` is at least 1; with `t` at least the number
 /// of factors the result is the whole product.
-pub fn covering_array(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
+pub(crate) fn covering_array(levels: &[usize], t: usize) -> Vec<Vec<u16>> {
     // Single-valued factors are constant: cover the others, then put 0 in.
     let live: Vec<usize> = (0..levels.len()).filter(|&i| levels[i] > 1).collect();
     let live_levels: Vec<usize> = live.iter().map(|&i| levels[i]).collect();
@@ -389,7 +389,7 @@ fn binomial(n: usize, k: usize) -> u128 {
 
 /// CAN(2, k, 2): the smallest N with C(N−1, ⌈N/2⌉) ≥ k (Kleitman & Spencer 1973, Katona
 /// 1973).
-pub fn can2_binary(k: usize) -> usize {
+pub(crate) fn can2_binary(k: usize) -> usize {
     (2..)
         .find(|&n: &usize| binomial(n - 1, n.div_ceil(2)) >= k as u128)
         .unwrap_or(2)

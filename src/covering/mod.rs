@@ -30,11 +30,11 @@ use crate::shader::Pass;
 use crate::variants::{Choice, Factor, Space};
 
 /// Strongest supported strength.
-pub const MAX_T: usize = 4;
+pub(crate) const MAX_T: usize = 4;
 
 /// Most values of the t largest factors together: above it the tuples to cover do not fit in
 /// memory comfortably.
-pub const MAX_TUPLES: u128 = 1 << 26;
+pub(crate) const MAX_TUPLES: u128 = 1 << 26;
 
 /// Most t-way combinations of options one covering set may have to cover
 /// ([`interactions`]): the generator's time and memory grow with them, and past this a

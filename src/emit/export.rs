@@ -85,7 +85,7 @@ impl ExportError {
 }
 
 /// The id of the module at `path` (library-relative, without `.wgsl`), refusing shader files.
-pub fn module_index(lib: &Library, path: &str) -> Result<usize, ExportError> {
+pub(crate) fn module_index(lib: &Library, path: &str) -> Result<usize, ExportError> {
     let path = path.trim().trim_end_matches(".wgsl");
     let index = lib
         .module_paths()
@@ -135,7 +135,7 @@ pub(crate) fn library_order(lib: &Library) -> Vec<usize> {
 
 /// A module and every module it imports, directly or not, in first-import order (the
 /// module itself first).
-pub fn import_closure(lib: &Library, module: usize) -> Vec<usize> {
+pub(crate) fn import_closure(lib: &Library, module: usize) -> Vec<usize> {
     let graph = lib.module_graph();
     let mut order = vec![module];
     let mut i = 0;
@@ -176,7 +176,7 @@ pub fn conditions_read(lib: &Library, module: usize) -> BTreeSet<String> {
 
 /// Composes a module (with its imports) with `keywords` defined as 1. A keyword that no `#if`
 /// of the module or its imports reads is an error (a typo would otherwise pass silently).
-pub fn compose_module(
+pub(crate) fn compose_module(
     lib: &Library,
     path: &str,
     keywords: &[&str],
@@ -219,7 +219,7 @@ fn check_prefix(prefix: &str) -> Result<(), ExportError> {
 
 /// Renames every top-level name of a module to `prefix` + name (predeclared `__` types are
 /// left alone).
-pub fn prefix_names(module: &mut naga::Module, prefix: &str) {
+pub(crate) fn prefix_names(module: &mut naga::Module, prefix: &str) {
     let rename = |name: &mut Option<String>| {
         if let Some(n) = name
             && !n.starts_with("__")

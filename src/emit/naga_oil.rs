@@ -68,7 +68,7 @@ fn is_ident(s: &str) -> bool {
 }
 
 /// The naga_oil import path of a module path under `root`.
-pub fn import_path(path: &str, root: Option<&str>) -> Result<String, ExportError> {
+pub(crate) fn import_path(path: &str, root: Option<&str>) -> Result<String, ExportError> {
     let mut segments: Vec<&str> = Vec::new();
     if let Some(r) = root {
         segments.extend(r.split("::"));

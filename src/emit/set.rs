@@ -176,7 +176,7 @@ fn io_error(path: &Path, e: std::io::Error) -> SetError {
 }
 
 /// A file-name-safe form of a shader or pass name.
-pub fn file_safe(text: &str) -> String {
+pub(crate) fn file_safe(text: &str) -> String {
     text.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
@@ -190,15 +190,7 @@ pub fn file_safe(text: &str) -> String {
 
 /// The file stem of a variant (see the module docs): its keywords joined with `+`, or a hash
 /// of them where that name would be too long or could collide with another's.
-///
-/// ```
-/// use wgsl_variants::emit::set::variant_stem;
-/// assert_eq!(variant_stem(&[]), "none");
-/// assert_eq!(variant_stem(&["_NORMAL_MAP", "FOG"]), "_NORMAL_MAP+FOG");
-/// assert!(variant_stem(&["A.B"]).starts_with("v-"));
-/// assert_ne!(variant_stem(&["A.B"]), variant_stem(&["A-B"]));
-/// ```
-pub fn variant_stem(keywords: &[&str]) -> String {
+pub(crate) fn variant_stem(keywords: &[&str]) -> String {
     if keywords.is_empty() {
         return "none".to_string();
     }
@@ -461,4 +453,17 @@ fn listed_files(manifest: &Path) -> Vec<String> {
         .filter(inside)
         .map(str::to_string)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variant_stem_names() {
+        assert_eq!(variant_stem(&[]), "none");
+        assert_eq!(variant_stem(&["_NORMAL_MAP", "FOG"]), "_NORMAL_MAP+FOG");
+        assert!(variant_stem(&["A.B"]).starts_with("v-"));
+        assert_ne!(variant_stem(&["A.B"]), variant_stem(&["A-B"]));
+    }
 }

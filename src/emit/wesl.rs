@@ -59,7 +59,7 @@ pub struct WeslModule {
 }
 
 /// The WESL module path of a module path (`package::` and the path with `/` as `::`).
-pub fn module_path(path: &str) -> Result<String, ExportError> {
+pub(crate) fn module_path(path: &str) -> Result<String, ExportError> {
     import_path(path, Some("package"))
 }
 

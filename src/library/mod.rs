@@ -117,6 +117,7 @@ pub(crate) fn unlocated(
         message,
         labels: Vec::new(),
         notes: Vec::new(),
+        source: None,
     }
 }
 

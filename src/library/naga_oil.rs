@@ -239,6 +239,7 @@ fn error(
             ),
             labels: Vec::new(),
             notes,
+            source: None,
         };
     }
     let path = e.source.path(composer);
@@ -260,6 +261,7 @@ fn error(
         message: format!("naga_oil: {}", undecorate(&e.inner.to_string())),
         labels,
         notes: notes.iter().map(|n| undecorate(n)).collect(),
+        source: None,
     }
 }
 

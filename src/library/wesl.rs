@@ -330,6 +330,7 @@ impl WeslEngine {
             message: format!("wesl: {inner}"),
             labels,
             notes,
+            source: None,
         }
     }
 
@@ -381,6 +382,7 @@ impl WeslEngine {
             message: format!("naga (on wesl's output): {}", unmangle(&message)),
             labels,
             notes,
+            source: None,
         }
     }
 }

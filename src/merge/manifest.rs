@@ -36,7 +36,7 @@ fn read_shard(dir: &Path) -> Result<ShardSet, MergeError> {
     let path = dir.join("manifest.json");
     let text = std::fs::read_to_string(&path).map_err(|e| MergeError::Read {
         shard: path.display().to_string(),
-        message: e.to_string(),
+        source: e,
     })?;
     let kind = |message: String| MergeError::Kind {
         shard: name.clone(),
@@ -132,7 +132,7 @@ pub fn merge_folders(dirs: &[PathBuf], out: &Path) -> Result<MergedSet, MergeErr
     for (s, rel, _) in &files {
         let bytes = std::fs::read(s.dir.join(rel)).map_err(|e| MergeError::Read {
             shard: s.dir.join(rel).display().to_string(),
-            message: e.to_string(),
+            source: e,
         })?;
         let path = out.join(rel);
         let written = path
@@ -141,7 +141,7 @@ pub fn merge_folders(dirs: &[PathBuf], out: &Path) -> Result<MergedSet, MergeErr
             .and_then(|()| crate::emit::write_if_changed(&path, &bytes));
         written.map_err(|e| MergeError::Write {
             path: path.display().to_string(),
-            message: e.to_string(),
+            source: e,
         })?;
     }
     let mut variants = Vec::with_capacity(total);
@@ -153,7 +153,7 @@ pub fn merge_folders(dirs: &[PathBuf], out: &Path) -> Result<MergedSet, MergeErr
     manifest.insert("variants".into(), Value::Array(variants));
     let mut json = serde_json::to_string_pretty(&manifest).map_err(|e| MergeError::Write {
         path: "manifest.json".into(),
-        message: e.to_string(),
+        source: e.into(),
     })?;
     json.push('\n');
     let path = out.join("manifest.json");
@@ -161,7 +161,7 @@ pub fn merge_folders(dirs: &[PathBuf], out: &Path) -> Result<MergedSet, MergeErr
         .and_then(|()| crate::emit::write_if_changed(&path, json.as_bytes()))
         .map_err(|e| MergeError::Write {
             path: path.display().to_string(),
-            message: e.to_string(),
+            source: e,
         })?;
     Ok(MergedSet {
         out: out.display().to_string(),
@@ -187,7 +187,7 @@ fn check_file(s: &ShardSet, entry: &Value) -> Result<String, MergeError> {
     }
     let bytes = std::fs::read(s.dir.join(&rel)).map_err(|e| MergeError::Read {
         shard: s.dir.join(&rel).display().to_string(),
-        message: e.to_string(),
+        source: e,
     })?;
     let hash = blake3::hash(&bytes).to_hex();
     let size_ok = entry.get("bytes").and_then(Value::as_u64) == Some(bytes.len() as u64);

@@ -35,12 +35,22 @@ pub enum MergeError {
     #[error("no shard outputs given")]
     Empty,
     /// An input could not be read.
-    #[error("cannot read `{shard}`: {message}")]
+    #[error("cannot read `{shard}`: {source}")]
     Read {
         /// The input (file or folder).
         shard: String,
-        /// The OS or parse error.
-        message: String,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// An input is not JSON.
+    #[error("cannot read `{shard}`: not JSON: {source}")]
+    NotJson {
+        /// The input.
+        shard: String,
+        /// The JSON parser's error.
+        #[source]
+        source: serde_json::Error,
     },
     /// An input is not the kind of output being merged.
     #[error("`{shard}` is not {expected}: {message}")]
@@ -115,12 +125,13 @@ pub enum MergeError {
         message: String,
     },
     /// The merged output could not be written.
-    #[error("cannot write `{path}`: {message}")]
+    #[error("cannot write `{path}`: {source}")]
     Write {
-        /// The path.
+        /// The path (`<stdout>` for a report).
         path: String,
-        /// The OS error.
-        message: String,
+        /// The OS error (or serde_json's, as an `io::Error` that displays the same).
+        #[source]
+        source: std::io::Error,
     },
 }
 

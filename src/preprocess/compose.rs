@@ -9,7 +9,7 @@ use super::line_map::LineMap;
 use super::tree::{Node, ParsedModule};
 
 /// The modules of a library with their imports resolved, ready to compose from.
-pub struct ModuleGraph<'a> {
+pub(crate) struct ModuleGraph<'a> {
     /// Parsed modules, indexed by module id.
     pub modules: &'a [ParsedModule],
     /// For each module, the module id of each of its imports (same order as `imports`).
@@ -83,7 +83,7 @@ impl Composed {
 /// 0, with WGSL's own line breaks and blankspace, so removing it cannot join or split tokens or
 /// comments. A caller that hashes or validates the lean text composes again, with the map, to
 /// locate an error.
-pub fn compose(
+pub(crate) fn compose(
     graph: &ModuleGraph<'_>,
     module: usize,
     body: &[Node],

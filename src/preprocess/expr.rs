@@ -11,7 +11,7 @@ use super::error::ParseError;
 
 /// A parsed expression.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Expr {
+pub(crate) enum Expr {
     /// An integer literal.
     Int(i64),
     /// A name: its value, or 0 when undefined.
@@ -28,7 +28,7 @@ pub enum Expr {
 
 /// Binary operators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BinOp {
+pub(crate) enum BinOp {
     /// `||`
     Or,
     /// `&&`
@@ -50,13 +50,6 @@ pub enum BinOp {
 impl BinOp {
     /// The value of `a op b`: 0 or 1. The one definition of the operators, for every
     /// evaluator of expressions (composition, the audit's static walk, the naga_oil export).
-    ///
-    /// ```
-    /// use wgsl_variants::preprocess::expr::BinOp;
-    /// assert_eq!(BinOp::Le.apply(2, 3), 1);
-    /// assert_eq!(BinOp::Or.apply(0, -1), 1);
-    /// assert_eq!(BinOp::And.apply(2, 0), 0);
-    /// ```
     pub fn apply(self, a: i64, b: i64) -> i64 {
         (match self {
             BinOp::Or => a != 0 || b != 0,
@@ -87,14 +80,6 @@ impl BinOp {
 
 impl Expr {
     /// Evaluates with `value(name)` giving each defined name's value.
-    ///
-    /// ```
-    /// use wgsl_variants::preprocess::expr::parse;
-    /// let e = parse("defined(DEFERRED_PASS) && UNITY_HDR_ON", 0, 0, 64).unwrap();
-    /// let on = |n: &str| (n == "DEFERRED_PASS" || n == "UNITY_HDR_ON").then_some(1);
-    /// assert_eq!(e.eval(&on), 1);
-    /// assert_eq!(e.eval(&|_: &str| None), 0);
-    /// ```
     pub fn eval(&self, value: &dyn Fn(&str) -> Option<i64>) -> i64 {
         match self {
             Expr::Int(v) => *v,
@@ -146,7 +131,7 @@ enum Tok {
 }
 
 /// Parses `text`, which starts at byte `offset` of `file`. `max_depth` bounds nesting.
-pub fn parse(
+pub(crate) fn parse(
     text: &str,
     offset: usize,
     file: FileId,
@@ -243,7 +228,7 @@ fn tokenize(text: &str, offset: usize, file: FileId) -> Result<Vec<(Tok, Span)>,
 }
 
 /// Parses a decimal or `0x` hexadecimal integer literal.
-pub fn parse_int(lit: &str) -> Option<i64> {
+pub(crate) fn parse_int(lit: &str) -> Option<i64> {
     if let Some(hex) = lit.strip_prefix("0x").or_else(|| lit.strip_prefix("0X")) {
         i64::from_str_radix(hex, 16).ok()
     } else {
@@ -411,6 +396,21 @@ impl Parser {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn eval_names() {
+        let e = parse("defined(DEFERRED_PASS) && UNITY_HDR_ON", 0, 0, 64).unwrap();
+        let on = |n: &str| (n == "DEFERRED_PASS" || n == "UNITY_HDR_ON").then_some(1);
+        assert_eq!(e.eval(&on), 1);
+        assert_eq!(e.eval(&|_: &str| None), 0);
+    }
+
+    #[test]
+    fn apply_is_0_or_1() {
+        assert_eq!(BinOp::Le.apply(2, 3), 1);
+        assert_eq!(BinOp::Or.apply(0, -1), 1);
+        assert_eq!(BinOp::And.apply(2, 0), 0);
+    }
 
     fn eval(text: &str, defs: &[(&str, i64)]) -> i64 {
         let e = parse(text, 0, 0, 64).unwrap_or_else(|err| panic!("{text}: {err}"));

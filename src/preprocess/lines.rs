@@ -11,7 +11,7 @@ use std::ops::Range;
 /// WGSL blankspace (Unicode Pattern_White_Space): space, tab, the line breaks, and the
 /// left-to-right / right-to-left marks. Unlike [`char::is_whitespace`], NBSP (U+00A0) and the
 /// other Unicode spaces are *not* blank: naga rejects them.
-pub fn is_blank(c: char) -> bool {
+pub(crate) fn is_blank(c: char) -> bool {
     matches!(
         c,
         ' ' | '\t' | '\u{000a}'
@@ -19,26 +19,18 @@ pub fn is_blank(c: char) -> bool {
     )
 }
 
-/// Whether `c` is a WGSL line break character (CR LF counts as one break, made of two).
-pub fn is_line_break(c: char) -> bool {
-    matches!(
-        c,
-        '\u{000a}'..='\u{000d}' | '\u{0085}' | '\u{2028}' | '\u{2029}'
-    )
-}
-
 /// `s` without leading WGSL blankspace.
-pub fn trim_blank_start(s: &str) -> &str {
+pub(crate) fn trim_blank_start(s: &str) -> &str {
     s.trim_start_matches(is_blank)
 }
 
 /// `s` without trailing WGSL blankspace.
-pub fn trim_blank_end(s: &str) -> &str {
+pub(crate) fn trim_blank_end(s: &str) -> &str {
     s.trim_end_matches(is_blank)
 }
 
 /// The first line break at or after byte `from`: its byte range (two bytes for CR LF).
-pub fn next_break(text: &str, from: usize) -> Option<Range<usize>> {
+pub(crate) fn next_break(text: &str, from: usize) -> Option<Range<usize>> {
     let bytes = text.as_bytes();
     let mut i = from;
     while i < bytes.len() {
@@ -61,7 +53,7 @@ pub fn next_break(text: &str, from: usize) -> Option<Range<usize>> {
 /// The lines of `text`: for each, the byte range of its content and of its line break (empty
 /// for a last line without one). A final break does not start another line; empty text has
 /// no lines.
-pub fn split(text: &str) -> impl Iterator<Item = (Range<usize>, Range<usize>)> + '_ {
+pub(crate) fn split(text: &str) -> impl Iterator<Item = (Range<usize>, Range<usize>)> + '_ {
     let mut start = 0;
     std::iter::from_fn(move || {
         if start >= text.len() {
@@ -76,7 +68,7 @@ pub fn split(text: &str) -> impl Iterator<Item = (Range<usize>, Range<usize>)> +
 
 /// The byte offset where each line starts, as an editor numbers lines: 0, then the end of
 /// every line break (so text ending in a break has an empty last line).
-pub fn line_starts(text: &str) -> Vec<usize> {
+pub(crate) fn line_starts(text: &str) -> Vec<usize> {
     let mut starts = vec![0];
     let mut at = 0;
     while let Some(brk) = next_break(text, at) {
@@ -88,7 +80,7 @@ pub fn line_starts(text: &str) -> Vec<usize> {
 
 /// One line of a module.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Line {
+pub(crate) struct Line {
     /// Byte range of the line in the file, without its line break.
     pub range: Range<usize>,
     /// For a directive line: byte range of the directive text after `#`, without a trailing
@@ -100,7 +92,7 @@ pub struct Line {
 }
 
 /// Splits `text` into lines and classifies each one.
-pub fn scan(text: &str) -> Vec<Line> {
+pub(crate) fn scan(text: &str) -> Vec<Line> {
     let mut lines = Vec::new();
     let mut depth = 0usize; // block-comment nesting at the start of the current line
     for (range, _) in split(text) {

@@ -69,7 +69,7 @@ impl Default for ParseLimits {
 
 /// Parses `text` (the contents of `file`). Returns every error found, not only the first.
 #[cfg(test)]
-pub fn parse_module(
+pub(crate) fn parse_module(
     file: FileId,
     text: &str,
     limits: ParseLimits,
@@ -78,7 +78,7 @@ pub fn parse_module(
 }
 
 /// Parses a module written in `dialect`. Returns every error found, not only the first.
-pub fn parse_module_in(
+pub(crate) fn parse_module_in(
     dialect: Dialect,
     file: FileId,
     text: &str,

@@ -12,7 +12,7 @@ use super::expr::Expr;
 
 /// A node of a module body.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Node {
+pub(crate) enum Node {
     /// A run of consecutive WGSL lines, as indices into [`ParsedModule::lines`].
     Text(Range<u32>),
     /// `#if` … `#endif`.
@@ -35,7 +35,7 @@ pub enum Node {
 
 /// The branches of one `#if`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Conditional {
+pub(crate) struct Conditional {
     /// `#if` and `#elif` conditions, each with its body, in order.
     pub branches: Vec<(Expr, Vec<Node>)>,
     /// The `#else` body (empty without `#else`).
@@ -44,7 +44,7 @@ pub struct Conditional {
 
 /// One `#import` of a module.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ImportRef {
+pub(crate) struct ImportRef {
     /// Path as written, without extension (naga_oil: the item's or module's full `a::b::c`
     /// path, with `{…}` groups expanded).
     pub path: String,
@@ -54,7 +54,7 @@ pub struct ImportRef {
 
 /// A `#pragma` of a pass, as written.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Pragma {
+pub(crate) enum Pragma {
     /// `multi_compile[_local]` or `shader_feature[_local]`.
     Keywords {
         /// The pragma kind.
@@ -83,7 +83,7 @@ pub enum Pragma {
 
 /// A `#pass … #endpass` block.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PassDecl {
+pub(crate) struct PassDecl {
     /// Pass name.
     pub name: String,
     /// Where the name is written.
@@ -105,7 +105,7 @@ pub struct PassDecl {
 
 /// A shader file's `#shader` declaration and passes.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ShaderDecl {
+pub(crate) struct ShaderDecl {
     /// Shader name.
     pub name: String,
     /// Where the name is written.
@@ -116,7 +116,7 @@ pub struct ShaderDecl {
 
 /// A parsed module file.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParsedModule {
+pub(crate) struct ParsedModule {
     /// The file.
     pub file: FileId,
     /// Byte range of each line.

@@ -63,7 +63,10 @@ impl SourceError {
 
 /// Decodes raw files into `files`. Returns the id of each decoded file in input order, and an
 /// error for each file that is not UTF-8 (pointing at the first bad byte).
-pub fn decode(raw: Vec<RawFile>, files: &mut SourceFiles) -> (Vec<FileId>, Vec<SourceError>) {
+pub(crate) fn decode(
+    raw: Vec<RawFile>,
+    files: &mut SourceFiles,
+) -> (Vec<FileId>, Vec<SourceError>) {
     let mut ids = Vec::with_capacity(raw.len());
     let mut errors = Vec::new();
     for file in raw {

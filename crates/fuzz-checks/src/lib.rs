@@ -4,7 +4,6 @@
 
 use std::collections::HashSet;
 
-use wgsl_variants::preprocess::expr::parse;
 use wgsl_variants::validate::validate_pass;
 use wgsl_variants::{Library, Space, Variant};
 
@@ -35,13 +34,11 @@ pub fn expr(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    if let Ok(e) = parse(text, 0, 0, 256) {
-        let _ = e.eval(&|n: &str| match n.len() % 3 {
-            0 => None,
-            1 => Some(i64::MIN),
-            _ => Some(n.len() as i64),
-        });
-    }
+    let _ = wgsl_variants::preprocess::eval_expr(text, &|n: &str| match n.len() % 3 {
+        0 => None,
+        1 => Some(i64::MIN),
+        _ => Some(n.len() as i64),
+    });
 }
 
 /// Any pass body (pragmas, tags, defines, conditionals): loading never panics, and every

@@ -50,7 +50,7 @@ pub fn run(ctx: &Context, args: &MergeArgs) -> Result<ExitCode, Failed> {
         let text = std::fs::read_to_string(path).map_err(|e| {
             Failed::from(MergeError::Read {
                 shard: name.clone(),
-                message: e.to_string(),
+                source: e,
             })
         })?;
         let this = kind_of(&name, &text)?;
@@ -73,9 +73,9 @@ pub fn run(ctx: &Context, args: &MergeArgs) -> Result<ExitCode, Failed> {
 
 fn kind_of(name: &str, text: &str) -> Result<Kind, Failed> {
     let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
-        Failed::from(MergeError::Read {
+        Failed::from(MergeError::NotJson {
             shard: name.to_string(),
-            message: format!("not JSON: {e}"),
+            source: e,
         })
     })?;
     if value.get("selection").is_some() {

@@ -176,7 +176,7 @@ pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), Merg
     merged.insert("seconds".into(), Value::from(seconds));
     let mut text = serde_json::to_string_pretty(&merged).map_err(|e| MergeError::Write {
         path: "<stdout>".into(),
-        message: e.to_string(),
+        source: e.into(),
     })?;
     text.push('\n');
     Ok((text, passed))
