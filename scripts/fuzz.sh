@@ -5,7 +5,7 @@
 # module text), expr (#if expressions), pragmas (pass bodies), loader (several modules with
 # imports), lean (naga gives the lean and the emitted text of every variant the same outcome),
 # naga_oil (naga_oil-dialect trees, loaded and composed through naga_oil), wesl (WESL trees,
-# their `@if` tree read and every variant composed through the wesl crate), declaration (any
+# their `@if` tree read and every variant composed through the wesl crate; rustc >= 1.97.1), declaration (any
 # wgsl-variants.toml over a fixed tree), merge (shard reports, edited or not: merged totals
 # always add up) and cache (segment bytes: nothing untrusted is ever trusted).
 # Each input is bounded in time (-timeout) and memory (-rss_limit_mb). A crash is
