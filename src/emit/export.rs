@@ -24,7 +24,6 @@ use crate::library::Library;
 use crate::lookup::suggest;
 use crate::preprocess::Composed;
 use crate::preprocess::compose::compose;
-use crate::preprocess::tree::Node;
 
 /// Why a module could not be exported.
 #[derive(Debug, thiserror::Error)]
@@ -150,26 +149,12 @@ pub(crate) fn import_closure(lib: &Library, module: usize) -> Vec<usize> {
     order
 }
 
-fn names_read(nodes: &[Node], out: &mut BTreeSet<String>) {
-    for node in nodes {
-        if let Node::If(cond) = node {
-            for (expr, body) in &cond.branches {
-                expr.visit_names(&mut |n| {
-                    out.insert(n.to_string());
-                });
-                names_read(body, out);
-            }
-            names_read(&cond.otherwise, out);
-        }
-    }
-}
-
 /// Every name an `#if` of the module or its imports reads.
 pub fn conditions_read(lib: &Library, module: usize) -> BTreeSet<String> {
     let graph = lib.module_graph();
     let mut names = BTreeSet::new();
     for m in import_closure(lib, module) {
-        names_read(&graph.modules[m].body, &mut names);
+        crate::preprocess::tree::names_read(&graph.modules[m].body, &mut names);
     }
     names
 }

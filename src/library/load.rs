@@ -347,7 +347,7 @@ fn unread_keywords(
             // Names the conditions read that the pass neither declares nor sets.
             let mut read = std::collections::BTreeSet::new();
             for &m in &reached {
-                condition_names(&modules[m].body, &mut read);
+                crate::preprocess::tree::names_read(&modules[m].body, &mut read);
             }
             for (k, _) in &declared {
                 read.remove(crate::declaration::def_of(k).0);
@@ -399,21 +399,6 @@ fn unread_keywords(
         }
     }
     warnings
-}
-
-/// Adds every name the conditions of `nodes` read (`#ifdef X`, `#if X > 1`, `@if(X)`).
-fn condition_names(nodes: &[Node], out: &mut std::collections::BTreeSet<String>) {
-    for node in nodes {
-        if let Node::If(cond) = node {
-            for (e, body) in &cond.branches {
-                e.visit_names(&mut |n| {
-                    out.insert(n.to_string());
-                });
-                condition_names(body, out);
-            }
-            condition_names(&cond.otherwise, out);
-        }
-    }
 }
 
 /// The loaded library: its shaders built from `decls` (each with its file and the module its

@@ -133,3 +133,19 @@ pub(crate) struct ParsedModule {
     /// where it is written; `None`: imported by its path.
     pub import_name: Option<(String, Span)>,
 }
+
+/// Adds every name the conditions of `nodes` read (`#ifdef X`, `#if X > 1`, `@if(X)`), in
+/// every branch.
+pub(crate) fn names_read(nodes: &[Node], out: &mut std::collections::BTreeSet<String>) {
+    for node in nodes {
+        if let Node::If(cond) = node {
+            for (expr, body) in &cond.branches {
+                expr.visit_names(&mut |n| {
+                    out.insert(n.to_string());
+                });
+                names_read(body, out);
+            }
+            names_read(&cond.otherwise, out);
+        }
+    }
+}
