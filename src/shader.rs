@@ -93,6 +93,11 @@ pub struct Pass {
     /// none in this crate's own dialect, whose modules `#define` them).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub constants: Vec<crate::declaration::Constant>,
+    /// Keywords that set several defs (declaration files' `options`), each with its defs;
+    /// any other keyword sets its own def ([`def_of`](crate::declaration::def_of)). See
+    /// [`Pass::keyword_defs`].
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub options: std::collections::BTreeMap<String, Vec<crate::declaration::Constant>>,
     /// Where the pass is declared.
     #[serde(skip)]
     pub span: Span,
@@ -186,6 +191,7 @@ impl Pass {
             skip_variants: skip.into_iter().map(|n| n.0.to_string()).collect(),
             exclude_renderers: exclude,
             constants: decl.constants,
+            options: decl.options,
             span: decl.span,
             body: decl.body,
             module,
@@ -196,8 +202,7 @@ impl Pass {
     }
 
     /// The shader defs of a variant with `keywords` on: the pass's constants, then each
-    /// keyword's def ([`def_of`](crate::declaration::def_of): `true`, or a valued keyword's
-    /// value). Later entries win when collected into a map.
+    /// keyword's defs ([`Pass::keyword_defs`]). Later entries win when collected into a map.
     pub fn defs<'k>(
         &'k self,
         keywords: impl IntoIterator<Item = &'k str>,
@@ -205,8 +210,30 @@ impl Pass {
         self.constants
             .iter()
             .map(|c| (c.name.as_str(), c.value))
-            .chain(keywords.into_iter().map(crate::declaration::def_of))
+            .chain(keywords.into_iter().flat_map(|k| self.keyword_defs(k)))
             .collect()
+    }
+
+    /// The defs one keyword sets: an option's defs (declaration files' `options`), else the
+    /// keyword's own def ([`def_of`](crate::declaration::def_of): `true`, or a valued
+    /// keyword's value).
+    ///
+    /// ```
+    /// let lib = wgsl_variants_shaders::library().unwrap();
+    /// let pass = lib.pass("standard", "Deferred").unwrap();
+    /// assert_eq!(
+    ///     pass.keyword_defs("_NORMAL_MAP"),
+    ///     [("_NORMAL_MAP", wgsl_variants::declaration::DefValue::Bool(true))]
+    /// );
+    /// ```
+    pub fn keyword_defs<'k>(
+        &'k self,
+        keyword: &'k str,
+    ) -> Vec<(&'k str, crate::declaration::DefValue)> {
+        match self.options.get(keyword) {
+            Some(defs) => defs.iter().map(|c| (c.name.as_str(), c.value)).collect(),
+            None => vec![crate::declaration::def_of(keyword)],
+        }
     }
 
     /// The module the pass composes, as an index into

@@ -392,8 +392,23 @@ pub(crate) fn validate_keyed(
             })
             .collect();
         let keys: Vec<u128> = composed.iter().map(|(h, _)| key(h)).collect();
+        // A variant whose composition failed has no text to compare: its key is its error's,
+        // which groups the failure, but it counts as a program of its own (naga_oil's or
+        // wesl's message is the same for programs that differ), in shards too.
+        let dedup: Vec<u128> = (0..chunk.len())
+            .map(|j| match composed[j].1.failure {
+                Some(_) => {
+                    let options: Vec<u8> =
+                        chunk[j].0.iter().flat_map(|o| o.to_le_bytes()).collect();
+                    let k = keys[j].to_le_bytes();
+                    let h = crate::fingerprint::hash_parts([&k[..], &options[..]]);
+                    key(h.as_bytes())
+                }
+                None => keys[j],
+            })
+            .collect();
         let fresh: Vec<usize> = (0..chunk.len())
-            .filter(|&j| seen.as_mut().is_none_or(|s| s.insert(keys[j])))
+            .filter(|&j| seen.as_mut().is_none_or(|s| s.insert(dedup[j])))
             .collect();
         distinct += fresh.len() as u64;
         let results = validate_fresh(
@@ -414,7 +429,10 @@ pub(crate) fn validate_keyed(
         );
         drop(composed);
         for (j, error) in results {
-            record(error, keys[j], &mut failing, &mut failures);
+            // Failed compositions with one error are one failure.
+            if !failing.contains_key(&keys[j]) {
+                record(error, keys[j], &mut failing, &mut failures);
+            }
         }
         // The unpruned texts of the variants whose program is valid, each validated once.
         let mut unpruned_keys: Vec<Option<u128>> = vec![None; chunk.len()];

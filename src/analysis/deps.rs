@@ -89,19 +89,27 @@ pub(crate) fn analyze(
         .into_iter()
         .map(|(name, value)| (Box::from(name), Val::Known(Some(value.as_i64()))))
         .collect();
+    // A def several sets' options set (an option's defs) depends on all of them.
+    let mut setters: HashMap<&str, Bits> = HashMap::new();
     for (s, set) in pass.sets.iter().enumerate() {
         match space.options(s).as_slice() {
             // The same option in every variant.
             [only] => {
                 if let Some(k) = &set.options[*only as usize] {
-                    let (name, value) = crate::declaration::def_of(k);
-                    vals.insert(Box::from(name), Val::Known(Some(value.as_i64())));
+                    for (name, value) in pass.keyword_defs(k) {
+                        if !setters.contains_key(name) {
+                            vals.insert(Box::from(name), Val::Known(Some(value.as_i64())));
+                        }
+                    }
                 }
             }
             _ => {
                 for k in set.keywords() {
-                    let (name, _) = crate::declaration::def_of(k);
-                    vals.insert(Box::from(name), Val::Unknown(Bits::single(s)));
+                    for (name, _) in pass.keyword_defs(k) {
+                        let bits = setters.entry(name).or_insert_with(|| Bits::single(s));
+                        bits.insert(s);
+                        vals.insert(Box::from(name), Val::Unknown(bits.clone()));
+                    }
                 }
             }
         }

@@ -143,8 +143,14 @@ fn audit_with<'p>(
 fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
     let names: Vec<&str> = pass
         .keywords()
-        .filter(|k| k.contains('='))
-        .map(|k| crate::declaration::def_of(k).0)
+        .flat_map(|k| {
+            // A valued keyword, or an option's def with a value other than "on".
+            let valued = k.contains('=');
+            pass.keyword_defs(k)
+                .into_iter()
+                .filter(move |(_, v)| valued || *v != crate::declaration::DefValue::Bool(true))
+        })
+        .map(|(name, _)| name)
         .collect();
     if names.is_empty() {
         return false;

@@ -301,29 +301,29 @@ pub fn tuple_label(pass: &Pass, tuple: &Tuple) -> String {
         .join(" & ")
 }
 
-/// Shrinks a failing variant like a property-test shrinker: turns its keywords off (each set
-/// to its "none" option) one at a time, keeping each change that stays in `space` and still
-/// fails, until no single keyword can be turned off. Returns the smallest failing variant
-/// found (`fails` is called at most a few times per keyword).
+/// Shrinks a failing variant like a property-test shrinker: moves its sets to their base
+/// option (the "none" option, or the first the space allows where a set has none) one at a
+/// time, keeping each change that still fails, until no set can move. A move that breaks a
+/// `require`/`exclude` constraint takes the keywords that constraint ties to it along (a
+/// keyword whose requirement is turned off is turned off too), so the result is minimal under
+/// the pass's constraints. Returns the smallest failing variant found (`fails` is called at
+/// most a few times per set).
 pub fn shrink(
     space: &Space<'_>,
     failing: &Choice,
     mut fails: impl FnMut(&Choice) -> bool,
 ) -> Choice {
-    let pass = space.pass();
+    let sets = space.pass().sets.len();
     let mut current = failing.clone();
     loop {
         let mut changed = false;
-        for (set, keyword_set) in pass.sets.iter().enumerate() {
-            let Some(none) = keyword_set.none_index() else {
-                continue;
-            };
-            if current.0[set] as usize == none {
+        for set in 0..sets {
+            if Some(current.0[set]) == base(space, set) {
                 continue;
             }
-            let mut candidate = current.clone();
-            candidate.0[set] = none as u16;
-            if space.contains(&candidate) && fails(&candidate) {
+            if let Some(candidate) = to_base(space, &current, set)
+                && fails(&candidate)
+            {
                 current = candidate;
                 changed = true;
             }
@@ -332,6 +332,41 @@ pub fn shrink(
             return current;
         }
     }
+}
+
+/// A set's base option in `space`: its "none" option where the space allows it, else the
+/// first option it allows.
+fn base(space: &Space<'_>, set: usize) -> Option<u16> {
+    let allowed = space.options(set);
+    let none = space.pass().sets[set].none_index().map(|n| n as u16);
+    none.filter(|n| allowed.contains(n))
+        .or_else(|| allowed.first().copied())
+}
+
+/// `current` with `set` at its base option, and with each keyword a broken constraint then
+/// ties to it at its base too, if that ends in the space.
+fn to_base(space: &Space<'_>, current: &Choice, set: usize) -> Option<Choice> {
+    let pass = space.pass();
+    let mut candidate = current.clone();
+    candidate.0[set] = base(space, set)?;
+    for _ in 0..pass.sets.len() {
+        if space.contains(&candidate) {
+            return Some(candidate);
+        }
+        // Only materials (not a constraint) rule it out: no repair.
+        let broken = pass.constraints.iter().find(|c| !c.holds(&candidate.0))?;
+        let (other, _) = match broken.kind {
+            crate::keywords::ConstraintKind::Require => broken.at[0],
+            crate::keywords::ConstraintKind::Exclude if broken.at[0].0 == set => broken.at[1],
+            crate::keywords::ConstraintKind::Exclude => broken.at[0],
+        };
+        let other_base = base(space, other)?;
+        if candidate.0[other] == other_base {
+            return None;
+        }
+        candidate.0[other] = other_base;
+    }
+    space.contains(&candidate).then_some(candidate)
 }
 
 impl Space<'_> {

@@ -170,3 +170,21 @@ fn shrink_to_the_culprits() {
     let small = shrink(&space, &all_on, fails);
     assert_eq!(small.keywords(pass), vec!["K1", "K4"]);
 }
+
+/// Under `require`, turning one keyword off may leave the space; the shrinker takes the
+/// keywords that need it along, and moves sets without a "none" option to their first.
+#[test]
+fn shrink_is_minimal_under_constraints() {
+    let lib = library(
+        "#pragma multi_compile _ TANGENTS\n#pragma multi_compile _ TONEMAP\n\
+         #pragma multi_compile OFF NONE ACES\n#pragma require NONE TONEMAP\n\
+         #pragma require ACES TONEMAP\n#pragma exclude OFF TONEMAP\n",
+    );
+    let pass = lib.pass("s", "P").unwrap();
+    let space = Space::full(pass);
+    let start = pass.resolve(&["TANGENTS", "TONEMAP", "NONE"]).unwrap();
+    assert!(space.contains(&start));
+    let fails = |c: &Choice| c.keywords(pass).contains(&"TANGENTS");
+    let small = shrink(&space, &start, fails);
+    assert_eq!(small.keywords(pass), vec!["TANGENTS", "OFF"]);
+}

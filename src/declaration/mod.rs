@@ -40,6 +40,36 @@
 //! constants = { PREPASS = false }  # this pass's own constants (override the tree's)
 //! ```
 //!
+//! What an engine pushes together is said once:
+//!
+//! ```toml
+//! [options]                        # a keyword that sets several defs (and valued defs)
+//! TONEMAP_ACES = ["TONEMAP_IN_SHADER", "TONEMAP_METHOD_ACES_FITTED"]
+//! TONEMAP_TONY = { TONEMAP_IN_SHADER = true, TONEMAP_METHOD_TONY_MC_MAPFACE = true, LUT_BINDING = { uint = 18 } }
+//!
+//! [blocks.tonemapping]             # keyword sets, constraints and options passes share
+//! multi_compile = [["_", "TONEMAP_ACES", "TONEMAP_TONY"]]
+//! require = [["DEBAND_DITHER", "TONEMAP_ACES"]]
+//!
+//! [modules."render/view.wgsl".constants]   # defs set on one module: every pass that
+//! MAX_LIGHTS = { uint = 10 }               # composes it gets them
+//!
+//! [[shader.pass]]
+//! name = "Forward"
+//! use = ["tonemapping"]            # the block's sets follow the pass's own
+//! options = { FOG_ON = ["DISTANCE_FOG", "FOG_TINT"] }   # options of this pass only
+//! ```
+//!
+//! A keyword an option names sets the option's defs instead of the def of its own name
+//! ([`Pass::keyword_defs`](crate::Pass::keyword_defs)); the variant's keywords stay the option
+//! names. An option is declared once (the tree's `[options]`, a block's or a pass's `options`;
+//! the same name twice must set the same defs). A module's defs reach every pass whose entry
+//! imports it, directly or not, as naga_oil applies a composable module's `shader_defs` and
+//! Bevy 0.20 the `ShaderSettings` of the modules a shader composes; a def with two values in
+//! one pass, or one that a keyword of the pass also sets, is refused. In a naga_oil tree a def
+//! set to `false` that a module tests with `#ifdef` is a warning: `#ifdef` asks whether the
+//! def is set, not its value.
+//!
 //! Valued sets give a def one of several values, one variant per value:
 //!
 //! ```toml
@@ -57,9 +87,9 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::diagnostic::{Diagnostic, FileId, Span};
-use crate::keywords::ConstraintKind;
-use crate::keywords::SetKind;
-use crate::preprocess::tree::{PassDecl, Pragma};
+use crate::preprocess::tree::PassDecl;
+
+mod pass;
 
 /// The declaration file's name, at the root of a tree.
 pub const FILE_NAME: &str = "wgsl-variants.toml";
@@ -95,6 +125,21 @@ pub(crate) struct Declaration {
     pub profile: crate::validator::Profile,
     /// The shaders, in file order.
     pub shaders: Vec<ShaderSpec>,
+    /// Defs set on single modules (`[modules."PATH".constants]`), in path order.
+    pub module_constants: Vec<ModuleConstants>,
+}
+
+/// The defs a `[modules."PATH"]` table sets: every pass whose entry reaches the module gets
+/// them, as naga_oil applies a composable module's `shader_defs` and Bevy 0.20 a module's
+/// `ShaderSettings` (the defs of every module of the composed closure).
+#[derive(Clone, Debug)]
+pub(crate) struct ModuleConstants {
+    /// The module's path relative to the root, with its extension, as written.
+    pub path: String,
+    /// Where the path is written.
+    pub span: Span,
+    /// The defs.
+    pub constants: Vec<Constant>,
 }
 
 /// The `[wesl]` table: the options of `wesl`'s compiler a tree sets.
@@ -148,6 +193,12 @@ struct FileToml {
     wesl: Option<Spanned<WeslToml>>,
     #[serde(default)]
     constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
+    #[serde(default)]
+    options: pass::OptionsToml,
+    #[serde(default)]
+    blocks: BTreeMap<Spanned<String>, pass::BlockToml>,
+    #[serde(default)]
+    modules: BTreeMap<Spanned<String>, ModuleToml>,
     #[serde(default, rename = "shader")]
     shaders: Vec<ShaderToml>,
 }
@@ -158,49 +209,20 @@ struct ShaderToml {
     name: Spanned<String>,
     entry: Spanned<String>,
     #[serde(default, rename = "pass")]
-    passes: Vec<PassToml>,
+    passes: Vec<pass::PassToml>,
 }
 
-type Names = Spanned<Vec<Spanned<String>>>;
-
+/// A `[modules."PATH"]` table: what the declaration says about one module.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct PassToml {
-    name: Spanned<String>,
-    entry: Option<Spanned<String>>,
-    #[serde(default)]
-    tags: BTreeMap<String, String>,
-    #[serde(default)]
-    multi_compile: Vec<Names>,
-    #[serde(default)]
-    multi_compile_local: Vec<Names>,
-    #[serde(default)]
-    shader_feature: Vec<Names>,
-    #[serde(default)]
-    shader_feature_local: Vec<Names>,
-    #[serde(default)]
-    require: Vec<Names>,
-    #[serde(default)]
-    exclude: Vec<Names>,
-    #[serde(default)]
-    skip_variants: Vec<Spanned<String>>,
+struct ModuleToml {
     #[serde(default)]
     constants: BTreeMap<Spanned<String>, Spanned<ValueToml>>,
-    #[serde(default)]
-    values: BTreeMap<Spanned<String>, Spanned<ValuesToml>>,
 }
 
 #[derive(Deserialize)]
 #[serde(untagged)]
-enum ValuesToml {
-    Bools(Vec<bool>),
-    Ints(Vec<i64>),
-    UInts { uint: Vec<i64> },
-}
-
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum ValueToml {
+pub(super) enum ValueToml {
     Bool(bool),
     Int(i64),
     UInt { uint: i64 },
@@ -243,6 +265,10 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         },
     };
     let tree_constants = constants(&parsed.constants, at, &mut errors);
+    let shared = pass::Shared {
+        options: &parsed.options,
+        blocks: &parsed.blocks,
+    };
     let shaders = parsed
         .shaders
         .into_iter()
@@ -254,17 +280,22 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
                 .passes
                 .into_iter()
                 .map(|p| {
-                    let mut merged = tree_constants.clone();
-                    for c in constants(&p.constants, at, &mut errors) {
-                        merged.retain(|m| m.name != c.name);
-                        merged.push(c);
-                    }
-                    let mut decl = pass_decl(p, at, &mut errors);
-                    shadowed_keywords(&decl, &merged, &mut errors);
+                    let merged = pass::merged_constants(&tree_constants, &p, at, &mut errors);
+                    let mut decl = pass::pass_decl(p, &shared, at, &mut errors);
+                    pass::shadowed_keywords(&decl, &merged, &mut errors);
                     decl.constants = merged;
                     decl
                 })
                 .collect(),
+        })
+        .collect();
+    let module_constants = parsed
+        .modules
+        .iter()
+        .map(|(path, m)| ModuleConstants {
+            path: path.get_ref().clone(),
+            span: at(path.span()),
+            constants: constants(&m.constants, at, &mut errors),
         })
         .collect();
     let exclude: Vec<(String, Span)> = parsed
@@ -316,6 +347,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             wesl,
             profile,
             shaders,
+            module_constants,
         })
     } else {
         Err(errors)
@@ -390,19 +422,23 @@ fn not_a_tree_path(path: &str) -> Option<&'static str> {
     None
 }
 
-fn constants(
+/// A constant's value, if it is in range (i32 for a plain integer, u32 for `{ uint = N }`).
+pub(super) fn value_of(value: &ValueToml) -> Option<DefValue> {
+    match value {
+        ValueToml::Bool(b) => Some(DefValue::Bool(*b)),
+        ValueToml::Int(i) => i32::try_from(*i).ok().map(DefValue::Int),
+        ValueToml::UInt { uint } => u32::try_from(*uint).ok().map(DefValue::UInt),
+    }
+}
+
+pub(super) fn constants(
     table: &BTreeMap<Spanned<String>, Spanned<ValueToml>>,
     at: impl Fn(std::ops::Range<usize>) -> Span,
     errors: &mut Vec<DeclarationError>,
 ) -> Vec<Constant> {
     let mut out = Vec::new();
     for (name, value) in table {
-        let v = match value.get_ref() {
-            ValueToml::Bool(b) => Some(DefValue::Bool(*b)),
-            ValueToml::Int(i) => i32::try_from(*i).ok().map(DefValue::Int),
-            ValueToml::UInt { uint } => u32::try_from(*uint).ok().map(DefValue::UInt),
-        };
-        match v {
+        match value_of(value.get_ref()) {
             Some(value) => out.push(Constant {
                 name: name.get_ref().clone(),
                 value,
@@ -424,6 +460,8 @@ fn constants(
 fn toml_message(message: &str) -> String {
     if message.contains("untagged enum ValueToml") {
         "a constant's value is `true` or `false` (Bool), an integer (Int, i32) or `{ uint = N }` (UInt, u32)".into()
+    } else if message.contains("untagged enum OptionToml") {
+        "an option is a list of the defs it sets (`[\"A\", \"B\"]`) or a table of defs with their values (`{ A = true, N = { uint = 4 } }`)".into()
     } else if message.contains("untagged enum ValuesToml") {
         "a valued set's values are a list of integers (`[4, 8]`, Int) or `{ uint = [1, 2] }` (UInt), or `[true, false]`".into()
     } else {
@@ -431,176 +469,10 @@ fn toml_message(message: &str) -> String {
     }
 }
 
-/// A keyword whose def is also a constant of its pass: the constant would set the def in every
-/// variant, whichever option the variant has, so the keyword would change nothing.
-fn shadowed_keywords(decl: &PassDecl, constants: &[Constant], errors: &mut Vec<DeclarationError>) {
-    for pragma in &decl.pragmas {
-        let Pragma::Keywords { names, .. } = pragma else {
-            continue;
-        };
-        for (name, span) in names {
-            let def = def_of(name).0;
-            if constants.iter().any(|c| c.name == def) {
-                errors.push(DeclarationError {
-                    message: format!(
-                        "`{def}` is both a keyword of pass `{}` and a constant: the constant would set it in every variant, so the keyword would change nothing (remove one of them)",
-                        decl.name
-                    ),
-                    span: *span,
-                });
-            }
-        }
-    }
-}
-
-/// Whether `name` can be a keyword: a def name (letters, digits and `_`, not starting with a
-/// digit) or `_`.
-fn is_keyword_name(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
-
-fn pass_decl(
-    p: PassToml,
-    at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
-    errors: &mut Vec<DeclarationError>,
-) -> PassDecl {
-    for set in [
-        &p.multi_compile,
-        &p.multi_compile_local,
-        &p.shader_feature,
-        &p.shader_feature_local,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        for name in set.get_ref() {
-            if !is_keyword_name(name.get_ref()) {
-                errors.push(DeclarationError {
-                    message: format!(
-                        "`{}` is not a keyword: write a def name (letters, digits and `_`, not starting with a digit) or `_`",
-                        name.get_ref()
-                    ),
-                    span: at(name.span()),
-                });
-            }
-        }
-    }
-    let names = |n: &Names| -> Vec<(Box<str>, Span)> {
-        n.get_ref()
-            .iter()
-            .map(|s| (Box::from(s.get_ref().as_str()), at(s.span())))
-            .collect()
-    };
-    let mut pragmas = Vec::new();
-    let keyword_sets = |pragmas: &mut Vec<Pragma>, sets: &[Names], kind, local| {
-        for set in sets {
-            pragmas.push(Pragma::Keywords {
-                kind,
-                local,
-                names: names(set),
-                span: at(set.span()),
-            });
-        }
-    };
-    keyword_sets(&mut pragmas, &p.multi_compile, SetKind::MultiCompile, false);
-    keyword_sets(
-        &mut pragmas,
-        &p.multi_compile_local,
-        SetKind::MultiCompile,
-        true,
-    );
-    // Valued sets: one option per value, `NAME=VALUE` (see `def_of`), no "none" option.
-    for (name, values) in &p.values {
-        let span = at(values.span());
-        let texts: Option<Vec<String>> = match values.get_ref() {
-            ValuesToml::Bools(v) => {
-                Some(v.iter().map(|b| DefValue::Bool(*b).to_string()).collect())
-            }
-            ValuesToml::Ints(v) => v
-                .iter()
-                .map(|i| i32::try_from(*i).ok().map(|i| DefValue::Int(i).to_string()))
-                .collect(),
-            ValuesToml::UInts { uint } => uint
-                .iter()
-                .map(|u| {
-                    u32::try_from(*u)
-                        .ok()
-                        .map(|u| DefValue::UInt(u).to_string())
-                })
-                .collect(),
-        };
-        match texts {
-            Some(texts) if is_keyword_name(name.get_ref()) && !texts.is_empty() => {
-                pragmas.push(Pragma::Keywords {
-                    kind: SetKind::MultiCompile,
-                    local: false,
-                    names: texts
-                        .iter()
-                        .map(|v| (Box::from(format!("{}={v}", name.get_ref())), span))
-                        .collect(),
-                    span,
-                })
-            }
-            _ => errors.push(DeclarationError {
-                message: format!(
-                    "`{}` needs a def name and at least one value, each an i32 (plain integers), a u32 (`{{ uint = [...] }}`) or a boolean",
-                    name.get_ref()
-                ),
-                span: at(name.span()),
-            }),
-        }
-    }
-    keyword_sets(
-        &mut pragmas,
-        &p.shader_feature,
-        SetKind::ShaderFeature,
-        false,
-    );
-    keyword_sets(
-        &mut pragmas,
-        &p.shader_feature_local,
-        SetKind::ShaderFeature,
-        true,
-    );
-    for (list, kind) in [
-        (&p.require, ConstraintKind::Require),
-        (&p.exclude, ConstraintKind::Exclude),
-    ] {
-        for c in list {
-            pragmas.push(Pragma::Constraint {
-                kind,
-                names: names(c),
-                span: at(c.span()),
-            });
-        }
-    }
-    if !p.skip_variants.is_empty() {
-        pragmas.push(Pragma::SkipVariants(
-            p.skip_variants
-                .iter()
-                .map(|s| (Box::from(s.get_ref().as_str()), at(s.span())))
-                .collect(),
-        ));
-    }
-    PassDecl {
-        name: p.name.get_ref().clone(),
-        span: at(p.name.span()),
-        tags: p.tags.into_iter().collect(),
-        pragmas,
-        body: Vec::new(),
-        constants: Vec::new(),
-        entry: p.entry.map(|e| (e.get_ref().clone(), at(e.span()))),
-        module: None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::preprocess::tree::Pragma;
 
     #[test]
     fn passes_become_pragmas_with_spans_into_the_file() {

@@ -254,7 +254,20 @@ pub(crate) fn load_declared(
     if !problems.is_empty() {
         return Err(LoadError { files, problems });
     }
-    let mut warnings = unread_keywords(&decl, &modules, &resolved, &files, &mut problems);
+    let tree = super::declared::Tree {
+        modules: &modules,
+        resolved: &resolved,
+        files: &files,
+    };
+    let mut warnings = super::declared::apply_module_constants(&mut decl, &tree, &mut problems);
+    warnings.extend(super::declared::unread_keywords(
+        &decl,
+        &tree,
+        &mut problems,
+    ));
+    if dialect == Dialect::NagaOil {
+        warnings.extend(super::declared::false_ifdefs(&decl, &tree));
+    }
     if !problems.is_empty() {
         return Err(LoadError { files, problems });
     }
@@ -296,109 +309,6 @@ pub(crate) fn load_declared(
     loaded.wesl = decl_wesl;
     loaded.profile = decl_profile;
     Ok(loaded)
-}
-
-/// Declared keywords that no module a pass's entry reaches mentions (in a directive or a
-/// substitution): they change no variant. One whose def is within two edits of a name the
-/// modules' conditions read (and the pass does not declare) is a typo: an error naming the
-/// name read (`problems`). The rest are one warning per pass, every such keyword labelled:
-/// probably a def of another tree, or a marker.
-fn unread_keywords(
-    decl: &crate::declaration::Declaration,
-    modules: &[ParsedModule],
-    resolved: &[Vec<usize>],
-    files: &SourceFiles,
-    problems: &mut Vec<LoadProblem>,
-) -> Vec<crate::diagnostic::Diagnostic> {
-    let mut warnings = Vec::new();
-    for shader in &decl.shaders {
-        for pass in &shader.passes {
-            let Some(entry) = pass.module else { continue };
-            let reached = crate::preprocess::compose::reach(resolved, entry);
-            let mentions = |name: &str| {
-                reached.iter().any(|&m| {
-                    let text = files.text(modules[m].file);
-                    text.match_indices(name).any(|(i, _)| {
-                        let before = text[..i].chars().next_back();
-                        let after = text[i + name.len()..].chars().next();
-                        let word =
-                            |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
-                        !word(before) && !word(after)
-                    })
-                })
-            };
-            let declared: Vec<&(Box<str>, crate::diagnostic::Span)> = pass
-                .pragmas
-                .iter()
-                .filter_map(|p| match p {
-                    crate::preprocess::tree::Pragma::Keywords { names, .. } => Some(names),
-                    _ => None,
-                })
-                .flatten()
-                .collect();
-            let unread: Vec<&(Box<str>, crate::diagnostic::Span)> = declared
-                .iter()
-                .copied()
-                .filter(|(k, _)| &**k != "_" && !mentions(crate::declaration::def_of(k).0))
-                .collect();
-            if unread.is_empty() {
-                continue;
-            }
-            // Names the conditions read that the pass neither declares nor sets.
-            let mut read = std::collections::BTreeSet::new();
-            for &m in &reached {
-                crate::preprocess::tree::names_read(&modules[m].body, &mut read);
-            }
-            for (k, _) in &declared {
-                read.remove(crate::declaration::def_of(k).0);
-            }
-            for c in &pass.constants {
-                read.remove(c.name.as_str());
-            }
-            let mut rest = Vec::new();
-            for &(k, span) in &unread {
-                let def = crate::declaration::def_of(k).0;
-                let typo = read
-                    .iter()
-                    .map(|r| (strsim::levenshtein(def, r), r))
-                    .filter(|(d, _)| *d <= 2)
-                    .min();
-                match typo {
-                    Some((_, name)) => problems.push(
-                        crate::declaration::DeclarationError {
-                            message: format!(
-                                "keyword `{k}` of `{}/{}` is read by none of the modules it composes, which read `{name}`: a typo?",
-                                shader.name, pass.name
-                            ),
-                            span: *span,
-                        }
-                        .into(),
-                    ),
-                    None => rest.push((k, span)),
-                }
-            }
-            let Some((_, first)) = rest.first() else {
-                continue;
-            };
-            let list: Vec<&str> = rest.iter().map(|(k, _)| &***k).collect();
-            let mut warning = crate::diagnostic::Diagnostic::new(format!(
-                "{} declared keyword(s) of `{}/{}` appear in none of the modules it composes: {}",
-                list.len(),
-                shader.name,
-                pass.name,
-                list.join(", ")
-            ))
-            .warning()
-            .at(**first, "never read");
-            for (_, span) in &rest[1..] {
-                warning = warning.also(**span, "never read");
-            }
-            warnings.push(warning.note(
-                "they change no variant: a typo, or a def of another tree? (the audit lists them as dead)",
-            ));
-        }
-    }
-    warnings
 }
 
 /// The loaded library: its shaders built from `decls` (each with its file and the module its

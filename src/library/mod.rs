@@ -1,5 +1,6 @@
 //! A loaded library: its modules, shaders and passes, and composing variants.
 
+mod declared;
 mod engine;
 mod error;
 mod load;

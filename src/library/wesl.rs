@@ -162,7 +162,9 @@ impl WeslEngine {
             ..CompileOptions::default()
         };
         for k in variant.pass.keywords() {
-            options.features.set(crate::declaration::def_of(k).0, false);
+            for (name, _) in variant.pass.keyword_defs(k) {
+                options.features.set(name, false);
+            }
         }
         // A valued def is also a feature that is on, as Bevy's shader cache sets it.
         for (name, value) in &defs {

@@ -635,6 +635,7 @@ impl<'a> ModuleParser<'a> {
             pragmas: Vec::new(),
             body: Vec::new(),
             constants: Vec::new(),
+            options: Default::default(),
             entry: None,
             module: None,
         });

@@ -96,6 +96,9 @@ pub(crate) struct PassDecl {
     pub body: Vec<Node>,
     /// Shader defs with a fixed value (declaration files' `constants`).
     pub constants: Vec<crate::keywords::Constant>,
+    /// Keywords that set several defs (declaration files' `options`): each keyword with the
+    /// defs it sets, in place of the def of its own name.
+    pub options: std::collections::BTreeMap<String, Vec<crate::keywords::Constant>>,
     /// The pass's own entry module, where a declaration file names one (its path as written
     /// and where); otherwise the pass composes its shader's.
     pub entry: Option<(String, Span)>,

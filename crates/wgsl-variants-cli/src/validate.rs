@@ -73,7 +73,7 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
                 let n = f.keyword_sets.len();
                 if n > 1 {
                     eprintln!(
-                        "  (the same text is produced by {n} keyword sets; first: {:?})\n",
+                        "  ({n} keyword sets fail alike (the same text, or the same composer error); first: {:?})\n",
                         f.keyword_sets.iter().take(3).collect::<Vec<_>>()
                     );
                 }
