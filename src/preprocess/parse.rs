@@ -637,6 +637,7 @@ impl<'a> ModuleParser<'a> {
             constants: Vec::new(),
             entry: None,
             module: None,
+            profiles: Vec::new(),
         });
         Ok(())
     }
