@@ -315,7 +315,12 @@ fn main() -> ExitCode {
         lib.set_profiles(&cli.profile);
     }
     let json = cli.json;
-    if let Err(Failed(message)) = one_profile(&cli.command, lib.profiles()) {
+    let given = if cli.profile.is_empty() {
+        &[][..]
+    } else {
+        lib.profiles()
+    };
+    if let Err(Failed(message)) = one_profile(&cli.command, given) {
         eprintln!("{message}");
         if json {
             print_json_failure("command", summary(&message), Vec::new());
