@@ -549,7 +549,7 @@ pub(crate) fn validate_keyed(
                         .or_else(|| unpruned_keys[j].and_then(|u| failing.at.get(&(u, i))));
                     if let Some(&f) = failure {
                         failing.entries[f]
-                            .3
+                            .sets
                             .push((first + j as u64, choice.clone()));
                     }
                 }
@@ -676,8 +676,20 @@ impl Validators {
 /// first appearance.
 #[derive(Default)]
 struct Found {
-    entries: Vec<(VariantError, u128, usize, Vec<(u64, Choice)>)>,
+    entries: Vec<Entry>,
+    /// (text key, profile) → its entry.
     at: HashMap<(u128, usize), usize>,
+}
+
+/// One failing text on one profile.
+struct Entry {
+    error: VariantError,
+    /// The text's dedup key.
+    key: u128,
+    /// The profile (index into [`Targets::profiles`]).
+    profile: usize,
+    /// The keyword sets with this text, with their positions.
+    sets: Vec<(u64, Choice)>,
 }
 
 impl Found {
@@ -690,7 +702,12 @@ impl Found {
     ) {
         found(key, &error);
         self.at.insert((key, profile), self.entries.len());
-        self.entries.push((error, key, profile, Vec::new()));
+        self.entries.push(Entry {
+            error,
+            key,
+            profile,
+            sets: Vec::new(),
+        });
     }
 
     /// The pass's report: counts (per profile when the run names them) and failures, those
@@ -705,8 +722,8 @@ impl Found {
         keep_seen: bool,
     ) -> PassReport {
         let mut per_profile = vec![0u64; targets.profiles.len()];
-        for (_, _, i, sets) in &self.entries {
-            per_profile[*i] += sets.len() as u64;
+        for e in &self.entries {
+            per_profile[e.profile] += e.sets.len() as u64;
         }
         let invalid = if targets.profiles.len() == 1 {
             per_profile[0]
@@ -714,7 +731,7 @@ impl Found {
             let failing: HashSet<u64> = self
                 .entries
                 .iter()
-                .flat_map(|e| e.3.iter().map(|(p, _)| *p))
+                .flat_map(|e| e.sets.iter().map(|(p, _)| *p))
                 .collect();
             failing.len() as u64
         };
@@ -735,7 +752,13 @@ impl Found {
         let mut failures: Vec<Failure> = Vec::new();
         // (text key, diagnostic) → the failure with them, to join profiles failing alike.
         let mut alike: HashMap<(u128, String), usize> = HashMap::new();
-        for (error, key, i, sets) in self.entries {
+        for Entry {
+            error,
+            key,
+            profile: i,
+            sets,
+        } in self.entries
+        {
             let diagnostic = error.diagnostic().render(lib.files(), false);
             let positions: Vec<u64> = sets.iter().map(|(p, _)| *p).collect();
             let name = targets.profiles[i].name();
