@@ -10,9 +10,13 @@ use super::context::{BuildArgs, Context, Failed};
 /// `valid_per_profile`).
 #[derive(Debug, serde::Serialize)]
 pub struct PassProfiles {
+    /// Shader name.
     pub shader: String,
+    /// Pass name.
     pub pass: String,
+    /// Variants built (the build set).
     pub built: u64,
+    /// Valid and invalid variants per profile, in the order the profiles were given.
     pub profiles: Vec<ProfileCounts>,
 }
 
