@@ -17,10 +17,19 @@ use crate::library::Library;
 /// ```
 pub fn fingerprint(lib: &Library, stage: &str, options: &str) -> String {
     let files = lib.files();
-    // The device, when it is not the default: outputs made for two devices never merge.
-    let profile = match lib.profile() {
-        crate::validator::Profile::WebGpu => None,
-        other => Some(format!("profile {}", other.name())),
+    // The devices, when they are not the default: outputs made for different devices never
+    // merge.
+    let profile = match lib.profiles() {
+        [crate::validator::Profile::WebGpu] => None,
+        [one] => Some(format!("profile {}", one.name())),
+        several => Some(format!(
+            "profiles {}",
+            several
+                .iter()
+                .map(|p| p.name())
+                .collect::<Vec<_>>()
+                .join(" ")
+        )),
     };
     let versions = [
         env!("CARGO_PKG_VERSION").as_bytes(),

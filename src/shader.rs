@@ -109,6 +109,10 @@ pub struct Pass {
     /// keyword → (set index, option index)
     #[serde(skip)]
     index: HashMap<String, (usize, usize)>,
+    /// The devices the declaration file names for this pass (`profile`); empty: the tree's
+    /// (see [`crate::Library::pass_profiles`]).
+    #[serde(skip)]
+    pub(crate) profiles: Vec<crate::validator::Profile>,
 }
 
 impl Pass {
@@ -197,6 +201,7 @@ impl Pass {
             module,
             index,
             constraints,
+            profiles: decl.profiles,
         };
         Ok(pass)
     }

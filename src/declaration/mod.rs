@@ -12,7 +12,7 @@
 //! ```toml
 //! dialect = "naga-oil"
 //! exclude = ["meshlet/dummy.wgsl"]  # files or folders left out (e.g. one of two alternatives)
-//! profile = "desktop"              # the device: webgpu (default), webgl2, desktop, or naga's capability names
+//! profile = "desktop"              # the device: webgpu (default), webgl2, desktop, or naga's capability names; or a list (["webgpu", "desktop"]), one verdict each
 //!
 //! [constants]                      # shader defs every variant gets
 //! MAX_LIGHTS = { uint = 4 }        # naga_oil's ShaderDefValue::UInt
@@ -31,6 +31,7 @@
 //! [[shader.pass]]
 //! name = "Forward"
 //! # entry = "render/pbr_forward.wgsl"   # a pass may compose its own entry module
+//! # profile = "webgl2"             # a pass may name its own device(s), overriding the tree's
 //! multi_compile = [["_", "SKINNED"], ["_", "MORPH_TARGETS"]]
 //! shader_feature = [["_", "VERTEX_UVS"]]
 //! require = [["VERTEX_TANGENTS", "VERTEX_UVS"]]   # the first needs the others on
@@ -90,6 +91,7 @@ use crate::diagnostic::{Diagnostic, FileId, Span};
 use crate::preprocess::tree::PassDecl;
 
 mod pass;
+mod profile;
 
 /// The declaration file's name, at the root of a tree.
 pub const FILE_NAME: &str = "wgsl-variants.toml";
@@ -121,8 +123,8 @@ pub(crate) struct Declaration {
     pub packages: Vec<(String, String)>,
     /// How `wesl` composes the tree (`[wesl]`).
     pub wesl: WeslSettings,
-    /// The device the tree is validated for (`profile`).
-    pub profile: crate::validator::Profile,
+    /// The devices the tree is validated for (`profile`, one or a list; empty: WebGPU).
+    pub profiles: Vec<crate::validator::Profile>,
     /// The shaders, in file order.
     pub shaders: Vec<ShaderSpec>,
     /// Defs set on single modules (`[modules."PATH".constants]`), in path order.
@@ -185,7 +187,7 @@ impl DeclarationError {
 #[serde(deny_unknown_fields)]
 struct FileToml {
     dialect: Option<Spanned<String>>,
-    profile: Option<Spanned<String>>,
+    profile: Option<Spanned<profile::ProfileToml>>,
     #[serde(default)]
     exclude: Vec<Spanned<String>>,
     #[serde(default)]
@@ -314,19 +316,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         }
     }
     let packages = packages(&parsed.packages, dialect, at, &mut errors);
-    let profile = match &parsed.profile {
-        None => crate::validator::Profile::default(),
-        Some(p) => p
-            .get_ref()
-            .parse()
-            .unwrap_or_else(|e: crate::validator::ProfileError| {
-                errors.push(DeclarationError {
-                    message: e.to_string(),
-                    span: at(p.span()),
-                });
-                crate::validator::Profile::default()
-            }),
-    };
+    let profiles = profile::profiles(parsed.profile.as_ref(), at, &mut errors);
     let mut wesl = WeslSettings::default();
     if let Some(table) = &parsed.wesl {
         if dialect != crate::preprocess::Dialect::Wesl {
@@ -345,7 +335,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             exclude,
             packages,
             wesl,
-            profile,
+            profiles,
             shaders,
             module_constants,
         })

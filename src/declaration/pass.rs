@@ -37,6 +37,7 @@ pub(super) type OptionsToml = BTreeMap<Spanned<String>, Spanned<OptionToml>>;
 pub(super) struct PassToml {
     name: Spanned<String>,
     entry: Option<Spanned<String>>,
+    profile: Option<Spanned<super::profile::ProfileToml>>,
     #[serde(default)]
     tags: BTreeMap<String, String>,
     #[serde(default, rename = "use")]
@@ -215,6 +216,7 @@ pub(super) fn pass_decl(
         options,
         entry: p.entry.map(|e| (e.get_ref().clone(), at(e.span()))),
         module: None,
+        profiles: super::profile::profiles(p.profile.as_ref(), at, errors),
     }
 }
 

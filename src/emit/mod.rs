@@ -63,7 +63,11 @@ pub fn variant_source(
     // A variant that could not be composed (naga_oil's error) has no text to give, validated
     // or not.
     if validate || composed.failure.is_some() {
-        crate::validator::validate_for(&composed, &variant.label(), lib.profile())?;
+        crate::validator::validate_for(
+            &composed,
+            &variant.label(),
+            lib.pass_profile(variant.pass),
+        )?;
     }
     Ok(VariantSource {
         shader: variant.pass.shader.clone(),

@@ -26,6 +26,13 @@ pub(crate) struct How {
 pub(crate) trait Engine: Send + Sync {
     /// The variant's program, or (in [`Composed::failure`]) why it has none.
     fn compose(&self, tree: &ModuleGraph<'_>, variant: &Variant<'_>, how: How) -> Composed;
+
+    /// Whether the program does not depend on `How::profile` beyond being validated for it:
+    /// one composition then serves every profile (composed for their union, validated per
+    /// profile, composed again for one profile only to locate its error).
+    fn composes_alike(&self) -> bool {
+        true
+    }
 }
 
 /// This crate's own dialect: the preprocessor composes the text, keeping its line map.

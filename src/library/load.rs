@@ -45,8 +45,8 @@ pub(crate) struct Loaded {
     pub dialect: Dialect,
     /// How `wesl` composes a WESL tree.
     pub wesl: crate::declaration::WeslSettings,
-    /// The device the declaration file names (`profile`), or WebGPU.
-    pub profile: crate::validator::Profile,
+    /// The devices the declaration file names (`profile`); empty: WebGPU.
+    pub profiles: Vec<crate::validator::Profile>,
     /// What loads but is probably not meant (declared keywords no module reads).
     pub warnings: Vec<crate::diagnostic::Diagnostic>,
     pub files: SourceFiles,
@@ -166,9 +166,9 @@ pub(crate) fn load_declared(
     };
     let mut problems = Vec::new();
     let decl_wesl = decl.wesl;
-    let decl_profile = decl.profile;
     // Each shader's entry module, and each pass's own where it names one.
     let mut decl = decl;
+    let decl_profiles = std::mem::take(&mut decl.profiles);
     let mut entries = Vec::new();
     let mut find = |shader: &str, (entry, span): &(String, crate::diagnostic::Span)| {
         let stem = entry
@@ -307,7 +307,7 @@ pub(crate) fn load_declared(
     loaded.warnings = warnings;
     loaded.dialect = dialect;
     loaded.wesl = decl_wesl;
-    loaded.profile = decl_profile;
+    loaded.profiles = decl_profiles;
     Ok(loaded)
 }
 
@@ -332,7 +332,7 @@ fn assemble(
     Ok(Loaded {
         dialect: Dialect::WgslVariants,
         wesl: Default::default(),
-        profile: Default::default(),
+        profiles: Vec::new(),
         warnings: Vec::new(),
         files,
         modules,

@@ -46,8 +46,11 @@ pub struct Library {
     origin: Origin,
     dialect: crate::preprocess::Dialect,
     warnings: Vec<crate::diagnostic::Diagnostic>,
-    /// The device its variants are validated for.
-    profile: crate::validator::Profile,
+    /// The devices its variants are validated for (never empty): the declaration file's,
+    /// or those set by [`Library::set_profiles`].
+    profiles: Vec<crate::validator::Profile>,
+    /// `profiles` was set by [`Library::set_profiles`]: it overrides every pass's own.
+    profiles_set: bool,
     /// What composes its variants (chosen by the dialect when it loaded).
     engine: Box<dyn engine::Engine>,
 }
@@ -292,7 +295,12 @@ impl Library {
             origin,
             dialect,
             warnings: l.warnings,
-            profile: l.profile,
+            profiles: if l.profiles.is_empty() {
+                vec![crate::validator::Profile::default()]
+            } else {
+                l.profiles
+            },
+            profiles_set: false,
             engine,
         }
     }
@@ -480,15 +488,34 @@ impl Library {
     }
 
     fn compose_with(&self, variant: &Variant<'_>, with_map: bool, prune: bool) -> Composed {
+        self.compose_for(variant, with_map, prune, self.pass_profile(variant.pass))
+    }
+
+    /// [`Library::compose`] (`with_map`, `prune`) for `profile`'s device: the engines that
+    /// validate while composing (naga_oil, WESL) validate for it.
+    pub(crate) fn compose_for(
+        &self,
+        variant: &Variant<'_>,
+        with_map: bool,
+        prune: bool,
+        profile: crate::validator::Profile,
+    ) -> Composed {
         self.engine.compose(
             &self.module_graph(),
             variant,
             engine::How {
                 with_map,
                 prune,
-                profile: self.profile,
+                profile,
             },
         )
+    }
+
+    /// Whether a variant's composition is the same for every profile (this crate's dialect
+    /// and WESL), so that several profiles' verdicts come from one composition; naga_oil's
+    /// composer is built with the device's capabilities and composes once per profile.
+    pub(crate) fn composes_alike(&self) -> bool {
+        self.engine.composes_alike()
     }
 
     /// The source files a pass's variants are composed from: its module and every module it
@@ -543,16 +570,68 @@ impl Library {
         &self,
         variant: &Variant<'_>,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
-        crate::validator::validate_for(&self.compose(variant), &variant.label(), self.profile)
+        crate::validator::validate_for(
+            &self.compose(variant),
+            &variant.label(),
+            self.pass_profile(variant.pass),
+        )
     }
 
-    /// The device this library's variants are validated for: the declaration file's
-    /// `profile`, or WebGPU ([`Profile::WebGpu`](crate::validate::Profile)).
+    /// [`Library::naga_module`] for `profile`'s device, whatever the pass's profiles.
+    pub fn naga_module_for(
+        &self,
+        variant: &Variant<'_>,
+        profile: crate::validator::Profile,
+    ) -> Result<(naga::Module, naga::valid::ModuleInfo), VariantError> {
+        crate::validator::validate_for(
+            &self.compose_for(variant, true, true, profile),
+            &variant.label(),
+            profile,
+        )
+    }
+
+    /// The first device this library's variants are validated for: the declaration file's
+    /// `profile` (the first listed), the one [`Library::set_profile`] set, or WebGPU
+    /// ([`Profile::WebGpu`](crate::validate::Profile)). A pass may name its own
+    /// ([`Library::pass_profiles`]).
     pub fn profile(&self) -> crate::validator::Profile {
-        self.profile
+        self.profiles[0]
     }
 
-    /// Validates this library's variants for another device from now on (`--profile`).
+    /// Every device this library's variants are validated for, in order (see
+    /// [`Library::profile`]); never empty.
+    pub fn profiles(&self) -> &[crate::validator::Profile] {
+        &self.profiles
+    }
+
+    /// The devices `pass`'s variants are validated for, one verdict each: those set by
+    /// [`Library::set_profiles`] (the command line's `--profile`), else the pass's own in the
+    /// declaration file, else the tree's ([`Library::profiles`]). Never empty.
+    pub fn pass_profiles<'a>(&'a self, pass: &'a Pass) -> &'a [crate::validator::Profile] {
+        if self.profiles_set || pass.profiles.is_empty() {
+            &self.profiles
+        } else {
+            &pass.profiles
+        }
+    }
+
+    /// The first of [`Library::pass_profiles`]: the device a single program of the pass is
+    /// built for ([`Library::naga_module`], emit, bake, reflect).
+    pub fn pass_profile(&self, pass: &Pass) -> crate::validator::Profile {
+        self.pass_profiles(pass)[0]
+    }
+
+    /// Whether the passes are validated for more than one device in all (a pass for several,
+    /// or passes for different ones): `validate` then reports one verdict per device
+    /// ([`crate::validate::PassReport::profiles`]).
+    pub fn several_profiles(&self) -> bool {
+        let mut all = self.passes().flat_map(|p| self.pass_profiles(p));
+        let first = all.next();
+        self.profiles.len() > 1 || all.any(|p| Some(p) != first)
+    }
+
+    /// Validates this library's variants for another device from now on (`--profile`), for
+    /// every pass (a pass's own `profile` included): [`Library::set_profiles`] with one.
     ///
     /// ```
     /// use wgsl_variants::validate::Profile;
@@ -572,6 +651,33 @@ impl Library {
     /// assert!(e.message.contains("storage buffer"), "{}", e.message);
     /// ```
     pub fn set_profile(&mut self, profile: crate::validator::Profile) {
-        self.profile = profile;
+        self.set_profiles(&[profile]);
+    }
+
+    /// Validates this library's variants for every device of `profiles` from now on (the
+    /// command line's repeated `--profile`), overriding the passes' own: validation gives one
+    /// verdict per profile ([`crate::validate::PassReport::profiles`]), composing each variant
+    /// once where its composition does not depend on the device. A profile listed twice
+    /// counts once; an empty list means WebGPU.
+    ///
+    /// ```
+    /// use wgsl_variants::validate::Profile;
+    /// let mut lib = wgsl_variants_shaders::library().unwrap();
+    /// lib.set_profiles(&[Profile::WebGpu, Profile::Desktop, Profile::WebGpu]);
+    /// assert_eq!(lib.profiles(), [Profile::WebGpu, Profile::Desktop]);
+    /// assert!(lib.several_profiles());
+    /// ```
+    pub fn set_profiles(&mut self, profiles: &[crate::validator::Profile]) {
+        let mut unique: Vec<crate::validator::Profile> = Vec::new();
+        for p in profiles {
+            if !unique.contains(p) {
+                unique.push(*p);
+            }
+        }
+        if unique.is_empty() {
+            unique.push(crate::validator::Profile::default());
+        }
+        self.profiles = unique;
+        self.profiles_set = true;
     }
 }

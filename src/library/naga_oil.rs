@@ -353,6 +353,12 @@ impl super::engine::Engine for NagaOilEngine {
     ) -> crate::preprocess::Composed {
         super::engine::composed(self.compose(tree.files, tree.modules, variant, how.profile))
     }
+
+    /// naga_oil validates each imported module's header with the composer's capabilities,
+    /// so a composition can succeed on one device and fail on another: one per profile.
+    fn composes_alike(&self) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]

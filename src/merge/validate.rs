@@ -67,11 +67,14 @@ pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), Merg
     let reports = inputs
         .iter()
         .map(|(name, text)| {
-            serde_json::from_str::<ReportJson>(text).map_err(|e| MergeError::Kind {
-                shard: name.clone(),
-                expected: "a `validate --json` report",
-                message: e.to_string(),
-            })
+            let report =
+                serde_json::from_str::<ReportJson>(text).map_err(|e| MergeError::Kind {
+                    shard: name.clone(),
+                    expected: "a `validate --json` report",
+                    message: e.to_string(),
+                })?;
+            one_profile(name, &report)?;
+            Ok(report)
         })
         .collect::<Result<Vec<_>, _>>()?;
     let infos = inputs
@@ -103,6 +106,28 @@ pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), Merg
     })?;
     text.push('\n');
     Ok((text, merged.ok))
+}
+
+/// A report of several profiles' verdicts is not merged (its per-profile counts and failures
+/// would need their own joining): validate and merge each profile's shards apart.
+fn one_profile(name: &str, report: &ReportJson) -> Result<(), MergeError> {
+    if report.totals.profiles.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<&str> = report
+        .totals
+        .profiles
+        .iter()
+        .map(|p| p.profile.as_str())
+        .collect();
+    Err(MergeError::Kind {
+        shard: name.to_string(),
+        expected: "a report of one profile",
+        message: format!(
+            "it validates for several ({}); run and merge the shards of each `--profile` apart",
+            names.join(", ")
+        ),
+    })
 }
 
 fn mismatch(name: &str, message: String) -> MergeError {

@@ -638,6 +638,7 @@ impl<'a> ModuleParser<'a> {
             options: Default::default(),
             entry: None,
             module: None,
+            profiles: Vec::new(),
         });
         Ok(())
     }

@@ -104,6 +104,9 @@ pub(crate) struct PassDecl {
     pub entry: Option<(String, Span)>,
     /// The module id of `entry`, once the loader has found it.
     pub module: Option<usize>,
+    /// The devices the pass is validated for, where a declaration file names them for the
+    /// pass (`profile`); empty: the tree's.
+    pub profiles: Vec<crate::validator::Profile>,
 }
 
 /// A shader file's `#shader` declaration and passes.

@@ -9,8 +9,7 @@ use crate::cache::ValidCache;
 use crate::error::VariantError;
 use crate::library::{Library, Variant};
 use crate::plan::{Plan, PlanOptions, variants_to_build};
-use crate::validate::validate_variant;
-use crate::validator::validator;
+use crate::validate::{Validators, validate_variant};
 use crate::variants::Choice;
 
 use super::Recent;
@@ -80,7 +79,7 @@ pub(super) fn validate(
         }
         let results: Vec<(u128, Option<VariantError>)> = chunk
             .par_iter()
-            .map_init(validator, |v, variant| {
+            .map_init(Validators::default, |v, variant| {
                 validate_variant(lib, variant, Some(cache), v)
             })
             .collect();

@@ -18,6 +18,15 @@ pub(super) fn fingerprint(lib: &Library, pass: &Pass, options: &str) -> Hash {
         // hash map: no stable order).
         serde_json::to_string(pass).unwrap_or_default(),
         format!("{} {:?} {}", pass.shader, pass.span, pass.module()),
+        // The devices, and whether the report names them (several in the tree).
+        format!(
+            "{:?} {}",
+            lib.pass_profiles(pass)
+                .iter()
+                .map(|p| p.name())
+                .collect::<Vec<_>>(),
+            lib.several_profiles()
+        ),
     ];
     let ids: Vec<(String, crate::diagnostic::FileId)> = lib
         .pass_files(pass)

@@ -167,7 +167,7 @@ pub struct Session {
     done: HashMap<(String, String), Done>,
     recent: Vec<Recent>,
     library: Option<Library>,
-    profile: Option<crate::validator::Profile>,
+    profiles: Option<Vec<crate::validator::Profile>>,
 }
 
 impl Session {
@@ -191,13 +191,20 @@ impl Session {
             done: HashMap::new(),
             recent: Vec::new(),
             library: None,
-            profile: None,
+            profiles: None,
         }
     }
 
     /// Validates for `profile` instead of the declaration file's (`--profile`).
     pub fn set_profile(&mut self, profile: crate::validator::Profile) {
-        self.profile = Some(profile);
+        self.set_profiles(&[profile]);
+    }
+
+    /// Validates for every device of `profiles` instead of the declaration file's (repeated
+    /// `--profile`; see [`Library::set_profiles`]): a variant is valid when it is valid on
+    /// each, and the verdict's report counts each profile's.
+    pub fn set_profiles(&mut self, profiles: &[crate::validator::Profile]) {
+        self.profiles = Some(profiles.to_vec());
     }
 
     /// Plans the next runs with `options` (a shard in them is left out), e.g. after a
@@ -226,8 +233,8 @@ impl Session {
         on: &(dyn Fn(Event<'_>) + Sync),
     ) -> Result<Outcome, WatchError> {
         let mut lib = Library::from_dir_with(&self.root, &self.load)?;
-        if let Some(profile) = self.profile {
-            lib.set_profile(profile);
+        if let Some(profiles) = &self.profiles {
+            lib.set_profiles(profiles);
         }
         let plan = crate::plan::plan(&lib, &self.options)?;
         let options_text = self.options.fingerprint_text();

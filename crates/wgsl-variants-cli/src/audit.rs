@@ -2,7 +2,9 @@
 //! per-set multiplier table with suggestions, budgets (a CI gate) and an SVG chart.
 //!
 //! Nothing is validated here (that is `validate`), and nothing enumerates the space: counts
-//! are exact for any number of keyword sets.
+//! are exact for any number of keyword sets; except with several `--profile`s, when the build
+//! set is validated once per profile for the table of variants valid per profile
+//! ([`super::audit_profiles`]).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -66,10 +68,25 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
         budgets.as_ref(),
         materials,
     );
+    let per_profile = if ctx.lib.several_profiles() {
+        Some(super::audit_profiles::validate(ctx, build)?)
+    } else {
+        None
+    };
     if ctx.json {
-        print_json(&report)?;
+        match &per_profile {
+            None => print_json(&report)?,
+            Some(rows) => print_json(&WithProfiles {
+                report: &report,
+                valid_per_profile: rows,
+            })?,
+        }
     } else {
         print!("{}", table(&report.passes));
+        if let Some(rows) = &per_profile {
+            let names = super::validate::profile_names(&ctx.lib);
+            print!("\n{}", super::audit_profiles::table(rows, &names));
+        }
         match ctx.lib.dialect() {
             wgsl_variants::Dialect::NagaOil => println!(
                 "note: a naga_oil tree: \"distinct\" counts preprocessed texts, an upper bound on the programs naga_oil composes (it keeps only the imported items a program uses)"
@@ -92,6 +109,14 @@ pub fn run(ctx: &Context, args: &AuditArgs) -> Result<ExitCode, Failed> {
     })
 }
 
+/// `audit --json` with several profiles: the report, then `valid_per_profile`.
+#[derive(serde::Serialize)]
+struct WithProfiles<'a> {
+    #[serde(flatten)]
+    report: &'a AuditReport,
+    valid_per_profile: &'a [super::audit_profiles::PassProfiles],
+}
+
 /// The distinct count as people read it: `≤ N` when it is a bound.
 fn distinct_text(a: &PassAudit) -> String {
     if a.distinct.exact {
@@ -102,7 +127,7 @@ fn distinct_text(a: &PassAudit) -> String {
 }
 
 /// Formats rows: the first `left` columns left-aligned, the others right-aligned.
-fn columns(rows: &[Vec<String>], indent: &str, left: usize) -> String {
+pub(crate) fn columns(rows: &[Vec<String>], indent: &str, left: usize) -> String {
     let n = rows.iter().map(Vec::len).max().unwrap_or(0);
     let widths: Vec<usize> = (0..n)
         .map(|i| {

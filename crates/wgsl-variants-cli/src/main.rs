@@ -2,6 +2,7 @@
 //! own file and turns its flags into the library's options.
 
 mod audit;
+mod audit_profiles;
 mod cache;
 #[cfg(feature = "gpu")]
 mod check_gpu;
@@ -47,9 +48,11 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
     /// The device variants are validated for: webgpu (the default), webgl2, desktop, or naga
-    /// capability names joined by `,` (overrides the declaration file's `profile`).
+    /// capability names joined by `,` (overrides the declaration file's `profile`). Repeat it
+    /// to validate for several devices in one run (`validate`, `audit`, `watch`): one verdict
+    /// per profile.
     #[arg(long, global = true, value_name = "NAME")]
-    profile: Option<wgsl_variants::validate::Profile>,
+    profile: Vec<wgsl_variants::validate::Profile>,
     #[command(subcommand)]
     command: Command,
 }
@@ -159,6 +162,37 @@ fn manifest(ctx: &Context, summary: bool) -> Result<ExitCode, Failed> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Commands that build one program per variant, or put together outputs made for one device,
+/// refuse several `--profile`s rather than pick one: `validate`, `audit` and `watch` give one
+/// verdict per profile, `list`, `cache` do not depend on the device. (A declaration file's
+/// list of profiles gives these commands its first.)
+fn one_profile(
+    command: &Command,
+    profiles: &[wgsl_variants::validate::Profile],
+) -> Result<(), Failed> {
+    let name = match command {
+        Command::Emit(_) => "emit",
+        Command::Reflect(_) => "reflect",
+        Command::Export(_) => "export",
+        Command::Manifest { .. } => "manifest",
+        Command::Merge(_) => "merge",
+        #[cfg(feature = "gpu")]
+        Command::CheckGpu(_) => "check-gpu",
+        #[cfg(feature = "gpu")]
+        Command::Render(_) => "render",
+        _ => return Ok(()),
+    };
+    if profiles.len() < 2 {
+        return Ok(());
+    }
+    let names: Vec<String> = profiles.iter().map(|p| p.name()).collect();
+    Err(Failed(format!(
+        "error: `--profile` names {} devices ({}), but `{name}` builds for one: give one `--profile` (several are for `validate`, `audit` and `watch`)",
+        names.len(),
+        names.join(", ")
+    )))
+}
+
 /// What a command run with `--json` prints on stdout when it fails, so a caller that reads
 /// stdout (`validate --json > shard.json`) always gets JSON: `{"ok": false, "error": {…}}`.
 #[derive(serde::Serialize)]
@@ -240,7 +274,7 @@ fn main() -> ExitCode {
         return watch::run(
             cli.root.as_deref(),
             options,
-            cli.profile,
+            &cli.profile,
             cli.json,
             color,
             args,
@@ -277,10 +311,22 @@ fn main() -> ExitCode {
     for warning in lib.warnings() {
         eprint!("{}", warning.render(lib.files(), color));
     }
-    if let Some(profile) = cli.profile {
-        lib.set_profile(profile);
+    if !cli.profile.is_empty() {
+        lib.set_profiles(&cli.profile);
     }
     let json = cli.json;
+    let given = if cli.profile.is_empty() {
+        &[][..]
+    } else {
+        lib.profiles()
+    };
+    if let Err(Failed(message)) = one_profile(&cli.command, given) {
+        eprintln!("{message}");
+        if json {
+            print_json_failure("command", summary(&message), Vec::new());
+        }
+        return ExitCode::from(1);
+    }
     let ctx = Context { lib, json, color };
     let result = match cli.command {
         Command::List { materials } => list::run(&ctx, &materials),

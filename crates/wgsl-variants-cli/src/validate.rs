@@ -55,6 +55,12 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
     let cache = run.check.cache_dir().map(|dir| super::cache::open(&dir));
     let mut options = super::context::plan_options(build, all, run.shard)?;
     options.strict = run.check.strict;
+    if run.shard.is_some() && ctx.lib.several_profiles() {
+        return Err(Failed(format!(
+            "error: --shard validates for one device, and this run validates for several ({}): `merge` puts together one profile's shards; run the shards of each `--profile` apart",
+            profile_names(&ctx.lib).join(", ")
+        )));
+    }
     let plan = ctx.plan(&options)?;
     let bar = progress(plan.iter().map(|p| p.1.len() as u64).sum(), "validating");
     let report = validate_plan(&ctx.lib, &plan, &options, cache.as_ref(), &|n| bar.inc(n));
@@ -69,7 +75,11 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
     } else {
         for r in &report.passes {
             for f in &r.failures {
-                eprint!("{}", ctx.render(&f.error.diagnostic()));
+                let mut diagnostic = f.error.diagnostic();
+                if !f.profiles.is_empty() {
+                    diagnostic = diagnostic.note(on_profiles(&f.profiles));
+                }
+                eprint!("{}", ctx.render(&diagnostic));
                 let n = f.keyword_sets.len();
                 if n > 1 {
                     eprintln!(
@@ -78,25 +88,98 @@ pub fn run(ctx: &Context, all: bool, build: &BuildArgs, run: &RunArgs) -> Result
                     );
                 }
             }
-            println!(
-                "{}/{}: {} built ({} full space), {} distinct, {} valid, {} invalid",
-                r.shader, r.pass, r.built, r.full_space, r.distinct, r.valid, r.invalid
-            );
+            if r.profiles.is_empty() {
+                println!(
+                    "{}/{}: {} built ({} full space), {} distinct, {} valid, {} invalid",
+                    r.shader, r.pass, r.built, r.full_space, r.distinct, r.valid, r.invalid
+                );
+            } else {
+                println!(
+                    "{}/{}: {} built ({} full space), {} distinct, {} valid on every profile, {} invalid on some",
+                    r.shader, r.pass, r.built, r.full_space, r.distinct, r.valid, r.invalid
+                );
+                print_profiles(&r.profiles, "  ");
+                print_failing(r);
+            }
         }
         if let Some(t) = options.cover {
             cover_report(ctx, &plan, &options, &report, t)?;
         }
         let t = &report.totals;
-        println!(
-            "total: {} passes, {} variants built, {} distinct, {} valid, {} invalid",
-            t.passes, t.built, t.distinct, t.valid, t.invalid
-        );
+        if t.profiles.is_empty() {
+            println!(
+                "total: {} passes, {} variants built, {} distinct, {} valid, {} invalid",
+                t.passes, t.built, t.distinct, t.valid, t.invalid
+            );
+        } else {
+            println!(
+                "total: {} passes, {} variants built, {} distinct, {} valid on every profile, {} invalid on some",
+                t.passes, t.built, t.distinct, t.valid, t.invalid
+            );
+            print_profiles(&t.profiles, "total ");
+        }
     }
     Ok(if report.ok {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
     })
+}
+
+/// Most failing variants listed per pass in the text report (`--json` has every one).
+const FAILING_LISTED: usize = 20;
+
+/// The names of every profile the library's passes are validated for, in order of first
+/// appearance.
+pub(crate) fn profile_names(lib: &wgsl_variants::Library) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for pass in lib.passes() {
+        for p in lib.pass_profiles(pass) {
+            let name = p.name();
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+    }
+    names
+}
+
+/// `on profile webgpu` / `on profiles webgpu, webgl2`.
+fn on_profiles(profiles: &[String]) -> String {
+    format!(
+        "fails on profile{} {}",
+        if profiles.len() == 1 { "" } else { "s" },
+        profiles.join(", ")
+    )
+}
+
+/// One line per profile: `{prefix}webgpu: 3 valid, 1 invalid`.
+fn print_profiles(profiles: &[wgsl_variants::validate::ProfileCounts], prefix: &str) {
+    for p in profiles {
+        println!(
+            "{prefix}{}: {} valid, {} invalid",
+            p.profile, p.valid, p.invalid
+        );
+    }
+}
+
+/// The pass's failing variants with the profiles each fails on, in enumeration order (the
+/// first [`FAILING_LISTED`]).
+fn print_failing(r: &wgsl_variants::validate::PassReport) {
+    let failing = r.failing_variants();
+    for v in failing.iter().take(FAILING_LISTED) {
+        println!(
+            "  {{{}}}: {}",
+            v.keywords.join(", "),
+            on_profiles(&v.profiles)
+        );
+    }
+    if failing.len() > FAILING_LISTED {
+        println!(
+            "  … and {} more failing variants (`--json` lists every keyword set with its profiles)",
+            failing.len() - FAILING_LISTED
+        );
+    }
 }
 
 /// With `--cover T`: per pass, the space and the covering set's size; per failure, the
@@ -149,18 +232,30 @@ fn cover_report(
             };
             let failing = &choices[index];
             println!("  failing variant #{index}: {}", failing.label(pass));
+            // On the profiles this failure happens on (the pass's first when one is validated).
+            let profiles: Vec<wgsl_variants::validate::Profile> = ctx
+                .lib
+                .pass_profiles(pass)
+                .iter()
+                .copied()
+                .filter(|p| f.profiles.is_empty() || f.profiles.contains(&p.name()))
+                .take(if f.profiles.is_empty() { 1 } else { usize::MAX })
+                .collect();
             let fails = |c: &wgsl_variants::Choice| {
                 let v = Variant {
                     pass,
                     choice: c.clone(),
                 };
-                ctx.lib.naga_module(&v).is_err()
-                    || (options.strict
-                        && wgsl_variants::validate::validate_composed(
-                            &ctx.lib.compose_unpruned(&v, true),
-                            &v.label(),
-                        )
-                        .is_err())
+                profiles.iter().any(|&p| {
+                    ctx.lib.naga_module_for(&v, p).is_err()
+                        || (options.strict
+                            && wgsl_variants::validate::validate_for(
+                                &ctx.lib.compose_unpruned(&v, true),
+                                &v.label(),
+                                p,
+                            )
+                            .is_err())
+                })
             };
             let small = shrink(&space, failing, fails);
             // The tuples the shrunk variant shares come first: they name the culprits.

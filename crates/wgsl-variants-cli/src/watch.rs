@@ -119,12 +119,26 @@ impl Printer {
         }
         let t = &r.totals;
         let failing: usize = r.passes.iter().map(|p| p.failures.len()).sum();
-        let head = if r.ok {
+        let names: Vec<&str> = t.profiles.iter().map(|p| p.profile.as_str()).collect();
+        let head = if r.ok && names.is_empty() {
             format!("ok: {} variants valid", t.built)
+        } else if r.ok {
+            format!("ok: {} variants valid on {}", t.built, names.join(", "))
         } else {
+            let counts: Vec<String> = t
+                .profiles
+                .iter()
+                .map(|p| format!("{}: {} invalid", p.profile, p.invalid))
+                .collect();
             format!(
-                "FAILED: {failing} failing text(s) in {} of {} variants",
-                t.invalid, t.built
+                "FAILED: {failing} failing text(s) in {} of {} variants{}",
+                t.invalid,
+                t.built,
+                if counts.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", counts.join(", "))
+                }
             )
         };
         let first = first
@@ -228,7 +242,7 @@ fn next_change(changes: &Receiver<Instant>, quiet: Duration) -> Option<Instant> 
 pub fn run(
     root: Option<&Path>,
     load: LoadOptions,
-    profile: Option<wgsl_variants::validate::Profile>,
+    profiles: &[wgsl_variants::validate::Profile],
     json: bool,
     color: bool,
     args: &WatchArgs,
@@ -239,7 +253,7 @@ pub fn run(
         );
         return ExitCode::from(1);
     };
-    match watch(root, load, profile, json, color, args) {
+    match watch(root, load, profiles, json, color, args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -251,7 +265,7 @@ pub fn run(
 fn watch(
     root: &Path,
     load: LoadOptions,
-    profile: Option<wgsl_variants::validate::Profile>,
+    profiles: &[wgsl_variants::validate::Profile],
     json: bool,
     color: bool,
     args: &WatchArgs,
@@ -321,8 +335,8 @@ fn watch(
             .map_err(|e| format!("cannot watch `{}`: {e}", folder.display()))?;
     }
     let mut session = Session::new(&root, load, planned, cache_dir.as_deref());
-    if let Some(profile) = profile {
-        session.set_profile(profile);
+    if !profiles.is_empty() {
+        session.set_profiles(profiles);
     }
     let quiet = Duration::from_millis(args.debounce);
     let mut since = Instant::now();

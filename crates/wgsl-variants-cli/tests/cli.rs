@@ -476,3 +476,293 @@ fn a_wesl_tree_is_listed_covered_emitted_and_exported() {
         String::from_utf8_lossy(&out.stdout)
     );
 }
+
+/// A tree of one pass whose variants need different devices: `ARRAY` a binding array (desktop
+/// only), `CUBES` a cube array texture (not WebGL2), `STORAGE` a storage buffer (not WebGL2),
+/// `WIDE` a 64-bit float (desktop only).
+fn device_tree() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("main.wgsl"),
+        "#shader s\n#pass P\n#pragma multi_compile _ ARRAY CUBES STORAGE WIDE\n#import lit\n#endpass\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("lit.wgsl"),
+        "#ifdef ARRAY\nenable wgpu_binding_array;\n@group(0) @binding(0) var textures: binding_array<texture_2d<f32>, 4>;\n#endif\n\
+         #ifdef CUBES\n@group(0) @binding(1) var cubes: texture_cube_array<f32>;\n#endif\n\
+         #ifdef STORAGE\n@group(0) @binding(2) var<storage> values: array<vec4<f32>>;\n#endif\n\
+         @group(0) @binding(3) var s: sampler;\n\
+         @fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    var c = vec4<f32>(0.0);\n\
+         #ifdef ARRAY\n    c += textureSample(textures[1], s, vec2<f32>(0.5));\n#endif\n\
+         #ifdef CUBES\n    c += textureSample(cubes, s, vec3<f32>(0.0, 0.0, 1.0), 0);\n#endif\n\
+         #ifdef STORAGE\n    c += values[0];\n#endif\n\
+         #ifdef WIDE\n    let w: f64 = 1.0lf;\n    c.x += f32(w);\n#endif\n    return c;\n}\n",
+    )
+    .unwrap();
+    dir
+}
+
+fn in_tree(root: &std::path::Path, args: &[&str]) -> Output {
+    let root = root.to_str().unwrap();
+    run(&[&["--root", root, "--color", "never"], args].concat())
+}
+
+#[test]
+fn several_profiles_give_one_verdict_each() {
+    let tree = device_tree();
+    let out = in_tree(
+        tree.path(),
+        &[
+            "validate",
+            "--no-cache",
+            "--profile",
+            "webgpu",
+            "--profile",
+            "webgl2",
+            "--profile",
+            "desktop",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1), "a variant fails on a profile");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        stdout,
+        "s/P: 5 built (5 full space), 5 distinct, 1 valid on every profile, 4 invalid on some\n\
+         \x20 webgpu: 3 valid, 2 invalid\n\
+         \x20 webgl2: 1 valid, 4 invalid\n\
+         \x20 desktop: 5 valid, 0 invalid\n\
+         \x20 {ARRAY}: fails on profiles webgpu, webgl2\n\
+         \x20 {CUBES}: fails on profile webgl2\n\
+         \x20 {STORAGE}: fails on profile webgl2\n\
+         \x20 {WIDE}: fails on profiles webgpu, webgl2\n\
+         total: 1 passes, 5 variants built, 5 distinct, 1 valid on every profile, 4 invalid on some\n\
+         total webgpu: 3 valid, 2 invalid\n\
+         total webgl2: 1 valid, 4 invalid\n\
+         total desktop: 5 valid, 0 invalid\n"
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("= fails on profile webgl2")
+            && stderr.contains("`values` is a storage buffer"),
+        "{stderr}"
+    );
+
+    // Valid on every profile asked for: exit 0.
+    let out = in_tree(
+        tree.path(),
+        &[
+            "validate",
+            "--no-cache",
+            "--profile",
+            "desktop",
+            "--profile",
+            "webgpu",
+            "--pass",
+            "P",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let out = in_tree(
+        tree.path(),
+        &["validate", "--no-cache", "--profile", "desktop"],
+    );
+    assert_eq!(out.status.code(), Some(0));
+}
+
+#[test]
+fn several_profiles_in_json() {
+    let tree = device_tree();
+    let out = in_tree(
+        tree.path(),
+        &[
+            "validate",
+            "--json",
+            "--no-cache",
+            "--profile",
+            "webgpu",
+            "--profile",
+            "desktop",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["ok"], false);
+    let counts = serde_json::json!([
+        {"profile": "webgpu", "valid": 3, "invalid": 2},
+        {"profile": "desktop", "valid": 5, "invalid": 0},
+    ]);
+    assert_eq!(report["totals"]["profiles"], counts);
+    let p = pass(&report, "s", "P");
+    assert_eq!(p["profiles"], counts);
+    assert_eq!(
+        (p["valid"].as_u64(), p["invalid"].as_u64()),
+        (Some(3), Some(2))
+    );
+    let failures: Vec<(Value, Value)> = p["failures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| (f["keyword_sets"].clone(), f["profiles"].clone()))
+        .collect();
+    assert_eq!(
+        failures,
+        [
+            (
+                serde_json::json!([["ARRAY"]]),
+                serde_json::json!(["webgpu"])
+            ),
+            (serde_json::json!([["WIDE"]]), serde_json::json!(["webgpu"])),
+        ]
+    );
+    // The field order is fixed: `profiles` after `invalid`, and after `location`.
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.find("\"invalid\": 2,\n      \"profiles\"").is_some(),
+        "{text}"
+    );
+    assert!(
+        text.contains("\"location\": \"lit.wgsl:3:23\",\n          \"profiles\": ["),
+        "{text}"
+    );
+
+    // One profile: no `profiles` anywhere, and the same bytes as without `--profile`.
+    let one = in_tree(
+        tree.path(),
+        &["validate", "--json", "--no-cache", "--profile", "webgpu"],
+    );
+    let none = in_tree(tree.path(), &["validate", "--json", "--no-cache"]);
+    assert_eq!(one.stdout, none.stdout);
+    assert!(!String::from_utf8_lossy(&one.stdout).contains("\"profiles\""));
+    // A profile given twice counts once.
+    let twice = in_tree(
+        tree.path(),
+        &[
+            "validate",
+            "--json",
+            "--no-cache",
+            "--profile",
+            "webgpu",
+            "--profile",
+            "webgpu",
+        ],
+    );
+    assert_eq!(twice.stdout, none.stdout);
+}
+
+#[test]
+fn several_profiles_are_deterministic_across_thread_counts() {
+    let tree = device_tree();
+    let root = tree.path().to_str().unwrap();
+    for args in [
+        ["validate", "--json", "--no-cache"].as_slice(),
+        ["validate", "--no-cache"].as_slice(),
+        ["audit", "--json"].as_slice(),
+    ] {
+        let with = |threads: &str| {
+            run(&[
+                &["--root", root, "--threads", threads],
+                args,
+                &[
+                    "--profile",
+                    "webgl2",
+                    "--profile",
+                    "webgpu",
+                    "--profile",
+                    "desktop",
+                ],
+            ]
+            .concat())
+        };
+        let one = with("1");
+        let four = with("4");
+        assert_eq!(one.stdout, four.stdout, "{args:?}");
+        assert_eq!(one.stderr, four.stderr, "{args:?}");
+    }
+}
+
+#[test]
+fn audit_tables_the_variants_valid_per_profile() {
+    let tree = device_tree();
+    let out = in_tree(
+        tree.path(),
+        &[
+            "audit",
+            "--profile",
+            "webgpu",
+            "--profile",
+            "webgl2",
+            "--profile",
+            "desktop",
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains(
+            "variants valid per profile (build set, validated):\n  shader/pass  built  webgpu  webgl2  desktop\n  s/P              5       3       1        5\n"
+        ),
+        "{stdout}"
+    );
+    let report = json(&[
+        "--root",
+        tree.path().to_str().unwrap(),
+        "audit",
+        "--json",
+        "--profile",
+        "webgpu",
+        "--profile",
+        "desktop",
+    ]);
+    assert_eq!(
+        report["valid_per_profile"],
+        serde_json::json!([{"shader": "s", "pass": "P", "built": 5, "profiles": [
+            {"profile": "webgpu", "valid": 3, "invalid": 2},
+            {"profile": "desktop", "valid": 5, "invalid": 0},
+        ]}])
+    );
+    // One profile: the audit validates nothing and has no such table.
+    let out = in_tree(tree.path(), &["audit", "--profile", "desktop"]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("valid per profile"));
+}
+
+#[test]
+fn commands_that_build_one_program_refuse_several_profiles() {
+    let tree = device_tree();
+    for args in [
+        ["emit", "s", "P"].as_slice(),
+        ["reflect", "s", "P"].as_slice(),
+        ["manifest"].as_slice(),
+    ] {
+        let out = in_tree(
+            tree.path(),
+            &[args, &["--profile", "webgpu", "--profile", "desktop"]].concat(),
+        );
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains("`--profile` names 2 devices (webgpu, desktop)")
+                && stderr.contains(&format!("`{}` builds for one", args[0])),
+            "{args:?}: {stderr}"
+        );
+    }
+    let out = in_tree(
+        tree.path(),
+        &[
+            "validate",
+            "--no-cache",
+            "--shard",
+            "1/2",
+            "--profile",
+            "webgpu",
+            "--profile",
+            "desktop",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--shard validates for one device"));
+}
