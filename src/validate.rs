@@ -160,7 +160,7 @@ impl PassReport {
     /// ```
     /// use wgsl_variants::validate::{Profile, validate_pass};
     /// let mut lib = wgsl_variants::Library::from_sources([
-    ///     ("f.wgsl", "#ifdef WIDE\nfn f() -> f64 { return 1.0lf; }\n#endif\n@fragment fn fs() -> @location(0) vec4f { return vec4f(0.0); }\n"),
+    ///     ("f.wgsl", "@fragment fn fs() -> @location(0) vec4f {\n    var c = vec4f(0.0);\n#ifdef WIDE\n    let w: f64 = 1.0lf;\n    c.x = f32(w);\n#endif\n    return c;\n}\n"),
     ///     ("main.wgsl", "#shader s\n#pass P\n#pragma multi_compile _ WIDE\n#import f\n#endpass\n"),
     /// ])
     /// .unwrap();
