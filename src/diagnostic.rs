@@ -315,3 +315,17 @@ impl Diagnostic {
         String::from_utf8_lossy(buffer.as_slice()).into_owned()
     }
 }
+
+/// The closest of `candidates` to `name` by edit distance, if reasonably close.
+pub(crate) fn suggest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<String> {
+    let limit = (name.len() / 3).max(2);
+    candidates
+        .into_iter()
+        .map(|c| (strsim::levenshtein(name, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .min()
+        .map(|(_, c)| c.to_string())
+}

@@ -4,6 +4,7 @@
 //! variants of the build set. The closest-variant fallback (Unity's behaviour without strict
 //! matching) is only used when asked for.
 
+use crate::diagnostic::suggest;
 use crate::shader::Pass;
 use crate::variants::{Choice, Space};
 
@@ -80,20 +81,6 @@ fn hint(suggestion: &Option<String>) -> String {
         .as_ref()
         .map(|s| format!("; did you mean `{s}`?"))
         .unwrap_or_default()
-}
-
-/// The closest of `candidates` to `name` by edit distance, if reasonably close.
-pub(crate) fn suggest<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> Option<String> {
-    let limit = (name.len() / 3).max(2);
-    candidates
-        .into_iter()
-        .map(|c| (strsim::levenshtein(name, c), c))
-        .filter(|(d, _)| *d <= limit)
-        .min()
-        .map(|(_, c)| c.to_string())
 }
 
 /// The strict lookup of [`Pass::resolve`].

@@ -21,7 +21,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use crate::data_file::{self, FileError, Format};
-use crate::lookup::suggest;
+use crate::diagnostic::suggest;
 use crate::shader::{Pass, Shader};
 
 /// One material: a shader and the keywords it has on.

@@ -20,8 +20,8 @@ use num_bigint::BigUint;
 use serde::Deserialize;
 
 use crate::data_file::{self, FileError, Format};
+use crate::diagnostic::suggest;
 use crate::library::Library;
-use crate::lookup::suggest;
 
 use super::PassAudit;
 

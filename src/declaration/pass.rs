@@ -162,7 +162,7 @@ pub(super) fn pass_decl(
         {
             Some((_, block)) => parts.push(block.sets()),
             None => {
-                let hint = crate::lookup::suggest(
+                let hint = crate::diagnostic::suggest(
                     name.get_ref(),
                     shared.blocks.keys().map(|b| b.get_ref().as_str()),
                 )

@@ -19,9 +19,9 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::diagnostic::Diagnostic;
+use crate::diagnostic::suggest;
 use crate::error::VariantError;
 use crate::library::Library;
-use crate::lookup::suggest;
 use crate::preprocess::Composed;
 use crate::preprocess::compose::compose;
 

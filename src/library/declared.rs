@@ -81,7 +81,7 @@ pub(super) fn apply_module_constants(
         .collect();
     for mc in &module_constants {
         let Some(module) = paths.iter().position(|p| *p == mc.path) else {
-            let hint = crate::lookup::suggest(&mc.path, paths.iter().copied())
+            let hint = crate::diagnostic::suggest(&mc.path, paths.iter().copied())
                 .map(|s| format!("; did you mean `{s}`?"))
                 .unwrap_or_default();
             fail(

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use crate::diagnostic::SourceFiles;
-use crate::lookup::suggest;
+use crate::diagnostic::suggest;
 use crate::preprocess::tree::{ImportRef, Node, ParsedModule, ShaderDecl};
 use crate::preprocess::{Dialect, ParseError, ParseLimits, parse_module_in};
 use crate::shader::{Pass, Shader};

@@ -12,8 +12,9 @@ mod wesl;
 use std::path::Path;
 
 use crate::diagnostic::SourceFiles;
+use crate::diagnostic::suggest;
 use crate::error::VariantError;
-use crate::lookup::{LookupError, suggest};
+use crate::lookup::LookupError;
 use crate::materials::{self, Material, MaterialsError};
 use crate::preprocess::Composed;
 use crate::preprocess::compose::ModuleGraph;

@@ -126,40 +126,6 @@ fn distinct_text(a: &PassAudit) -> String {
     }
 }
 
-/// Formats rows: the first `left` columns left-aligned, the others right-aligned.
-pub(crate) fn columns(rows: &[Vec<String>], indent: &str, left: usize) -> String {
-    let n = rows.iter().map(Vec::len).max().unwrap_or(0);
-    let widths: Vec<usize> = (0..n)
-        .map(|i| {
-            rows.iter()
-                .filter_map(|r| r.get(i))
-                .map(|c| c.chars().count())
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
-    let mut out = String::new();
-    for r in rows {
-        let mut line = indent.to_string();
-        for (i, c) in r.iter().enumerate() {
-            let pad = widths[i] - c.chars().count();
-            if i > 0 {
-                line.push_str("  ");
-            }
-            if i < left {
-                line.push_str(c);
-                line.push_str(&" ".repeat(pad));
-            } else {
-                line.push_str(&" ".repeat(pad));
-                line.push_str(c);
-            }
-        }
-        out.push_str(line.trim_end());
-        out.push('\n');
-    }
-    out
-}
-
 /// The report for people: a summary table, then per pass its multiplier table and findings.
 fn table(passes: &[AuditedPass]) -> String {
     let mut rows = vec![vec![
@@ -189,7 +155,7 @@ fn table(passes: &[AuditedPass]) -> String {
             },
         ]);
     }
-    let mut out = columns(&rows, "", 1);
+    let mut out = super::table::columns(&rows, "", 1);
     for a in passes
         .iter()
         .map(|p| &p.audit)
@@ -247,7 +213,7 @@ fn pass_details(a: &PassAudit) -> String {
         ]);
     }
     if !a.sets.is_empty() {
-        out.push_str(&columns(&rows, "  ", 2));
+        out.push_str(&super::table::columns(&rows, "  ", 2));
     }
     let mut notes = Vec::new();
     let mut groups: Vec<Vec<String>> = Vec::new();

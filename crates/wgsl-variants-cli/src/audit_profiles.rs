@@ -74,6 +74,6 @@ pub fn table(rows: &[PassProfiles], names: &[String]) -> String {
     }
     format!(
         "variants valid per profile (build set, validated):\n{}",
-        super::audit::columns(&cells, "  ", 1)
+        super::table::columns(&cells, "  ", 1)
     )
 }

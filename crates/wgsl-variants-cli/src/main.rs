@@ -15,6 +15,7 @@ mod output;
 mod reflect;
 #[cfg(feature = "gpu")]
 mod render;
+mod table;
 mod validate;
 mod watch;
 
