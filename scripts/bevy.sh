@@ -4,11 +4,12 @@
 # - 0.19.1 (default): naga_oil's dialect, examples/bevy_pbr/wgsl-variants.toml.
 # - 0.20.1: WESL 0.6 across three packages (bevy_pbr, bevy_render, bevy_core_pipeline),
 #   examples/bevy-0.20/wgsl-variants.toml.
-# `--check` (CI) runs the default and compares its summary lines with the example's
-# expected.txt: the figures the README reports.
+# `--check` (CI) runs the default and compares its summary lines, and the audit's findings of
+# defs pushed to another stage only, with the example's expected.txt: the figures the README
+# reports.
 #
 # The shaders are fetched at run time by cargo itself (a throwaway manifest that depends on the
-# published crates bevy_pbr, bevy_render and bevy_core_pipeline, then `cargo fetch`: checksums
+# published crates bevy_pbr, bevy_render, bevy_core_pipeline and bevy_gizmos_render, then `cargo fetch`: checksums
 # and mirrors come from cargo), never committed: only the declaration files are ours. The tree
 # is assembled under target/bevy-<version>/<crate>/src/…, so diagnostics name Bevy's own paths.
 set -euo pipefail
@@ -39,18 +40,19 @@ path = "lib.rs"
 bevy_pbr = { version = "=$version", default-features = false }
 bevy_render = { version = "=$version", default-features = false }
 bevy_core_pipeline = { version = "=$version", default-features = false }
+bevy_gizmos_render = { version = "=$version", default-features = false }
 
 [workspace]
 MANIFEST
 touch "$fetch/lib.rs"
-echo "== cargo fetch: bevy_pbr, bevy_render, bevy_core_pipeline $version"
+echo "== cargo fetch: bevy_pbr, bevy_render, bevy_core_pipeline, bevy_gizmos_render $version"
 cargo fetch -q --manifest-path "$fetch/Cargo.toml"
 # Where cargo unpacked each crate: its manifest's folder, from `cargo metadata`.
 cargo metadata -q --format-version 1 --manifest-path "$fetch/Cargo.toml" |
     python3 -c '
 import json, sys
 for p in json.load(sys.stdin)["packages"]:
-    if p["name"] in ("bevy_pbr", "bevy_render", "bevy_core_pipeline") and p["version"] == sys.argv[1]:
+    if p["name"] in ("bevy_pbr", "bevy_render", "bevy_core_pipeline", "bevy_gizmos_render") and p["version"] == sys.argv[1]:
         print(p["name"], p["manifest_path"].rsplit("/", 1)[0])
 ' "$version" |
     while read -r crate unpacked; do
@@ -82,7 +84,11 @@ echo "== validate ${args[*]}: $(( (end - start) / 1000000 )) ms (exit $status: 1
 if $check; then
     # The summary lines (built, distinct, valid, invalid per pass and in total) are
     # deterministic: any change is a change in this tool or in the declaration.
-    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:)' "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    grep -E '^([a-z0-9_]+/[A-Za-z/]+: [0-9]+ built|total:)' "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    # And the audit's per-stage findings: defs a stage reads but its pipeline never pushes there.
+    # (It exits 1: the forward pass's full space is over the audit's default budget.)
+    "$bin" --root "$tree" --color never audit 2> /dev/null > "target/bevy-audit-$version.txt" || true
+    grep -E '^  - .* is pushed to the .* stage only' "target/bevy-audit-$version.txt" >> "target/bevy-summary-$version.txt" || true
     diff -u "$example/expected.txt" "target/bevy-summary-$version.txt"
     echo "== the figures match $example/expected.txt"
     exit 0

@@ -31,7 +31,8 @@
 //! ## The pipeline, one module per stage, each importing only the stages below it
 //!
 //! 1. [`diagnostic`], [`error`] ([`VariantError`]: every stage's report of a variant),
-//!    [`source`] (reading files) and [`cache`] are the ground floor.
+//!    [`source`] (reading files), [`cache`] and [`stage`] (a pipeline's stages) are the ground
+//!    floor.
 //! 2. [`preprocess`] splits WGSL lines, parses directives and composes a variant;
 //!    [`keywords`], [`shader`], [`variants`] ([`Space`], [`Choice`]), [`lookup`], [`covering`]
 //!    and [`materials`] model Unity's keyword semantics; [`declaration`] reads the keywords of
@@ -77,6 +78,7 @@ pub mod reflect;
 pub mod shader;
 pub mod snapshot;
 pub mod source;
+pub mod stage;
 pub mod validate;
 pub mod validator;
 pub mod variants;
@@ -88,6 +90,7 @@ pub use library::{Library, LoadError, LoadOptions, Variant};
 pub use lookup::LookupError;
 pub use preprocess::Dialect;
 pub use shader::{Pass, Shader};
+pub use stage::PipelineStage;
 pub use variants::{Choice, Space};
 
 /// `docs/api.md`: its example is compiled and run with the doc tests, so the page cannot drift

@@ -113,6 +113,12 @@ pub struct Pass {
     /// (see [`crate::Library::pass_profiles`]).
     #[serde(skip)]
     pub(crate) profiles: Vec<crate::validator::Profile>,
+    /// The pipeline stage the pass composes, when its declaration splits it into stages
+    /// (`stages`: the pass is then named `PASS/STAGE`, and the keywords whose defs Bevy's
+    /// pipeline does not push to this stage are options that set no def). `None`: the whole
+    /// pipeline from one module.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<crate::stage::PipelineStage>,
 }
 
 impl Pass {
@@ -202,6 +208,7 @@ impl Pass {
             index,
             constraints,
             profiles: decl.profiles,
+            stage: decl.stage,
         };
         Ok(pass)
     }
@@ -219,7 +226,8 @@ impl Pass {
             .collect()
     }
 
-    /// The defs one keyword sets: an option's defs (declaration files' `options`), else the
+    /// The defs one keyword sets: an option's defs (declaration files' `options`; none for a
+    /// keyword whose defs the pipeline pushes to another [stage](Pass::stage) only), else the
     /// keyword's own def ([`def_of`](crate::declaration::def_of): `true`, or a valued
     /// keyword's value).
     ///

@@ -325,3 +325,153 @@ fn options_set_wesl_features() {
         "{plain}"
     );
 }
+
+/// A line gizmo as Bevy 0.19/0.20 draws it: `PERSPECTIVE` is pushed to the fragment stage
+/// only, yet the vertex entry point's helper tests it.
+const LINE: &str = "struct Out { @builtin(position) clip: vec4<f32>, @location(0) uv: f32 };
+fn clip_depth(p: vec4<f32>) -> vec4<f32> {
+#ifdef PERSPECTIVE
+    return vec4<f32>(p.xy, p.z * 0.5, p.w);
+#else
+    return p;
+#endif
+}
+@vertex fn vertex(@location(0) position: vec3<f32>) -> Out {
+    var out: Out;
+    out.clip = clip_depth(vec4<f32>(position, 1.0));
+    out.uv = 0.0;
+    return out;
+}
+@fragment fn fragment(in: Out) -> @location(0) vec4<f32> {
+#ifdef PERSPECTIVE
+    let a = in.uv / in.clip.w;
+#else
+    let a = in.uv;
+#endif
+#ifdef JOINTS
+    return vec4<f32>(a, 1.0, 1.0, 1.0);
+#else
+    return vec4<f32>(a);
+#endif
+}
+";
+
+const STAGES: &str = r#"
+[blocks.lines]
+multi_compile = [["_", "JOINTS"]]
+
+[[shader]]
+name = "line_gizmo"
+entry = "line.wgsl"
+[[shader.pass]]
+name = "Lines"
+use = ["lines"]
+multi_compile = [["_", "PERSPECTIVE"]]
+values = { WIDTH = [1, 2] }
+[shader.pass.stages.vertex]
+use = ["lines"]
+keywords = ["WIDTH"]
+[shader.pass.stages.fragment]
+"#;
+
+fn gizmo(declaration: &str) -> Result<Library, wgsl_variants::LoadError> {
+    Library::from_declared_sources(
+        declaration,
+        [(
+            "line.wgsl",
+            LINE.replace("out.uv = 0.0;", "out.uv = f32(#{WIDTH});")
+                .as_str(),
+        )],
+    )
+}
+
+#[test]
+fn a_pass_split_into_stages_composes_each_with_its_own_defs() {
+    use wgsl_variants::PipelineStage;
+    let lib = gizmo(STAGES).unwrap();
+    let shader = lib.shader("line_gizmo").unwrap();
+    let names: Vec<&str> = shader.passes.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["Lines/vertex", "Lines/fragment"]);
+    let vertex = lib.pass("line_gizmo", "Lines/vertex").unwrap();
+    let fragment = lib.pass("line_gizmo", "Lines/fragment").unwrap();
+    assert_eq!(vertex.stage, Some(PipelineStage::Vertex));
+    assert_eq!(fragment.stage, Some(PipelineStage::Fragment));
+    // The same space in every stage; the defs differ.
+    assert_eq!(
+        wgsl_variants::Space::full(vertex).count(),
+        wgsl_variants::Space::full(fragment).count()
+    );
+    assert!(vertex.keyword_defs("PERSPECTIVE").is_empty());
+    assert_eq!(
+        vertex.keyword_defs("JOINTS"),
+        [("JOINTS", DefValue::Bool(true))]
+    );
+    assert_eq!(
+        vertex.keyword_defs("WIDTH=2"),
+        [("WIDTH", DefValue::Int(2))]
+    );
+    assert_eq!(
+        fragment.keyword_defs("PERSPECTIVE"),
+        [("PERSPECTIVE", DefValue::Bool(true))]
+    );
+    let keys = ["PERSPECTIVE", "WIDTH=1"];
+    let v = lib.wgsl(&lib.variant("line_gizmo", "Lines/vertex", &keys).unwrap());
+    let f = lib.wgsl(&lib.variant("line_gizmo", "Lines/fragment", &keys).unwrap());
+    assert!(!v.contains("p.z * 0.5") && !v.contains("in.clip.w"), "{v}");
+    assert!(f.contains("p.z * 0.5") && f.contains("in.clip.w"), "{f}");
+    // The vertex stage's helper tests a def only the fragment stage gets: the audit says so,
+    // naming the item that would change; the fragment stage has no such finding.
+    let audit = wgsl_variants::audit::audit_pass(&lib, vertex, &Default::default()).unwrap();
+    assert_eq!(audit.unpushed_defs.len(), 1, "{:?}", audit.unpushed_defs);
+    let finding = &audit.unpushed_defs[0];
+    assert_eq!(finding.keyword, "PERSPECTIVE");
+    assert_eq!(finding.pushed_to, [PipelineStage::Fragment]);
+    assert_eq!(finding.changes, ["clip_depth"]);
+    // Not pushed here is not dead here.
+    assert!(audit.dead_keywords.is_empty(), "{:?}", audit.dead_keywords);
+    assert!(audit.sets.iter().any(|s| s.other_stages));
+    let audit = wgsl_variants::audit::audit_pass(&lib, fragment, &Default::default()).unwrap();
+    assert!(audit.unpushed_defs.is_empty(), "{:?}", audit.unpushed_defs);
+    // Pushing PERSPECTIVE to the vertex stage too, as a fixed Bevy would: no finding.
+    let lib = gizmo(&STAGES.replace(
+        "keywords = [\"WIDTH\"]",
+        "keywords = [\"WIDTH\", \"PERSPECTIVE\"]",
+    ))
+    .unwrap();
+    let vertex = lib.pass("line_gizmo", "Lines/vertex").unwrap();
+    let audit = wgsl_variants::audit::audit_pass(&lib, vertex, &Default::default()).unwrap();
+    assert!(audit.unpushed_defs.is_empty(), "{:?}", audit.unpushed_defs);
+}
+
+#[test]
+fn stages_are_checked() {
+    let refused = |declaration: &str| match gizmo(declaration) {
+        Ok(_) => panic!("the declaration loads:\n{declaration}"),
+        Err(e) => e.render(false),
+    };
+    let message = refused(&STAGES.replace("stages.fragment]", "stages.fragmnet]"));
+    assert!(
+        message.contains("pass `Lines` has a stage `fragmnet`: a pass's stages are `vertex` and `fragment`; did you mean `fragment`?"),
+        "{message}"
+    );
+    let message = refused(&STAGES.replace("keywords = [\"WIDTH\"]", "keywords = [\"WIDHT\"]"));
+    assert!(
+        message.contains(
+            "names keyword `WIDHT`, which the pass does not declare; did you mean `WIDTH`?"
+        ),
+        "{message}"
+    );
+    let message =
+        refused(&STAGES.replace("use = [\"lines\"]\nkeywords", "use = [\"line\"]\nkeywords"));
+    assert!(
+        message.contains(
+            "uses block `line`, which the pass does not use (its `use` list); did you mean `lines`?"
+        ),
+        "{message}"
+    );
+    let message = refused(&STAGES.replace(
+        "[shader.pass.stages.fragment]",
+        "[shader.pass.stages.fragment]\nentry = \"lines.wgsl\"",
+    ));
+    assert!(message.contains("lines.wgsl"), "{message}");
+}

@@ -5,7 +5,8 @@
 //! Everything is exact and nothing enumerates the space: a static walk of the pass's
 //! composition tree finds which keyword sets can change which part of the text, each small
 //! group of coupled sets is enumerated on its own, and a check on the region outputs proves
-//! that the distinct count is their product (see [`Method`]). Nothing here runs naga.
+//! that the distinct count is their product (see [`Method`]). Nothing here runs naga; only
+//! the check of a split pass's stages ([`stages`]) composes, two programs per keyword it tries.
 //!
 //! ```
 //! use wgsl_variants::{Library, audit};
@@ -22,6 +23,7 @@ pub mod budget;
 pub mod chart;
 mod findings;
 mod report;
+pub mod stages;
 
 use rayon::prelude::*;
 
@@ -122,7 +124,8 @@ fn audit_with<'p>(
     };
     let used = options.materials.as_ref().map(|m| used_keywords(pass, m));
     let (mut full, mut after, mut build) = (full, after, build);
-    if substitutes_valued(lib, pass) {
+    let substituted = substitutes_valued(lib, pass);
+    if substituted {
         // The static walk tells texts apart by their lines, and a substituted value changes a
         // line's text, not which lines there are: count every variant as distinct (a bound).
         for a in [&mut full, &mut after, &mut build] {
@@ -132,7 +135,29 @@ fn audit_with<'p>(
         }
     }
     let mut audit = report::assemble(pass, &full, &after, &build, used);
+    if substituted {
+        // Nor can it tell a valued keyword from its siblings: not dead, not identical.
+        audit.dead_keywords.retain(|k| !valued(pass, k));
+        for (set, row) in pass.sets.iter().zip(&mut audit.sets) {
+            if set.keywords().any(|k| valued(pass, k)) {
+                row.dead = false;
+                row.dead_keywords.clear();
+                row.identical_options.clear();
+                row.suggestions.clear();
+            }
+        }
+    }
     audit.unreached = crate::analysis::unreached(lib, pass);
+    // A keyword whose defs go to other stages only changes nothing here by design: not dead.
+    let pushed_here = |k: &str| k == "_" || !pass.keyword_defs(k).is_empty();
+    audit.dead_keywords.retain(|k| pushed_here(k));
+    for (set, row) in pass.sets.iter().zip(&mut audit.sets) {
+        if pass.stage.is_some() && !set.keywords().any(pushed_here) {
+            row.other_stages = true;
+            row.suggestions.clear();
+        }
+    }
+    audit.unpushed_defs = stages::unpushed_defs(lib, pass);
     Ok(audit)
 }
 
@@ -144,11 +169,11 @@ fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
     let names: Vec<&str> = pass
         .keywords()
         .flat_map(|k| {
-            // A valued keyword, or an option's def with a value other than "on".
-            let valued = k.contains('=');
+            // A valued keyword's def, or an option's def with a value other than "on".
+            let whole = k.contains('=');
             pass.keyword_defs(k)
                 .into_iter()
-                .filter(move |(_, v)| valued || *v != crate::declaration::DefValue::Bool(true))
+                .filter(move |(_, v)| whole || *v != crate::declaration::DefValue::Bool(true))
         })
         .map(|(name, _)| name)
         .collect();
@@ -170,6 +195,16 @@ fn substitutes_valued(lib: &Library, pass: &Pass) -> bool {
             })
         })
     })
+}
+
+/// Whether keyword `k` sets a def to a value other than "on": a valued keyword
+/// (`NAME=VALUE`), or an option with such a def.
+fn valued(pass: &Pass, k: &str) -> bool {
+    k.contains('=')
+        || pass
+            .keyword_defs(k)
+            .iter()
+            .any(|(_, v)| *v != crate::declaration::DefValue::Bool(true))
 }
 
 /// Keywords of `pass` that some material of its shader enables.

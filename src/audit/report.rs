@@ -103,6 +103,10 @@ pub struct SetAudit {
     pub used_by_materials: Option<Vec<String>>,
     /// What could be done about it.
     pub suggestions: Vec<String>,
+    /// In a stage of a pass split into stages: no keyword of the set has defs in this stage
+    /// (they go to the others), so it changes nothing here by design — not a dead set.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub other_stages: bool,
     /// Whether the findings above are complete (false when its group was too large).
     #[serde(skip)]
     pub known: bool,
@@ -120,6 +124,9 @@ pub struct PassAudit {
     pub shader: String,
     /// Pass name.
     pub pass: String,
+    /// The pipeline stage, for a stage of a pass split into stages.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<crate::stage::PipelineStage>,
     /// The full space: the product of the sets' sizes.
     #[serde(serialize_with = "exact_count")]
     pub full_space: BigUint,
@@ -161,6 +168,10 @@ pub struct PassAudit {
     /// never validated without `validate --strict`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unreached: Vec<crate::analysis::Unreached>,
+    /// For a stage of a pass split into stages: keywords pushed to other stages only whose
+    /// defs would change the code this stage runs ([`super::stages::unpushed_defs`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub unpushed_defs: Vec<super::stages::UnpushedDefs>,
     /// Whether materials were given.
     #[serde(skip)]
     pub materials: bool,
@@ -333,6 +344,7 @@ pub(crate) fn assemble(
     PassAudit {
         shader: pass.shader.clone(),
         pass: pass.name.clone(),
+        stage: pass.stage,
         full_space: full.count.clone(),
         after_filtering: after.count.clone(),
         after_stripping: build.count.clone(),
@@ -347,6 +359,7 @@ pub(crate) fn assemble(
         identical_code: groups(pass, build),
         findings_exact,
         unreached: Vec::new(),
+        unpushed_defs: Vec::new(),
         materials: used.is_some(),
     }
 }
@@ -460,6 +473,7 @@ fn set_row(
         together,
         used_by_materials,
         suggestions,
+        other_stages: false,
         known: f.known,
     }
 }

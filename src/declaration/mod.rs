@@ -92,6 +92,7 @@ use crate::preprocess::tree::PassDecl;
 
 mod pass;
 mod profile;
+mod stage;
 
 /// The declaration file's name, at the root of a tree.
 pub const FILE_NAME: &str = "wgsl-variants.toml";
@@ -271,6 +272,7 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         options: &parsed.options,
         blocks: &parsed.blocks,
     };
+    stage::check_block_stages(&shared, at, &mut errors);
     let shaders = parsed
         .shaders
         .into_iter()
@@ -281,12 +283,14 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             passes: s
                 .passes
                 .into_iter()
-                .map(|p| {
+                .flat_map(|mut p| {
                     let merged = pass::merged_constants(&tree_constants, &p, at, &mut errors);
+                    let stages = std::mem::take(&mut p.stages);
+                    let uses = p.uses.clone();
                     let mut decl = pass::pass_decl(p, &shared, at, &mut errors);
                     pass::shadowed_keywords(&decl, &merged, &mut errors);
                     decl.constants = merged;
-                    decl
+                    stage::split(decl, stages, &uses, &shared, at, &mut errors)
                 })
                 .collect(),
         })

@@ -41,7 +41,9 @@ pub(super) struct PassToml {
     #[serde(default)]
     tags: BTreeMap<String, String>,
     #[serde(default, rename = "use")]
-    uses: Vec<Spanned<String>>,
+    pub(super) uses: Vec<Spanned<String>>,
+    #[serde(default)]
+    pub(super) stages: super::stage::StagesToml,
     #[serde(default)]
     multi_compile: Vec<Names>,
     #[serde(default)]
@@ -69,6 +71,9 @@ pub(super) struct PassToml {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct BlockToml {
+    /// The stages the block's keywords' defs reach in a pass split into stages (default:
+    /// every stage): Bevy's material defs go to the fragment stage only.
+    pub(super) stages: Option<Spanned<Vec<Spanned<String>>>>,
     #[serde(default)]
     multi_compile: Vec<Names>,
     #[serde(default)]
@@ -127,6 +132,26 @@ impl BlockToml {
             options: &self.options,
         }
     }
+}
+
+/// The keywords a block declares (a valued set's as `NAME=VALUE`), `_` left out.
+pub(super) fn keyword_names(
+    block: &BlockToml,
+    at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
+) -> Vec<String> {
+    let mut pragmas = Vec::new();
+    // The block's own errors are reported where the passes using it are built.
+    keyword_pragmas(&block.sets(), at, &mut Vec::new(), &mut pragmas);
+    pragmas
+        .iter()
+        .filter_map(|p| match p {
+            Pragma::Keywords { names, .. } => Some(names),
+            _ => None,
+        })
+        .flatten()
+        .map(|(n, _)| n.to_string())
+        .filter(|n| n != "_")
+        .collect()
 }
 
 /// Whether `name` can be a keyword: a def name (letters, digits and `_`, not starting with a
@@ -217,6 +242,7 @@ pub(super) fn pass_decl(
         entry: p.entry.map(|e| (e.get_ref().clone(), at(e.span()))),
         module: None,
         profiles: super::profile::profiles(p.profile.as_ref(), at, errors),
+        stage: None,
     }
 }
 

@@ -26,16 +26,14 @@ impl Tree<'_> {
         crate::preprocess::compose::reach(self.resolved, entry)
     }
 
-    /// Whether `name` appears as a whole word in one of `modules` (in a directive, a
-    /// condition or a substitution).
+    /// Whether `name` appears as a whole word in one of `modules`.
     fn mentions(&self, modules: &[usize], name: &str) -> bool {
-        modules.iter().any(|&m| {
-            let text = self.files.text(self.modules[m].file);
-            text.match_indices(name).any(|(i, _)| {
-                let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
-                !word(text[..i].chars().next_back()) && !word(text[i + name.len()..].chars().next())
-            })
-        })
+        crate::preprocess::compose::ModuleGraph {
+            modules: self.modules,
+            resolved: self.resolved,
+            files: self.files,
+        }
+        .mentions(modules, name)
     }
 }
 
@@ -181,6 +179,10 @@ pub(super) fn unread_keywords(
             let label = format!("{}/{}", shader.name, pass.name);
             for (k, span) in declared(pass) {
                 let defs = defs_of(pass, k);
+                // A keyword whose defs go to another stage only is judged there.
+                if defs.is_empty() {
+                    continue;
+                }
                 let unread: Vec<&str> = defs
                     .iter()
                     .map(|(d, _)| *d)

@@ -24,6 +24,18 @@ impl ModuleGraph<'_> {
     pub fn reach(&self, root: usize) -> Vec<usize> {
         reach(self.resolved, root)
     }
+
+    /// Whether `name` appears as a whole word in one of `modules` (in a directive, a
+    /// condition, a substitution or code).
+    pub fn mentions(&self, modules: &[usize], name: &str) -> bool {
+        modules.iter().any(|&m| {
+            let text = self.files.text(self.modules[m].file);
+            text.match_indices(name).any(|(i, _)| {
+                let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+                !word(text[..i].chars().next_back()) && !word(text[i + name.len()..].chars().next())
+            })
+        })
+    }
 }
 
 /// The modules `root` reaches in an import graph, `root` first.

@@ -639,6 +639,7 @@ impl<'a> ModuleParser<'a> {
             entry: None,
             module: None,
             profiles: Vec::new(),
+            stage: None,
         });
         Ok(())
     }

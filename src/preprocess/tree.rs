@@ -107,6 +107,9 @@ pub(crate) struct PassDecl {
     /// The devices the pass is validated for, where a declaration file names them for the
     /// pass (`profile`); empty: the tree's.
     pub profiles: Vec<crate::validator::Profile>,
+    /// The pipeline stage the pass composes, when a declaration file splits its pass into
+    /// stages (`stages`); `None`: the whole pipeline from one module.
+    pub stage: Option<crate::stage::PipelineStage>,
 }
 
 /// A shader file's `#shader` declaration and passes.

@@ -45,6 +45,8 @@ pub(crate) struct Item<'t> {
     pub level: u32,
     /// An entry point (`@vertex`, `@fragment` or `@compute`).
     pub entry: bool,
+    /// An entry point's stage attribute (`vertex`, `fragment`, `compute`).
+    pub stage: Option<&'t str>,
     /// The line its first token is on.
     pub first_line: u32,
     /// The line its last token is on, or where a block comment that opens after that token
@@ -181,6 +183,7 @@ impl<'t> Splitter<'t> {
             cond_refs: Vec::new(),
             level: self.level,
             entry: false,
+            stage: None,
             first_line: n,
             last_line: n,
         });
@@ -247,6 +250,7 @@ impl<'t> Splitter<'t> {
         if prev == '@' {
             if s.depth == 0 && matches!(word, "vertex" | "fragment" | "compute") {
                 item.entry = true;
+                item.stage = Some(word);
             }
             return;
         }

@@ -49,7 +49,7 @@ use items::Splitter;
 /// assert!(pruned.text.starts_with("fn used()"));
 /// ```
 pub fn prune(composed: Composed) -> Composed {
-    let Some(keep) = kept_lines(&composed.text) else {
+    let Some(keep) = kept_lines(&composed.text, |_| true) else {
         return composed;
     };
     let mut out = Composed {
@@ -69,9 +69,35 @@ pub fn prune(composed: Composed) -> Composed {
     out
 }
 
+/// The items of `text` that one pipeline stage runs: those its entry points reach (with the
+/// directives and overrides every program keeps), each as its name (`None` for a nameless
+/// root) and its lines; `None` when the text cannot be split or has no entry point.
+pub(crate) fn stage_items(
+    text: &str,
+    stage: crate::stage::PipelineStage,
+) -> Option<Vec<(Option<String>, String)>> {
+    let items = Splitter::split(text)?;
+    let keep = kept_lines(text, |stage_of| stage_of == Some(stage.attribute()))
+        .unwrap_or_else(|| vec![true; text.split_terminator('\n').count()]);
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    Some(
+        items
+            .iter()
+            .filter(|i| keep.get(i.first_line as usize).copied().unwrap_or(true))
+            .map(|i| {
+                let body = lines
+                    [i.first_line as usize..=(i.last_line as usize).min(lines.len() - 1)]
+                    .concat();
+                (i.name.map(str::to_string), body)
+            })
+            .collect(),
+    )
+}
+
 /// For each `\n`-ended line of `text`, whether pruning keeps it; `None` when every line is
-/// kept (nothing unreached, or the text cannot be split).
-fn kept_lines(text: &str) -> Option<Vec<bool>> {
+/// kept (nothing unreached, or the text cannot be split). `entry` says which entry points
+/// (by stage attribute) are roots.
+fn kept_lines(text: &str, entry: impl Fn(Option<&str>) -> bool) -> Option<Vec<bool>> {
     let items = Splitter::split(text)?;
     // No entry point: a module of helpers (a test's, a library's), validated whole.
     if !items.iter().any(|i| i.entry) {
@@ -105,7 +131,7 @@ fn kept_lines(text: &str) -> Option<Vec<bool>> {
         }
     };
     for (i, item) in items.iter().enumerate() {
-        if item.is_root() {
+        if item.is_root() && (!item.entry || entry(item.stage)) {
             mark(i, &mut kept, &mut stack);
         }
     }

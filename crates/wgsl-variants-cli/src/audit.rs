@@ -159,7 +159,7 @@ fn table(passes: &[AuditedPass]) -> String {
     for a in passes
         .iter()
         .map(|p| &p.audit)
-        .filter(|a| !a.sets.is_empty() || !a.unreached.is_empty())
+        .filter(|a| !a.sets.is_empty() || !a.unreached.is_empty() || !a.unpushed_defs.is_empty())
     {
         out.push('\n');
         out.push_str(&pass_details(a));
@@ -194,6 +194,7 @@ fn pass_details(a: &PassAudit) -> String {
     ]];
     for s in &a.sets {
         let distinct = match (s.distinct_factor, &s.group) {
+            _ if s.other_stages => "x1 (other stages)".to_string(),
             _ if s.dead => "x1 (dead)".to_string(),
             (Some(d), _) => format!("x{d}"),
             (None, Some((n, d))) => format!("coupled: {d} of {n}"),
@@ -274,6 +275,18 @@ fn pass_details(a: &PassAudit) -> String {
     }
     if !a.findings_exact {
         notes.push("findings are incomplete: a group of coupled sets was too large".into());
+    }
+    for u in &a.unpushed_defs {
+        let to: Vec<&str> = u.pushed_to.iter().map(|s| s.name()).collect();
+        let stage = a.stage.map_or("this", |s| s.name());
+        let items: Vec<String> = u.changes.iter().map(|c| format!("`{c}`")).collect();
+        notes.push(format!(
+            "{} is pushed to the {} stage only, yet it changes code the {stage} stage runs ({} in variant {}): that code is never built",
+            u.keyword,
+            to.join(" and "),
+            items.join(", "),
+            u.variant
+        ));
     }
     for u in &a.unreached {
         notes.push(format!(

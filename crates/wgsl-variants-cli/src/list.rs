@@ -26,6 +26,18 @@ pub fn run(ctx: &Context, materials: &Option<PathBuf>) -> Result<ExitCode, Faile
             for set in &pass.sets {
                 println!("    {:>3}x  {set}", set.len());
             }
+            if let Some(stage) = pass.stage {
+                let elsewhere: Vec<&str> = pass
+                    .keywords()
+                    .filter(|k| *k != "_" && pass.keyword_defs(k).is_empty())
+                    .collect();
+                if !elsewhere.is_empty() {
+                    println!(
+                        "    the {stage} stage gets no defs of: {}",
+                        elsewhere.join(" ")
+                    );
+                }
+            }
             if !pass.skip_variants.is_empty() {
                 println!("    skip_variants {}", pass.skip_variants.join(" "));
             }
