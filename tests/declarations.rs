@@ -475,3 +475,22 @@ fn stages_are_checked() {
     ));
     assert!(message.contains("lines.wgsl"), "{message}");
 }
+
+#[test]
+fn carets_are_sized_and_placed_in_the_source_not_the_substituted_text() {
+    let lib = Library::from_declared_sources(
+        "dialect = \"naga-oil\"\n[constants]\nCOUNT = { uint = 10 }\n[[shader]]\nname = \"s\"\nentry = \"m.wgsl\"\n[[shader.pass]]\nname = \"P\"\n",
+        [(
+            "m.wgsl",
+            "@fragment fn fs() -> @location(0) vec4<f32> {\n    let n = #{COUNT}; let c = missing_name;\n    return vec4<f32>(f32(n));\n}\n",
+        )],
+    )
+    .unwrap();
+    let composed = lib.compose(&lib.variant("s", "P", &[] as &[&str]).unwrap());
+    let e = composed.failure.expect("an unknown identifier");
+    let (span, _) = &e.labels[0];
+    let text = lib.files().text(span.file);
+    // naga_oil's text reads `let n = 10u; let c = missing_name;`: the column moved by five.
+    assert_eq!(&text[span.range()], "missing_name", "{e:?}");
+    assert_eq!(e.location(lib.files()).unwrap().column, 31);
+}

@@ -276,7 +276,8 @@ fn chain(e: &dyn std::error::Error) -> Vec<String> {
 }
 
 /// Bytes `r` of naga_oil's preprocessed `source` of `file`, located in the file itself: the
-/// same line, the same column clipped to the line (substitutions may move a column).
+/// same line (naga_oil keeps every line), the columns mapped back through the line's
+/// substitutions ([`source_column`]).
 fn original_span(
     files: &SourceFiles,
     file: crate::diagnostic::FileId,
@@ -285,22 +286,91 @@ fn original_span(
 ) -> Span {
     let start = r.start.min(source.len());
     let line = source[..start].matches('\n').count();
-    let col = start - source[..start].rfind('\n').map_or(0, |i| i + 1);
+    let pre_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
+    let pre_end = source[pre_start..]
+        .find('\n')
+        .map_or(source.len(), |i| pre_start + i);
+    let pre_line = &source[pre_start..pre_end];
     let text = files.text(file);
     let starts = crate::preprocess::lines::line_starts(text);
     let line_start = starts.get(line).copied().unwrap_or(text.len());
     let line_end = text[line_start..]
         .find('\n')
         .map_or(text.len(), |i| line_start + i);
-    let begin = (line_start + col).min(line_end);
-    let len = r.end.saturating_sub(r.start).max(1);
+    let original = &text[line_start..line_end];
+    let col = start - pre_start;
+    // A span running past its line keeps its length past the line's end (clipped below).
+    let end_col = r.end.saturating_sub(pre_start).max(col + 1);
+    let (begin, _) = source_column(original, pre_line, col);
+    let (_, end) = if end_col <= pre_line.len() {
+        source_column(original, pre_line, end_col - 1)
+    } else {
+        (0, original.len() + (end_col - pre_line.len()))
+    };
+    let begin = line_start + begin.min(original.len());
+    let end = (line_start + end).max(begin + 1);
     Span::new(
         file,
-        begin
-            ..(begin + len)
-                .min(line_end.max(begin + 1))
-                .min(text.len().max(begin)),
+        begin..end.min(line_end.max(begin + 1)).min(text.len().max(begin)),
     )
+}
+
+/// Where byte `col` of a preprocessed line lies in its `original` line, as the range of
+/// original bytes it comes from: itself where the text is the same, the whole substitution
+/// (`#{NAME}`, `#NAME`) where naga_oil put a def's value. The literal text between
+/// substitutions is found again in the preprocessed line, in order.
+fn source_column(original: &str, preprocessed: &str, col: usize) -> (usize, usize) {
+    let mut o = 0; // in `original`
+    let mut p = 0; // in `preprocessed`
+    while o < original.len() {
+        // The literal text up to the next substitution.
+        let next = original[o..].find('#').map_or(original.len(), |i| o + i);
+        let literal = &original[o..next];
+        if preprocessed[p..].starts_with(literal) {
+            if col < p + literal.len() {
+                let at = o + (col - p);
+                return (at, at + 1);
+            }
+            p += literal.len();
+        } else {
+            // Not the same text (a directive line, a change we do not model): same column.
+            let at = col.min(original.len());
+            return (at, at + 1);
+        }
+        if next == original.len() {
+            break;
+        }
+        // The substitution's source: `#{NAME}` or `#NAME`.
+        let rest = &original[next + 1..];
+        let len = if let Some(inner) = rest.strip_prefix('{') {
+            inner.find('}').map_or(rest.len(), |i| i + 2)
+        } else {
+            rest.find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len())
+        };
+        let token = next..next + 1 + len;
+        o = token.end;
+        // Its value runs to where the next literal text starts again.
+        let following = original[o..].find('#').map_or(original.len(), |i| o + i);
+        let literal = &original[o..following];
+        let value_end = if literal.is_empty() {
+            if following == original.len() {
+                preprocessed.len()
+            } else {
+                p
+            }
+        } else {
+            preprocessed[p..]
+                .find(literal)
+                .map_or(preprocessed.len(), |i| p + i)
+        };
+        if col < value_end {
+            return (token.start, token.end);
+        }
+        p = value_end;
+    }
+    let at = original.len() + col.saturating_sub(p);
+    (at, at + 1)
 }
 
 /// naga_oil's decorated names (`itemX_naga_oil_mod_X<base32 module>X`) written as
@@ -364,6 +434,27 @@ impl super::engine::Engine for NagaOilEngine {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn columns_map_back_through_substitutions() {
+        let original = "const N: f32 = #{COUNT}; let b = #SCALE * x;";
+        let pre = "const N: f32 = 10u; let b = 2.5 * x;";
+        let find = |s: &str, t: &str| s.find(t).unwrap();
+        // Before any substitution: the same byte.
+        assert_eq!(source_column(original, pre, 6), (6, 7));
+        // Inside a value: the whole substitution it came from.
+        let value = find(pre, "10u");
+        let token = find(original, "#{COUNT}");
+        assert_eq!(source_column(original, pre, value + 1), (token, token + 8));
+        let value = find(pre, "2.5");
+        let token = find(original, "#SCALE");
+        assert_eq!(source_column(original, pre, value), (token, token + 6));
+        // After them: shifted by what the values changed.
+        assert_eq!(
+            source_column(original, pre, find(pre, "x;")),
+            (find(original, "x;"), find(original, "x;") + 1)
+        );
+    }
 
     #[test]
     fn decorated_names_read_as_paths() {
