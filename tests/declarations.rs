@@ -494,3 +494,79 @@ fn carets_are_sized_and_placed_in_the_source_not_the_substituted_text() {
     assert_eq!(&text[span.range()], "missing_name", "{e:?}");
     assert_eq!(e.location(lib.files()).unwrap().column, 31);
 }
+
+#[test]
+fn blocks_and_options_are_shared_across_trees_by_an_included_file() {
+    // One file of blocks and options, included by two trees' declarations.
+    let shared = "[options]\nACES = [\"TONEMAP_IN_SHADER\", \"TONEMAP_METHOD_ACES\"]\n\
+                  [blocks.tonemapping]\nmulti_compile = [[\"_\", \"ACES\"]]\n";
+    let declaration = "include = [\"shared/tonemapping.toml\"]\n[[shader]]\nname = \"lit\"\n\
+                       entry = \"lit.wgsl\"\n[[shader.pass]]\nname = \"Forward\"\nuse = [\"tonemapping\"]\n";
+    let load = |shared: &str| {
+        Library::from_declared_sources(
+            declaration,
+            [
+                ("shared/tonemapping.toml", shared),
+                ("tone.wgsl", TONE),
+                ("view.wgsl", VIEW),
+                ("lit.wgsl", LIT),
+            ],
+        )
+    };
+    let lib = load(shared).unwrap();
+    let pass = lib.pass("lit", "Forward").unwrap();
+    assert_eq!(pass.keywords().collect::<Vec<_>>(), ["ACES"]);
+    assert_eq!(
+        pass.keyword_defs("ACES"),
+        [
+            ("TONEMAP_IN_SHADER", DefValue::Bool(true)),
+            ("TONEMAP_METHOD_ACES", DefValue::Bool(true))
+        ]
+    );
+    // Problems in the included file are located in it.
+    let Err(e) = load(&shared.replace("[\"_\", \"ACES\"]", "[\"_\", \"ACE S\"]")) else {
+        panic!("a bad keyword in the included file loads")
+    };
+    let rendered = e.render(false);
+    assert!(
+        rendered.contains("`ACE S` is not a keyword")
+            && rendered.contains("shared/tonemapping.toml:4:"),
+        "{rendered}"
+    );
+    let Err(e) = load(&format!("{shared}[constants]\nX = 1\n")) else {
+        panic!("an included file with constants loads")
+    };
+    assert!(
+        e.render(false).contains("unknown field `constants`"),
+        "{}",
+        e.render(false)
+    );
+    // A missing included file, and a block declared in both files.
+    let Err(e) = Library::from_declared_sources(declaration, [("lit.wgsl", LIT)]) else {
+        panic!("a missing include loads")
+    };
+    assert!(
+        e.render(false)
+            .contains("include `shared/tonemapping.toml`: no such file"),
+        "{}",
+        e.render(false)
+    );
+    let twice = format!("{declaration}[blocks.tonemapping]\nmulti_compile = [[\"_\", \"X\"]]\n");
+    let Err(e) = Library::from_declared_sources(
+        &twice,
+        [
+            ("shared/tonemapping.toml", shared),
+            ("lit.wgsl", LIT),
+            ("tone.wgsl", TONE),
+            ("view.wgsl", VIEW),
+        ],
+    ) else {
+        panic!("a block declared twice loads")
+    };
+    assert!(
+        e.render(false)
+            .contains("block `tonemapping` is declared twice"),
+        "{}",
+        e.render(false)
+    );
+}

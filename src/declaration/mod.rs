@@ -188,6 +188,8 @@ impl DeclarationError {
 #[serde(deny_unknown_fields)]
 struct FileToml {
     dialect: Option<Spanned<String>>,
+    #[serde(default)]
+    include: Vec<Spanned<String>>,
     profile: Option<Spanned<profile::ProfileToml>>,
     #[serde(default)]
     exclude: Vec<Spanned<String>>,
@@ -215,6 +217,36 @@ struct ShaderToml {
     passes: Vec<pass::PassToml>,
 }
 
+/// The `include` list of a declaration file, read before the rest (whose blocks may live in
+/// the included files): each path with its byte range; empty when the text is not TOML (the
+/// full parse reports why).
+pub(crate) fn include_list(text: &str) -> Vec<(String, std::ops::Range<usize>)> {
+    #[derive(Deserialize)]
+    struct Only {
+        #[serde(default)]
+        include: Vec<Spanned<String>>,
+    }
+    toml::from_str::<Only>(text)
+        .map(|o| {
+            o.include
+                .into_iter()
+                .map(|i| (i.get_ref().clone(), i.span()))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// A file a declaration file includes (`include = ["PATH"]`): options and blocks that
+/// several trees share.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IncludeToml {
+    #[serde(default)]
+    options: pass::OptionsToml,
+    #[serde(default)]
+    blocks: BTreeMap<Spanned<String>, pass::BlockToml>,
+}
+
 /// A `[modules."PATH"]` table: what the declaration says about one module.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -237,7 +269,11 @@ pub(super) enum ValueToml {
 /// Every problem found: TOML syntax and types (unknown fields included), an unknown dialect,
 /// constants out of range. Keyword rules are checked later, when the passes are built, with
 /// spans into this file.
-pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<DeclarationError>> {
+pub(crate) fn parse(
+    file: FileId,
+    text: &str,
+    included: &[(FileId, &str)],
+) -> Result<Declaration, Vec<DeclarationError>> {
     let at = |range: std::ops::Range<usize>| Span::new(file, range);
     let parsed: FileToml = toml::from_str(text).map_err(|e| {
         vec![DeclarationError {
@@ -246,6 +282,19 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         }]
     })?;
     let mut errors = Vec::new();
+    let mut includes_parsed = Vec::new();
+    for &(id, text) in included {
+        match toml::from_str::<IncludeToml>(text) {
+            Ok(inc) => includes_parsed.push((id, inc)),
+            Err(e) => errors.push(DeclarationError {
+                message: format!(
+                    "{} (an included file holds `[options]` and `[blocks]` only)",
+                    toml_message(e.message())
+                ),
+                span: Span::new(id, e.span().unwrap_or(0..text.len().min(1))),
+            }),
+        }
+    }
     let wesl_entries = parsed
         .shaders
         .iter()
@@ -268,11 +317,40 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
         },
     };
     let tree_constants = constants(&parsed.constants, at, &mut errors);
-    let shared = pass::Shared {
-        options: &parsed.options,
-        blocks: &parsed.blocks,
+    let mut shared = pass::Shared {
+        options: vec![(file, &parsed.options)],
+        blocks: Vec::new(),
     };
-    stage::check_block_stages(&shared, at, &mut errors);
+    let tables = std::iter::once((file, &parsed.blocks))
+        .chain(includes_parsed.iter().map(|(id, inc)| (*id, &inc.blocks)));
+    for (id, blocks) in tables {
+        for (name, block) in blocks {
+            if let Some(first) = shared.block(name.get_ref()) {
+                errors.push(DeclarationError {
+                    message: format!(
+                        "block `{}` is declared twice (first at {}): a block has one home",
+                        name.get_ref(),
+                        if first.file == file {
+                            "the declaration file"
+                        } else {
+                            "an included file"
+                        }
+                    ),
+                    span: Span::new(id, name.span()),
+                });
+                continue;
+            }
+            shared.blocks.push(pass::SharedBlock {
+                file: id,
+                name,
+                block,
+            });
+        }
+    }
+    shared
+        .options
+        .extend(includes_parsed.iter().map(|(id, inc)| (*id, &inc.options)));
+    stage::check_block_stages(&shared, &mut errors);
     let shaders = parsed
         .shaders
         .into_iter()
@@ -304,6 +382,21 @@ pub(crate) fn parse(file: FileId, text: &str) -> Result<Declaration, Vec<Declara
             constants: constants(&m.constants, at, &mut errors),
         })
         .collect();
+    let includes: Vec<(String, Span)> = parsed
+        .include
+        .iter()
+        .map(|e| (e.get_ref().clone(), at(e.span())))
+        .collect();
+    for (path, span) in &includes {
+        if let Some(why) = not_a_tree_path(path) {
+            errors.push(DeclarationError {
+                message: format!(
+                    "include entry `{path}` {why}: entries are paths of files relative to the root"
+                ),
+                span: *span,
+            });
+        }
+    }
     let exclude: Vec<(String, Span)> = parsed
         .exclude
         .iter()
@@ -486,7 +579,7 @@ shader_feature = [["_", "UVS"]]
 require = [["UVS", "SKINNED"]]
 constants = { B = false }
 "#;
-        let d = parse(0, text).unwrap();
+        let d = parse(0, text, &[]).unwrap();
         let pass = &d.shaders[0].passes[0];
         let consts = &pass.constants;
         assert_eq!(pass.pragmas.len(), 3);
@@ -511,7 +604,7 @@ constants = { B = false }
 
     #[test]
     fn a_wrongly_typed_value_says_what_a_value_may_be() {
-        let e = parse(0, "[constants]\nN = \"four\"\n").unwrap_err();
+        let e = parse(0, "[constants]\nN = \"four\"\n", &[]).unwrap_err();
         assert!(
             e[0].message
                 .contains("`true` or `false` (Bool), an integer (Int, i32) or `{ uint = N }`"),
@@ -524,7 +617,7 @@ constants = { B = false }
     #[test]
     fn a_keyword_that_is_also_a_constant_is_refused() {
         let text = "[constants]\nFOG = true\n[[shader]]\nname = \"s\"\nentry = \"m.wgsl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"FOG\"]]\n";
-        let e = parse(0, text).unwrap_err();
+        let e = parse(0, text, &[]).unwrap_err();
         assert!(
             e[0].message
                 .contains("`FOG` is both a keyword of pass `P` and a constant"),
@@ -539,13 +632,14 @@ constants = { B = false }
         let e = parse(
             0,
             "[[shader]]\nname = \"a\"\nentry = \"a.wgsl\"\ncolour = 1\n",
+            &[],
         )
         .unwrap_err();
         assert!(e[0].message.contains("unknown field `colour`"), "{e:?}");
         assert_eq!(e[0].span.range().start, 39);
-        let e = parse(0, "dialect = \"glsl\"\n").unwrap_err();
+        let e = parse(0, "dialect = \"glsl\"\n", &[]).unwrap_err();
         assert!(e[0].message.contains("unknown dialect `glsl`"));
-        let e = parse(0, "[constants]\nX = 4294967296\n").unwrap_err();
+        let e = parse(0, "[constants]\nX = 4294967296\n", &[]).unwrap_err();
         assert!(e[0].message.contains("out of range"));
     }
 }

@@ -7,7 +7,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{Constant, DeclarationError, DefValue, ValueToml, constants, value_of};
-use crate::diagnostic::Span;
+use crate::diagnostic::{FileId, Span};
 use crate::keywords::{ConstraintKind, SetKind};
 use crate::preprocess::tree::{PassDecl, Pragma};
 
@@ -164,10 +164,34 @@ pub(super) fn is_keyword_name(name: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// The tree's shared parts a pass may draw on: `[options]` and `[blocks]`.
+/// The tree's shared parts a pass may draw on: `[options]` and `[blocks]`, of the declaration
+/// file and of the files it includes, each with the file it is written in.
 pub(super) struct Shared<'t> {
-    pub options: &'t OptionsToml,
-    pub blocks: &'t BTreeMap<Spanned<String>, BlockToml>,
+    pub options: Vec<(FileId, &'t OptionsToml)>,
+    pub blocks: Vec<SharedBlock<'t>>,
+}
+
+/// A `[blocks.NAME]` table and where it is written.
+#[derive(Clone, Copy)]
+pub(super) struct SharedBlock<'t> {
+    pub file: FileId,
+    pub name: &'t Spanned<String>,
+    pub block: &'t BlockToml,
+}
+
+impl<'t> Shared<'t> {
+    /// The block named `name`.
+    pub fn block(&self, name: &str) -> Option<SharedBlock<'t>> {
+        self.blocks
+            .iter()
+            .copied()
+            .find(|b| b.name.get_ref() == name)
+    }
+}
+
+/// Spans into `file`.
+pub(super) fn at_file(file: FileId) -> impl Fn(std::ops::Range<usize>) -> Span + Copy {
+    move |r| Span::new(file, r)
 }
 
 /// The pass declaration of `p`: its own sets, then those of each block it uses (in `use`
@@ -178,18 +202,15 @@ pub(super) fn pass_decl(
     at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
     errors: &mut Vec<DeclarationError>,
 ) -> PassDecl {
-    let mut parts = vec![p.sets()];
+    let main = at(0..0).file;
+    let mut parts = vec![(p.sets(), main)];
     for name in &p.uses {
-        match shared
-            .blocks
-            .iter()
-            .find(|(b, _)| b.get_ref() == name.get_ref())
-        {
-            Some((_, block)) => parts.push(block.sets()),
+        match shared.block(name.get_ref()) {
+            Some(b) => parts.push((b.block.sets(), b.file)),
             None => {
                 let hint = crate::diagnostic::suggest(
                     name.get_ref(),
-                    shared.blocks.keys().map(|b| b.get_ref().as_str()),
+                    shared.blocks.iter().map(|b| b.name.get_ref().as_str()),
                 )
                 .map(|s| format!("; did you mean `{s}`?"))
                 .unwrap_or_default();
@@ -206,11 +227,11 @@ pub(super) fn pass_decl(
         }
     }
     let mut pragmas = Vec::new();
-    for sets in &parts {
-        keyword_pragmas(sets, at, errors, &mut pragmas);
+    for (sets, file) in &parts {
+        keyword_pragmas(sets, at_file(*file), errors, &mut pragmas);
     }
-    for sets in &parts {
-        constraint_pragmas(sets, at, &mut pragmas);
+    for (sets, file) in &parts {
+        constraint_pragmas(sets, at_file(*file), &mut pragmas);
     }
     if !p.skip_variants.is_empty() {
         pragmas.push(Pragma::SkipVariants(
@@ -229,8 +250,12 @@ pub(super) fn pass_decl(
         .flatten()
         .map(|(n, _)| &**n)
         .collect();
-    let sources = std::iter::once(shared.options).chain(parts.iter().map(|s| s.options));
-    let options = options(sources, &declared, at, errors);
+    let sources = shared
+        .options
+        .iter()
+        .copied()
+        .chain(parts.iter().map(|(s, file)| (*file, s.options)));
+    let options = options(sources, &declared, errors);
     PassDecl {
         name: p.name.get_ref().clone(),
         span: at(p.name.span()),
@@ -396,13 +421,13 @@ fn constraint_pragmas(
 /// `[options]`, the pass's, its blocks'). An option declared twice with different defs, a
 /// name that cannot be a keyword, an option that sets no def or an invalid def are errors.
 fn options<'t>(
-    sources: impl Iterator<Item = &'t OptionsToml>,
+    sources: impl Iterator<Item = (FileId, &'t OptionsToml)>,
     declared: &[&str],
-    at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
     errors: &mut Vec<DeclarationError>,
 ) -> BTreeMap<String, Vec<Constant>> {
     let mut out: BTreeMap<String, (Vec<Constant>, Span)> = BTreeMap::new();
-    for table in sources {
+    for (file, table) in sources {
+        let at = at_file(file);
         for (name, option) in table {
             let (n, span) = (name.get_ref(), at(option.span()));
             if !declared.contains(&n.as_str()) {

@@ -23,7 +23,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::DeclarationError;
-use super::pass::{Shared, keyword_names};
+use super::pass::{Shared, at_file, keyword_names};
 use crate::diagnostic::Span;
 use crate::preprocess::tree::{PassDecl, Pragma};
 use crate::stage::PipelineStage;
@@ -141,13 +141,14 @@ fn reached<'d>(
         let elsewhere: BTreeSet<String> = shared
             .blocks
             .iter()
-            .filter(|(n, _)| uses.iter().any(|u| u.get_ref() == n.get_ref()))
-            .filter(|(_, b)| {
-                b.stages
+            .filter(|b| uses.iter().any(|u| u.get_ref() == b.name.get_ref()))
+            .filter(|b| {
+                b.block
+                    .stages
                     .as_ref()
                     .is_some_and(|s| !s.get_ref().iter().any(|s| s.get_ref() == kind.name()))
             })
-            .flat_map(|(_, b)| keyword_names(b, at))
+            .flat_map(|b| keyword_names(b.block, at_file(b.file)))
             .collect();
         return declared
             .iter()
@@ -161,13 +162,11 @@ fn reached<'d>(
     }
     for b in &stage.uses {
         let block = shared
-            .blocks
-            .iter()
-            .find(|(n, _)| n.get_ref() == b.get_ref())
+            .block(b.get_ref())
             .filter(|_| uses.iter().any(|u| u.get_ref() == b.get_ref()));
         match block {
-            Some((_, block)) => named.extend(
-                keyword_names(block, at)
+            Some(block) => named.extend(
+                keyword_names(block.block, at_file(block.file))
                     .into_iter()
                     .map(|k| (k, at(b.span()))),
             ),
@@ -219,13 +218,10 @@ fn reached<'d>(
 }
 
 /// Checks the `stages` list of every block: each a stage name.
-pub(super) fn check_block_stages(
-    shared: &Shared<'_>,
-    at: impl Fn(std::ops::Range<usize>) -> Span + Copy,
-    errors: &mut Vec<DeclarationError>,
-) {
-    for (name, block) in shared.blocks {
-        for s in block.stages.iter().flat_map(|s| s.get_ref()) {
+pub(super) fn check_block_stages(shared: &Shared<'_>, errors: &mut Vec<DeclarationError>) {
+    for b in &shared.blocks {
+        let at = at_file(b.file);
+        for s in b.block.stages.iter().flat_map(|s| s.get_ref()) {
             if PipelineStage::from_name(s.get_ref()).is_none() {
                 let hint = crate::diagnostic::suggest(
                     s.get_ref(),
@@ -236,7 +232,7 @@ pub(super) fn check_block_stages(
                 errors.push(DeclarationError {
                     message: format!(
                         "block `{}` names a stage `{}`: the stages are `vertex` and `fragment`{hint}",
-                        name.get_ref(),
+                        b.name.get_ref(),
                         s.get_ref()
                     ),
                     span: at(s.span()),

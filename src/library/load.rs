@@ -106,12 +106,32 @@ pub(crate) fn load(
 pub(crate) fn load_declared(
     raw: Vec<RawFile>,
     declaration: RawFile,
+    read_include: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     options: &LoadOptions,
 ) -> Result<Loaded, LoadError> {
     // The declaration's file id comes after the modules'; its `exclude` list decides how many
     // modules there are, so it is parsed once for the list and again with its final id.
     let text = String::from_utf8_lossy(&declaration.bytes).into_owned();
-    let (exclude, dialect, packages) = crate::declaration::parse(raw.len(), &text)
+    // The files it includes (their blocks complete it), each read once, in the order written.
+    type Included = (String, std::ops::Range<usize>, Result<Vec<u8>, String>);
+    let mut includes: Vec<Included> = Vec::new();
+    for (path, range) in crate::declaration::include_list(&text) {
+        if !includes.iter().any(|(p, _, _)| *p == path) {
+            let bytes = read_include(&path);
+            includes.push((path, range, bytes));
+        }
+    }
+    let lossy: Vec<String> = includes
+        .iter()
+        .filter_map(|(_, _, b)| b.as_ref().ok())
+        .map(|b| String::from_utf8_lossy(b).into_owned())
+        .collect();
+    let early: Vec<(crate::diagnostic::FileId, &str)> = lossy
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (raw.len() + 1 + i, t.as_str()))
+        .collect();
+    let (exclude, dialect, packages) = crate::declaration::parse(raw.len(), &text, &early)
         .map(|d| (d.exclude, d.dialect, d.packages))
         .unwrap_or((Vec::new(), Dialect::NagaOil, Vec::new()));
     let excludes = |path: &str, e: &str| {
@@ -155,7 +175,30 @@ pub(crate) fn load_declared(
             problems: vec![e.into()],
         });
     }
-    let decl = match crate::declaration::parse(ids[0], files.text(ids[0])) {
+    let mut included = Vec::new();
+    let mut problems: Vec<LoadProblem> = Vec::new();
+    for (path, range, bytes) in includes {
+        match bytes {
+            Ok(bytes) => {
+                let (id, errors) = source::decode(vec![RawFile { path, bytes }], &mut files);
+                problems.extend(errors.into_iter().map(Into::into));
+                included.extend(id);
+            }
+            Err(why) => problems.push(
+                crate::declaration::DeclarationError {
+                    message: format!("include `{path}`: {why}"),
+                    span: crate::diagnostic::Span::new(ids[0], range),
+                }
+                .into(),
+            ),
+        }
+    }
+    if !problems.is_empty() {
+        return Err(LoadError { files, problems });
+    }
+    let texts: Vec<(crate::diagnostic::FileId, &str)> =
+        included.iter().map(|&id| (id, files.text(id))).collect();
+    let decl = match crate::declaration::parse(ids[0], files.text(ids[0]), &texts) {
         Ok(d) => d,
         Err(errors) => {
             return Err(LoadError {
@@ -164,7 +207,6 @@ pub(crate) fn load_declared(
             });
         }
     };
-    let mut problems = Vec::new();
     let decl_wesl = decl.wesl;
     // Each shader's entry module, and each pass's own where it names one.
     let mut decl = decl;

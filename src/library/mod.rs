@@ -213,9 +213,15 @@ impl Library {
                 path: crate::declaration::FILE_NAME.to_string(),
                 bytes,
             };
+            // Included files are read as the declaration is: whole, within the byte limit.
+            let read_include = |path: &str| {
+                read_declaration(&root.join(path), options.max_total_bytes)
+                    .map_err(|e| e.to_string())
+            };
             Library::load_declared(
                 tree.files,
                 declaration,
+                &read_include,
                 Origin::Dir(root.to_path_buf()),
                 options,
             )?
@@ -250,21 +256,38 @@ impl Library {
         declaration: &str,
         sources: impl IntoIterator<Item = (P, T)>,
     ) -> Result<Library, LoadError> {
-        let raw = raw_files(sources);
+        // `.toml` sources are the files the declaration may include, the rest its modules.
+        let (includes, raw): (Vec<RawFile>, Vec<RawFile>) = raw_files(sources)
+            .into_iter()
+            .partition(|f| f.path.ends_with(".toml"));
         let declaration = RawFile {
             path: crate::declaration::FILE_NAME.to_string(),
             bytes: declaration.as_bytes().to_vec(),
         };
-        Library::load_declared(raw, declaration, Origin::Memory, &LoadOptions::default())
+        let read_include = |path: &str| {
+            includes
+                .iter()
+                .find(|f| f.path == path)
+                .map(|f| f.bytes.clone())
+                .ok_or_else(|| "no such file among the sources".to_string())
+        };
+        Library::load_declared(
+            raw,
+            declaration,
+            &read_include,
+            Origin::Memory,
+            &LoadOptions::default(),
+        )
     }
 
     fn load_declared(
         raw: Vec<RawFile>,
         declaration: RawFile,
+        read_include: &dyn Fn(&str) -> Result<Vec<u8>, String>,
         origin: Origin,
         options: &LoadOptions,
     ) -> Result<Library, LoadError> {
-        let l = load::load_declared(raw, declaration, options)?;
+        let l = load::load_declared(raw, declaration, read_include, options)?;
         Ok(Library::from_loaded(l, origin))
     }
 

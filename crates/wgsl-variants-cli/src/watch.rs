@@ -209,8 +209,8 @@ fn clock() -> String {
     )
 }
 
-/// Whether a file event can change what the tree loads as: a module, a WESL file, the
-/// declaration file or the materials file created, changed, renamed or removed (not an
+/// Whether a file event can change what the tree loads as: a module, a WESL file, a TOML
+/// file (the declaration file, or one it includes) or the materials file created, changed, renamed or removed (not an
 /// access, not the cache).
 fn relevant(event: &notify::Event, cache: Option<&Path>, materials: Option<&Path>) -> bool {
     use notify::EventKind;
@@ -218,9 +218,9 @@ fn relevant(event: &notify::Event, cache: Option<&Path>, materials: Option<&Path
         return false;
     }
     event.paths.iter().any(|p| {
-        let module = p.extension().is_some_and(|e| e == "wgsl" || e == "wesl")
-            || p.file_name()
-                .is_some_and(|n| n == wgsl_variants::declaration::FILE_NAME);
+        let module = p
+            .extension()
+            .is_some_and(|e| e == "wgsl" || e == "wesl" || e == "toml");
         (module && cache.is_none_or(|c| !p.starts_with(c))) || materials.is_some_and(|m| p == m)
     })
 }
