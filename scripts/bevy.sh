@@ -4,8 +4,13 @@
 # - 0.19.1 (default): naga_oil's dialect, examples/bevy_pbr/wgsl-variants.toml.
 # - 0.20.1: WESL 0.6 across three packages (bevy_pbr, bevy_render, bevy_core_pipeline),
 #   examples/bevy-0.20/wgsl-variants.toml.
-# `--check` (CI) runs the default and compares its summary lines with the example's
-# expected.txt: the figures the README reports.
+# The default validation: `--cover 2` for 0.19.1; for 0.20.1 `--cover 2 --cover-above 1000
+# --profile desktop --profile webgpu` (passes of at most 1,000 variants are built whole, the others
+# as 2-wise covering sets; one verdict per device profile in one run).
+# `--check` (CI) runs the default and compares its summary lines (per pass and in total, and per
+# profile when there are several) with the example's expected.txt; where README.md has a
+# `<!-- figures: bevy VERSION -->` line, the table after it must be the one these figures give
+# (`--update` rewrites expected.txt and that table instead of comparing).
 #
 # The shaders are fetched at run time by cargo itself (a throwaway manifest that depends on the
 # published crates bevy_pbr, bevy_render and bevy_core_pipeline, then `cargo fetch`: checksums
@@ -16,8 +21,9 @@ cd "$(dirname "$0")/.."
 version=0.19.1
 if [ "${1:-}" = --bevy ]; then version="$2"; shift 2; fi
 case "$version" in
-    0.19.1) example=examples/bevy_pbr; ext=wgsl ;;
-    0.20.1) example=examples/bevy-0.20; ext=wesl ;;
+    0.19.1) example=examples/bevy_pbr; ext=wgsl; default_args=(--cover 2) ;;
+    0.20.1) example=examples/bevy-0.20; ext=wesl
+        default_args=(--cover 2 --cover-above 1000 --profile desktop --profile webgpu) ;;
     *) echo "scripts/bevy.sh: no declaration for Bevy $version (0.19.1 or 0.20.1)" >&2; exit 2 ;;
 esac
 tree="target/bevy-$version"
@@ -70,9 +76,11 @@ if [ -z "$bin" ]; then
 fi
 "$bin" --root "$tree" list
 check=false
+update=false
 if [ "${1:-}" = --check ]; then check=true; shift; fi
+if [ "${1:-}" = --update ]; then check=true; update=true; shift; fi
 args=("$@")
-if [ ${#args[@]} -eq 0 ]; then args=(--cover 2); fi
+if [ ${#args[@]} -eq 0 ]; then args=("${default_args[@]}"); fi
 start=$(date +%s%N)
 status=0
 "$bin" --root "$tree" --color never validate "${args[@]}" --no-cache > "target/bevy-validate-$version.txt" || status=$?
@@ -80,11 +88,20 @@ end=$(date +%s%N)
 cat "target/bevy-validate-$version.txt"
 echo "== validate ${args[*]}: $(( (end - start) / 1000000 )) ms (exit $status: 1 means some variants failed)"
 if $check; then
-    # The summary lines (built, distinct, valid, invalid per pass and in total) are
-    # deterministic: any change is a change in this tool or in the declaration.
-    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:)' "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    # The summary lines (built, distinct, valid, invalid per pass and in total; with several
+    # profiles also each profile's valid and invalid) are deterministic: any change is a change
+    # in this tool or in the declaration.
+    grep -E '^([a-z_]+/[A-Za-z]+: [0-9]+ built|total:|total [a-z0-9_,]+: [0-9]+ valid|  [a-z0-9_,]+: [0-9]+ valid, [0-9]+ invalid$)' \
+        "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    if $update; then
+        cp "target/bevy-summary-$version.txt" "$example/expected.txt"
+        echo "== $example/expected.txt rewritten"
+    fi
     diff -u "$example/expected.txt" "target/bevy-summary-$version.txt"
     echo "== the figures match $example/expected.txt"
+    mode=check
+    if $update; then mode=update; fi
+    python3 scripts/bevy-figures.py "$mode" "$version" "$example/expected.txt" README.md
     exit 0
 fi
 exit "$status"
