@@ -8,9 +8,10 @@
 # --profile desktop --profile webgpu` (passes of at most 1,000 variants are built whole, the others
 # as 2-wise covering sets; one verdict per device profile in one run).
 # `--check` (CI) runs the default and compares its summary lines (per pass and in total, and per
-# profile when there are several) with the example's expected.txt; where README.md has a
-# `<!-- figures: bevy VERSION -->` line, the table after it must be the one these figures give
-# (`--update` rewrites expected.txt and that table instead of comparing).
+# profile when there are several) with the example's expected.txt; where README.md or
+# docs/guide/wesl-trees.md has a `<!-- figures: bevy VERSION … -->` line, the table after it
+# must be the one these figures give (scripts/bevy-figures.py; `--update` rewrites expected.txt
+# and those tables instead of comparing).
 #
 # The shaders are fetched at run time by cargo itself (a throwaway manifest that depends on the
 # published crates bevy_pbr, bevy_render and bevy_core_pipeline, then `cargo fetch`: checksums
@@ -99,9 +100,13 @@ if $check; then
     fi
     diff -u "$example/expected.txt" "target/bevy-summary-$version.txt"
     echo "== the figures match $example/expected.txt"
-    mode=check
-    if $update; then mode=update; fi
-    python3 scripts/bevy-figures.py "$mode" "$version" "$example/expected.txt" README.md
+    # The README's and the guide's tables of these figures (where they have one).
+    if grep -qF -- "<!-- figures: bevy $version" README.md docs/guide/wesl-trees.md; then
+        mode=check
+        if $update; then mode=update; fi
+        python3 scripts/bevy-figures.py "$mode" "$version" "$example/expected.txt" \
+            README.md docs/guide/wesl-trees.md
+    fi
     exit 0
 fi
 exit "$status"
