@@ -4,9 +4,15 @@
 # - 0.19.1 (default): naga_oil's dialect, examples/bevy_pbr/wgsl-variants.toml.
 # - 0.20.1: WESL 0.6 across three packages (bevy_pbr, bevy_render, bevy_core_pipeline),
 #   examples/bevy-0.20/wgsl-variants.toml.
-# `--check` (CI) runs the default and compares its summary lines, and the audit's findings of
-# defs pushed to another stage only, with the example's expected.txt: the figures the README
-# reports.
+# The default validation: `--cover 2` for 0.19.1; for 0.20.1 `--cover 2 --cover-above 1000
+# --profile desktop --profile webgpu` (passes of at most 1,000 variants are built whole, the others
+# as 2-wise covering sets; one verdict per device profile in one run).
+# `--check` (CI) runs the default and compares its summary lines (per pass and in total, and per
+# profile when there are several) with the example's expected.txt; where README.md or
+# docs/guide/wesl-trees.md has a `<!-- figures: bevy VERSION … -->` line, the table after it
+# must be the one these figures give (scripts/bevy-figures.py; `--update` rewrites expected.txt
+# and those tables instead of comparing). The audit's findings of defs pushed to another stage
+# only are part of the figures.
 #
 # The shaders are fetched at run time by cargo itself (a throwaway manifest that depends on the
 # published crates bevy_pbr, bevy_render, bevy_core_pipeline and bevy_gizmos_render, then `cargo fetch`: checksums
@@ -17,8 +23,9 @@ cd "$(dirname "$0")/.."
 version=0.19.1
 if [ "${1:-}" = --bevy ]; then version="$2"; shift 2; fi
 case "$version" in
-    0.19.1) example=examples/bevy_pbr; ext=wgsl ;;
-    0.20.1) example=examples/bevy-0.20; ext=wesl ;;
+    0.19.1) example=examples/bevy_pbr; ext=wgsl; default_args=(--cover 2) ;;
+    0.20.1) example=examples/bevy-0.20; ext=wesl
+        default_args=(--cover 2 --cover-above 1000 --profile desktop --profile webgpu) ;;
     *) echo "scripts/bevy.sh: no declaration for Bevy $version (0.19.1 or 0.20.1)" >&2; exit 2 ;;
 esac
 tree="target/bevy-$version"
@@ -72,9 +79,11 @@ if [ -z "$bin" ]; then
 fi
 "$bin" --root "$tree" list
 check=false
+update=false
 if [ "${1:-}" = --check ]; then check=true; shift; fi
+if [ "${1:-}" = --update ]; then check=true; update=true; shift; fi
 args=("$@")
-if [ ${#args[@]} -eq 0 ]; then args=(--cover 2); fi
+if [ ${#args[@]} -eq 0 ]; then args=("${default_args[@]}"); fi
 start=$(date +%s%N)
 status=0
 "$bin" --root "$tree" --color never validate "${args[@]}" --no-cache > "target/bevy-validate-$version.txt" || status=$?
@@ -82,15 +91,28 @@ end=$(date +%s%N)
 cat "target/bevy-validate-$version.txt"
 echo "== validate ${args[*]}: $(( (end - start) / 1000000 )) ms (exit $status: 1 means some variants failed)"
 if $check; then
-    # The summary lines (built, distinct, valid, invalid per pass and in total) are
-    # deterministic: any change is a change in this tool or in the declaration.
-    grep -E '^([a-z0-9_]+/[A-Za-z/]+: [0-9]+ built|total:)' "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
+    # The summary lines (built, distinct, valid, invalid per pass and in total; with several
+    # profiles also each profile's valid and invalid) are deterministic: any change is a change
+    # in this tool or in the declaration.
+    grep -E '^([a-z0-9_]+/[A-Za-z/]+: [0-9]+ built|total:|total [a-z0-9_,]+: [0-9]+ valid|  [a-z0-9_,]+: [0-9]+ valid, [0-9]+ invalid$)' \
+        "target/bevy-validate-$version.txt" > "target/bevy-summary-$version.txt"
     # And the audit's per-stage findings: defs a stage reads but its pipeline never pushes there.
     # (It exits 1: the forward pass's full space is over the audit's default budget.)
     "$bin" --root "$tree" --color never audit 2> /dev/null > "target/bevy-audit-$version.txt" || true
     grep -E '^  - .* is pushed to the .* stage only' "target/bevy-audit-$version.txt" >> "target/bevy-summary-$version.txt" || true
+    if $update; then
+        cp "target/bevy-summary-$version.txt" "$example/expected.txt"
+        echo "== $example/expected.txt rewritten"
+    fi
     diff -u "$example/expected.txt" "target/bevy-summary-$version.txt"
     echo "== the figures match $example/expected.txt"
+    # The README's and the guide's tables of these figures (where they have one).
+    if grep -qF -- "<!-- figures: bevy $version" README.md docs/guide/wesl-trees.md; then
+        mode=check
+        if $update; then mode=update; fi
+        python3 scripts/bevy-figures.py "$mode" "$version" "$example/expected.txt" \
+            README.md docs/guide/wesl-trees.md
+    fi
     exit 0
 fi
 exit "$status"

@@ -256,6 +256,23 @@ fn valued_sets_reach_the_program_as_constants() {
     assert_eq!(audit.distinct_full_space.count, 2u32.into());
 }
 
+/// Two options of one variant that set the same def (as Bevy pushes `PREPASS_FRAGMENT` for each
+/// prepass kind) give one `const` of the `constants` package, not a duplicate declaration.
+#[test]
+fn two_options_setting_one_def_compose() {
+    let declaration = "dialect = \"wesl\"\n[constants]\nN = { uint = 1 }\n[options]\nA_ON = [\"A\", \"SHARED\"]\nB_ON = [\"B\", \"SHARED\"]\n[[shader]]\nname = \"s\"\nentry = \"main.wesl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"A_ON\"], [\"_\", \"B_ON\"]]\n";
+    let main = "import constants::N;\n@fragment\nfn fs() -> @location(0) vec4<f32> {\n    var c = f32(N);\n    @if(SHARED) { c = 0.5; }\n    @if(A) { c += 0.25; }\n    @if(B) { c += 0.125; }\n    return vec4<f32>(c);\n}\n";
+    let lib = Library::from_declared_sources(declaration, [("main.wesl", main)]).unwrap();
+    let both = lib.variant("s", "P", &["A_ON", "B_ON"]).unwrap();
+    assert!(
+        lib.naga_module(&both).is_ok(),
+        "{:?}",
+        lib.naga_module(&both).err()
+    );
+    let text = lib.wgsl(&both);
+    assert!(text.contains("0.25") && text.contains("0.125"), "{text}");
+}
+
 /// `.wesl` files in a tree without a declaration file are not read as this crate's dialect:
 /// they are left out, with a warning that says what a WESL tree needs.
 #[test]

@@ -146,7 +146,12 @@ impl WeslEngine {
     ) -> Result<String, VariantError> {
         let defs = variant.pass.defs(variant.keywords());
         let mut constants = String::new();
-        for (name, value) in &defs {
+        for (i, (name, value)) in defs.iter().enumerate() {
+            // Two options of one variant may set the same def (Bevy pushes a def from several
+            // places): one `const`, not a duplicate declaration.
+            if defs[..i].contains(&(*name, *value)) {
+                continue;
+            }
             constants.push_str(&format!("public const {name} = {value};\n"));
         }
         let resolver = TreeResolver {
