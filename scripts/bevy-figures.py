@@ -17,7 +17,7 @@ import re
 import sys
 
 PASS = re.compile(
-    r"^(?P<pass>[a-z_]+/[A-Za-z]+): (?P<built>\d+) built \((?P<space>\d+) full space\), "
+    r"^(?P<pass>[a-z0-9_]+/[A-Za-z/]+): (?P<built>\d+) built \((?P<space>\d+) full space\), "
     r"(?P<distinct>\d+) distinct, (?P<valid>\d+) valid(?: on every profile)?, "
     r"(?P<invalid>\d+) invalid(?: on some)?$"
 )
