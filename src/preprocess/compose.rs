@@ -53,6 +53,10 @@ pub struct Composed {
     /// variant (`text` then describes the error, so different errors hash differently).
     /// Validating the composition reports it; this crate's own composition never fails.
     pub failure: Option<Box<crate::error::VariantError>>,
+    /// For a tree whose composer validates what it composes (WESL): the profile naga already
+    /// found `text` valid for (nothing that profile refuses either), so that validating it
+    /// again for that profile can be skipped.
+    pub(crate) validated: Option<crate::validator::Profile>,
 }
 
 impl Composed {
