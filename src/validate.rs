@@ -890,9 +890,17 @@ fn check(
     if cache.is_some_and(|c| c.contains(hash)) {
         return None;
     }
-    let result = match validate_with(text, &variant.label(), validator, profile) {
-        Ok(_) => None,
-        Err(_) => validate_with(&with_map(variant), &variant.label(), validator, profile).err(),
+    let result = if text.validated == Some(profile) {
+        // Its composer parsed and validated this very text for this profile.
+        None
+    } else {
+        match validate_with(text, &variant.label(), validator, profile) {
+            Ok(_) => None,
+            // A composer's failure: composing again with the line map gives the same one (the
+            // engines that can fail keep no line map).
+            Err(e) if text.failure.is_some() => Some(e),
+            Err(_) => validate_with(&with_map(variant), &variant.label(), validator, profile).err(),
+        }
     };
     if let (None, Some(cache)) = (&result, cache) {
         cache.insert(*hash);

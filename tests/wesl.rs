@@ -289,3 +289,80 @@ fn wesl_files_without_a_declaration_file_are_left_out_with_a_warning() {
     assert_eq!(lib.warnings().len(), 1);
     assert!(lib.warnings()[0].message.contains("dialect = \"wesl\""));
 }
+
+/// The engine parses each module once per loaded tree and compiles every variant from that
+/// parse: a module edited between two `watch` runs is read anew (each run loads the tree
+/// again), never compiled from its earlier parse, and compiling one parse again and again
+/// (every variant, twice, in any order) gives the same programs.
+#[test]
+fn an_edited_module_is_parsed_anew_between_watch_runs() {
+    use std::sync::Mutex;
+    use std::sync::atomic::AtomicBool;
+    use wgsl_variants::watch::{Event, Outcome, Session};
+
+    let tree = tempfile::tempdir().unwrap();
+    let write = |path: &str, text: &str| std::fs::write(tree.path().join(path), text).unwrap();
+    let tint = |half: &str| {
+        format!(
+            "fn tint() -> f32 {{\n    @if(HALF) {{\n        return {half};\n    }}\n    return 1.0;\n}}\n"
+        )
+    };
+    write("wgsl-variants.toml", DECLARATION);
+    write(
+        "main.wesl",
+        "import package::tint::tint;\n@fragment\nfn fs() -> @location(0) vec4<f32> {\n    return vec4<f32>(tint());\n}\n",
+    );
+    write("tint.wesl", &tint("0.5"));
+    let mut session = Session::new(tree.path(), Default::default(), Default::default(), None);
+    let run = |session: &mut Session| {
+        let errors = Mutex::new(Vec::new());
+        let outcome = session
+            .run(&AtomicBool::new(false), &|e| {
+                if let Event::Failure { library, error } = e {
+                    let at = error.location(library.files()).map(|l| l.to_string());
+                    errors.lock().unwrap().push(format!(
+                        "{} @ {} in {}",
+                        error.message,
+                        at.unwrap_or_default(),
+                        error.variant
+                    ));
+                }
+            })
+            .unwrap();
+        let Outcome::Verdict(verdict) = outcome else {
+            panic!("not cancelled, yet {outcome:?}");
+        };
+        (verdict.report.totals.invalid, errors.into_inner().unwrap())
+    };
+    let half = |session: &Session| {
+        let lib = session.library().unwrap();
+        lib.wgsl(&lib.variant("s", "P", &["HALF"]).unwrap())
+    };
+    assert_eq!(run(&mut session), (0, Vec::new()));
+    assert!(half(&session).contains("0.5"), "{}", half(&session));
+
+    write("tint.wesl", &tint("undefined_name"));
+    let (invalid, errors) = run(&mut session);
+    assert_eq!(invalid, 1);
+    assert!(
+        errors.len() == 1 && errors[0].contains("@ tint.wesl:3:") && errors[0].contains("{HALF}"),
+        "{errors:?}"
+    );
+
+    write("tint.wesl", &tint("0.25"));
+    assert_eq!(run(&mut session), (0, Vec::new()));
+    assert!(half(&session).contains("0.25"), "{}", half(&session));
+
+    // One parse, compiled again and again in any order: the same programs.
+    let lib = session.library().unwrap();
+    let none: &[&str] = &[];
+    let variants = [
+        lib.variant("s", "P", none).unwrap(),
+        lib.variant("s", "P", &["HALF"]).unwrap(),
+    ];
+    let first: Vec<String> = variants.iter().map(|v| lib.wgsl(v)).collect();
+    assert_ne!(first[0], first[1]);
+    for i in [1, 0, 1, 0] {
+        assert_eq!(lib.wgsl(&variants[i]), first[i]);
+    }
+}

@@ -24,13 +24,19 @@
 //! up in the item's original text (the item itself when the text was rewritten).
 
 use std::borrow::Cow;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::sync::{Mutex, OnceLock};
 
-use wesl::error::ResolveError;
-use wesl::sourcemap::{BasicSourceMap, SourceMap};
+use wesl::error::{Diagnostic, ResolveError};
+use wesl::pass::{self, CompilerDriver, Module, UsedItems, Visit};
+use wesl::sourcemap::{BasicSourceMap, SourceMap, SourceMapper};
 use wesl::syntax::{ModulePath, PathOrigin};
-use wesl::{CompileOptions, Resolver};
+use wesl::{CompileOptions, Mangler, Resolver};
 use wgsl_parse::SyntaxNode;
+use wgsl_parse::syntax::{
+    Expression, ExpressionNode, GlobalDeclaration, GlobalDeclarationNode, Ident, TranslationUnit,
+    TypeExpression, Visibility,
+};
 
 use crate::declaration::DefValue;
 use crate::diagnostic::{SourceFiles, Span};
@@ -48,15 +54,33 @@ type NagaError = (
     Vec<String>,
 );
 
-/// The module names of a WESL tree; composing needs nothing else kept between variants (the
-/// `wesl` crate parses the modules a program imports on each compile).
+/// The module names of a WESL tree, and each module's syntax tree, parsed once: `wesl::compile`
+/// parses every module a program imports on each compile; this engine runs the same
+/// compilation passes ([`CachedDriver`]) on a copy of the tree parsed at the module's first
+/// use. A loaded tree's texts never change (`watch` loads a changed tree anew, with a new
+/// engine), so a parse is never stale.
 #[derive(Debug)]
 pub(crate) struct WeslEngine {
     /// `package::a::b` → module id.
     by_name: HashMap<String, usize>,
     /// The compile options the declaration file sets.
     settings: crate::declaration::WeslSettings,
+    /// Per module id: its text as `wgsl-parse` parses it (`None`: it does not parse), made at
+    /// its first use (by any thread) and kept for the engine's life.
+    parsed: Vec<OnceLock<Option<TranslationUnit>>>,
+    /// Per module id: the identifiers its text has (a superset of the features its `@if`
+    /// conditions read), found at its first use.
+    words: Vec<OnceLock<HashSet<String>>>,
+    /// The modules `wesl`'s own check of a loaded module (`validate_wesl`) found valid, each
+    /// with the features it reads: module id and those features' values
+    /// ([`WeslEngine::feature_key`]). What the check sees is the module as its conditions
+    /// leave it, a function of the module's text and of those values alone.
+    checked: Mutex<HashSet<(usize, String)>>,
 }
+
+/// Most entries [`WeslEngine::checked`] keeps before it starts again (memory stays bounded
+/// over huge spaces).
+const CHECKED_MAX: usize = 1 << 16;
 
 /// Supplies the tree's modules (and the variant's `constants` package) to the compiler.
 struct TreeResolver<'a> {
@@ -122,6 +146,232 @@ impl Resolver for TreeResolver<'_> {
     }
 }
 
+/// A copy of a parsed module that compiling may change without changing the original, and
+/// that compiles as a new parse of the text would.
+///
+/// `wgsl-parse`'s identifiers are shared handles, and a parse shares none between two places:
+/// `wesl` points each use of a declaration at the declaration's identifier, names the
+/// output's declarations by renaming the module-scope declarations' identifiers, and takes a
+/// name used in a type or an expression whose identifier is shared with nothing for an
+/// undeclared one (`check_defined_symbols`). So the copy gets a new identifier for each
+/// module-scope declaration (never renamed in the original) and for each name used in a type
+/// or an expression (alone, as after parsing); the other identifiers (members, parameters,
+/// local declarations, imports) are neither renamed nor counted, and stay shared.
+fn fresh_copy(unit: &TranslationUnit) -> TranslationUnit {
+    fn new(ident: &mut Ident) {
+        let name = ident.name().clone();
+        *ident = Ident::new(name);
+    }
+    fn fresh_ty(ty: &mut TypeExpression) {
+        new(&mut ty.ident);
+        Visit::<TypeExpression>::visit_rec_mut(ty, &mut |t: &mut TypeExpression| new(&mut t.ident));
+    }
+    fn fresh_expr(expr: &mut ExpressionNode) {
+        match expr.node_mut() {
+            Expression::TypeOrIdentifier(ty) => fresh_ty(ty),
+            Expression::FunctionCall(call) => fresh_ty(&mut call.ty),
+            _ => {}
+        }
+        for e in Visit::<ExpressionNode>::visit_mut(expr.node_mut()) {
+            fresh_expr(e);
+        }
+    }
+    fn fresh_decls(decls: &mut [GlobalDeclarationNode]) {
+        for decl in decls {
+            match decl.node_mut() {
+                GlobalDeclaration::Declaration(d) => new(&mut d.ident),
+                GlobalDeclaration::TypeAlias(d) => new(&mut d.ident),
+                GlobalDeclaration::Struct(d) => new(&mut d.ident),
+                GlobalDeclaration::Function(d) => new(&mut d.ident),
+                GlobalDeclaration::Compound(c) => fresh_decls(&mut c.body),
+                GlobalDeclaration::Void | GlobalDeclaration::ConstAssert(_) => {}
+            }
+        }
+    }
+    let mut copy = unit.clone();
+    fresh_decls(&mut copy.global_declarations);
+    Visit::<TypeExpression>::visit_rec_mut(&mut copy, &mut |t: &mut TypeExpression| {
+        new(&mut t.ident)
+    });
+    for e in Visit::<ExpressionNode>::visit_mut(&mut copy) {
+        fresh_expr(e);
+    }
+    copy
+}
+
+/// `wesl::compile` (0.6.0, `frontend.rs`) with the modules of the tree taken from `tree` (a
+/// fresh copy of the module's parse) rather than parsed from the resolver's text, and `wesl`'s
+/// check of a loaded module skipped where it found the same module valid before: the same
+/// passes in the same order, the same source map (the resolver still supplies each module's
+/// text, which the source map records), the same errors. Options the engine never sets
+/// (no stripping, `keep`, `keep_main`, no source map) go to `wesl::compile` itself.
+fn compile(
+    main_path: &ModulePath,
+    options: &CompileOptions,
+    resolver: &TreeResolver<'_>,
+    tree: &TreeModules<'_>,
+) -> Result<wesl::CompileResult, wesl::Error> {
+    if !options.strip || options.keep.is_some() || options.keep_main || !options.sourcemap {
+        return wesl::compile(main_path, options, resolver);
+    }
+    let mangler = Box::<dyn Mangler>::from(options.mangler);
+    let sourcemapper = SourceMapper::new(main_path.clone(), resolver, &mangler);
+    let mut driver = CachedDriver {
+        main_path,
+        options,
+        resolver: &sourcemapper,
+        mangler: &sourcemapper,
+        tree,
+    };
+    let res = CompilerDriver::compile(&mut driver);
+    let sourcemap = sourcemapper.finish();
+    let res = res.map_err(|e| Diagnostic::from(e).with_sourcemap(&sourcemap))?;
+    Ok(wesl::CompileResult {
+        syntax: res.syntax,
+        modules: res.modules,
+        sourcemap: Some(sourcemap),
+        used_items: res.used_items,
+    })
+}
+
+/// `wesl` 0.6.0's own compilation pass (`frontend.rs`, `CompilationPass`), for stripping
+/// compiles without `keep`, loading the tree's modules from their parse.
+struct CachedDriver<'a> {
+    main_path: &'a ModulePath,
+    options: &'a CompileOptions,
+    resolver: &'a dyn Resolver,
+    mangler: &'a dyn Mangler,
+    tree: &'a TreeModules<'a>,
+}
+
+/// The loaded tree's modules as [`CachedDriver`] reads them: parsed once, and `wesl`'s
+/// check of each remembered per feature values ([`WeslEngine::checked`]).
+struct TreeModules<'a> {
+    engine: &'a WeslEngine,
+    files: &'a SourceFiles,
+    modules: &'a [ParsedModule],
+    resolver: &'a TreeResolver<'a>,
+}
+
+impl TreeModules<'_> {
+    /// The id and a fresh copy of the parse of the tree module at `path` (`None` for the
+    /// `constants` package, or a module that does not parse).
+    fn parsed(&self, path: &ModulePath) -> Option<(usize, TranslationUnit)> {
+        let m = self.resolver.module(path)?;
+        let unit = self.engine.parsed(self.files, self.modules, m)?;
+        Some((m, fresh_copy(unit)))
+    }
+}
+
+impl CompilerDriver for CachedDriver<'_> {
+    fn main_path(&self) -> &ModulePath {
+        self.main_path
+    }
+
+    fn canonical_path(&self, path: &ModulePath) -> ModulePath {
+        self.resolver.canonical_path(path)
+    }
+
+    fn main_entry_points(
+        &self,
+        main_module: &TranslationUnit,
+    ) -> Result<HashSet<Ident>, wesl::Error> {
+        Ok(pass::main_entry_points(main_module))
+    }
+
+    fn module_usage_analysis(
+        &self,
+        module: &Module,
+        already_used: &mut UsedItems,
+        to_analyze: &mut UsedItems,
+    ) -> Result<(), wesl::Error> {
+        pass::module_usage_analysis(module, already_used, to_analyze, !self.options.visibility)?;
+        Ok(())
+    }
+
+    fn usage_analysis(
+        &self,
+        module: &Module,
+        decl_name: &str,
+        min_vis: Visibility,
+        already_used: &mut UsedItems,
+        to_analyze: &mut UsedItems,
+    ) -> Result<(), wesl::Error> {
+        pass::usage_analysis(
+            module,
+            decl_name,
+            min_vis,
+            already_used,
+            to_analyze,
+            !self.options.visibility,
+        )?;
+        Ok(())
+    }
+
+    fn load_module(&mut self, path: &ModulePath) -> Result<TranslationUnit, wesl::Error> {
+        let (id, mut module) = match self.tree.parsed(path) {
+            Some((m, module)) => {
+                // The source map records the module's text, as when `wesl` parses it.
+                self.resolver.resolve_source(path)?;
+                (Some(m), module)
+            }
+            None => (None, pass::load_module(path, &self.resolver)?),
+        };
+        if self.options.condcomp {
+            pass::condcomp(&mut module, &self.options.features)?;
+        }
+        pass::retarget_idents(&mut module);
+        if self.options.validate {
+            let engine = self.tree.engine;
+            // Found valid before with the same features: the same module, valid again.
+            let key = id.filter(|_| self.options.condcomp).map(|m| {
+                let key = engine.feature_key(
+                    self.tree.files,
+                    self.tree.modules,
+                    m,
+                    &self.options.features,
+                );
+                (m, key)
+            });
+            let known = key
+                .as_ref()
+                .is_some_and(|k| engine.checked.lock().is_ok_and(|c| c.contains(k)));
+            if !known {
+                pass::validate_wesl(&module)?;
+                if let (Some(k), Ok(mut checked)) = (key, engine.checked.lock()) {
+                    if checked.len() >= CHECKED_MAX {
+                        checked.clear();
+                    }
+                    checked.insert(k);
+                }
+            }
+        }
+        Ok(module)
+    }
+
+    fn link(
+        &self,
+        modules: &mut Vec<Module>,
+        used_items: &UsedItems,
+    ) -> Result<TranslationUnit, wesl::Error> {
+        pass::retarget_modules(modules, used_items, &self.resolver);
+        for module in modules.iter_mut() {
+            if !self.options.mangle_main && module.path == *self.main_path {
+                continue;
+            }
+            pass::mangle(&mut module.syntax, &module.path, &self.mangler);
+        }
+        let mut module = pass::link(modules, Some(used_items));
+        if self.options.lower {
+            pass::lower(&mut module)?;
+        }
+        if self.options.validate {
+            pass::validate_wgsl(&module)?;
+        }
+        Ok(module)
+    }
+}
+
 impl WeslEngine {
     /// An engine for a loaded WESL tree (module names set by the loader).
     pub(crate) fn new(
@@ -133,17 +383,80 @@ impl WeslEngine {
             .enumerate()
             .filter_map(|(id, m)| m.import_name.as_ref().map(|(n, _)| (n.clone(), id)))
             .collect();
-        WeslEngine { by_name, settings }
+        WeslEngine {
+            by_name,
+            settings,
+            parsed: modules.iter().map(|_| OnceLock::new()).collect(),
+            words: modules.iter().map(|_| OnceLock::new()).collect(),
+            checked: Mutex::new(HashSet::new()),
+        }
     }
 
-    /// The variant's program as the `wesl` crate compiles it, validated by naga.
+    /// Module `m`'s syntax tree as `wgsl-parse` parses its text, parsed at its first use.
+    fn parsed<'s>(
+        &'s self,
+        files: &SourceFiles,
+        modules: &[ParsedModule],
+        m: usize,
+    ) -> Option<&'s TranslationUnit> {
+        self.parsed[m]
+            .get_or_init(|| files.text(modules[m].file).parse().ok())
+            .as_ref()
+    }
+
+    /// The values `features` gives the features module `m` can read (the feature names its
+    /// text has as identifiers), as one key.
+    fn feature_key(
+        &self,
+        files: &SourceFiles,
+        modules: &[ParsedModule],
+        m: usize,
+        features: &wesl::Features,
+    ) -> String {
+        let words = self.words[m].get_or_init(|| {
+            files
+                .text(modules[m].file)
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .filter(|w| !w.is_empty())
+                .map(str::to_string)
+                .collect()
+        });
+        let mut read: Vec<(&str, u8)> = features
+            .flags
+            .iter()
+            .filter(|(name, _)| words.contains(name.as_str()))
+            .map(|(name, value)| (name.as_str(), *value as u8))
+            .collect();
+        read.sort_unstable();
+        let mut key = format!("{}", features.default as u8);
+        for (name, value) in read {
+            key.push_str(&format!(" {name}={value}"));
+        }
+        key
+    }
+
+    /// The syntax tree of the module whose file is `file` (parsed once).
+    fn parsed_file<'s>(
+        &'s self,
+        files: &SourceFiles,
+        modules: &[ParsedModule],
+        file: crate::diagnostic::FileId,
+    ) -> Option<&'s TranslationUnit> {
+        let m = modules.iter().position(|m| m.file == file)?;
+        self.parsed(files, modules, m)
+    }
+
+    /// The variant's program as the `wesl` crate compiles it, validated by naga for
+    /// `profile`, and whether `profile` takes it (nothing it refuses beyond naga's
+    /// capabilities, [`crate::validator::Profile::refuses`]): then validating the text again
+    /// for `profile` would find it valid.
     pub(crate) fn compose(
         &self,
         files: &SourceFiles,
         modules: &[ParsedModule],
         variant: &Variant<'_>,
         profile: crate::validator::Profile,
-    ) -> Result<String, VariantError> {
+    ) -> Result<(String, bool), VariantError> {
         let defs = variant.pass.defs(variant.keywords());
         let mut constants = String::new();
         for (i, (name, value)) in defs.iter().enumerate() {
@@ -186,9 +499,17 @@ impl WeslEngine {
         let root: ModulePath = root_name.parse().map_err(|e| {
             super::unlocated(variant, Stage::Compose, format!("module path: {e:?}"))
         })?;
+        // What `wesl::compile` parses is the tree's text, parsed once (the `constants` package,
+        // which differs between variants, is parsed on each compile).
+        let tree = TreeModules {
+            engine: self,
+            files,
+            modules,
+            resolver: &resolver,
+        };
         // The compiler may panic on input it does not expect: one variant's failure.
         let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            wesl::compile(&root, &options, &resolver)
+            compile(&root, &options, &resolver, &tree)
         }))
         .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?
         .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
@@ -229,7 +550,8 @@ impl WeslEngine {
                 variant,
             ));
         }
-        Ok(text)
+        let taken = profile.refuses(&module).is_none();
+        Ok((text, taken))
     }
 
     /// The file of a module path the compiler names.
@@ -308,7 +630,8 @@ impl WeslEngine {
                 .filter(|f| named.is_none_or(|n| n == *f))
                 .find_map(|file| {
                     let text = files.text(file);
-                    locate(text, decl, word)
+                    let unit = self.parsed_file(files, modules, file)?;
+                    locate(text, unit, decl, word)
                         .filter(|r| text.get(r.clone()) == Some(word))
                         .map(|r| (file, r))
                 });
@@ -373,7 +696,8 @@ impl WeslEngine {
                     None => (modules[variant.pass.module].file, name.clone()),
                 };
                 let snippet = text.get(range.clone()).unwrap_or("");
-                locate(files.text(module), &item, snippet).map(|r| Span::new(module, r))
+                let unit = self.parsed_file(files, modules, module)?;
+                locate(files.text(module), unit, &item, snippet).map(|r| Span::new(module, r))
             });
             match located {
                 Some(span) => labels.push((span, unmangle(&label))),
@@ -423,11 +747,15 @@ fn canonical(mut compiled: wesl::CompileResult, root: &ModulePath) -> wesl::Comp
     compiled
 }
 
-/// Bytes of `source` for `snippet` of the compiled program inside the declaration named
-/// `item`: the snippet where the declaration has it verbatim, otherwise the declaration's
-/// name.
-fn locate(source: &str, item: &str, snippet: &str) -> Option<std::ops::Range<usize>> {
-    let unit: wgsl_parse::syntax::TranslationUnit = source.parse().ok()?;
+/// Bytes of `source` (parsed: `unit`) for `snippet` of the compiled program inside the
+/// declaration named `item`: the snippet where the declaration has it verbatim, otherwise the
+/// declaration's name.
+fn locate(
+    source: &str,
+    unit: &TranslationUnit,
+    item: &str,
+    snippet: &str,
+) -> Option<std::ops::Range<usize>> {
     let decl = unit
         .global_declarations
         .iter()
@@ -485,6 +813,13 @@ impl super::engine::Engine for WeslEngine {
         variant: &Variant<'_>,
         how: super::engine::How,
     ) -> crate::preprocess::Composed {
-        super::engine::composed(self.compose(tree.files, tree.modules, variant, how.profile))
+        match self.compose(tree.files, tree.modules, variant, how.profile) {
+            Ok((text, taken)) => crate::preprocess::Composed {
+                text,
+                validated: taken.then_some(how.profile),
+                ..crate::preprocess::Composed::default()
+            },
+            Err(e) => crate::preprocess::Composed::failed(e),
+        }
     }
 }

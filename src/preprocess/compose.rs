@@ -65,6 +65,11 @@ pub struct Composed {
     /// variant (`text` then describes the error, so different errors hash differently).
     /// Validating the composition reports it; this crate's own composition never fails.
     pub failure: Option<Box<crate::error::VariantError>>,
+    /// For a tree whose composer validates what it composes (WESL): the profile naga already
+    /// found `text` valid for (nothing that profile refuses either), so that the validation
+    /// stage does not parse and validate it again for that profile. `None` otherwise (and in
+    /// what other code builds: it is only a shortcut).
+    pub validated: Option<crate::validator::Profile>,
 }
 
 impl Composed {
