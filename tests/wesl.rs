@@ -366,3 +366,22 @@ fn an_edited_module_is_parsed_anew_between_watch_runs() {
         assert_eq!(lib.wgsl(&variants[i]), first[i]);
     }
 }
+
+/// naga's span names the identifier it cannot find; in the source it is that identifier as a
+/// whole word (not the end of a longer name), at the same occurrence.
+#[test]
+fn an_unknown_identifier_is_located_at_its_use_not_inside_a_longer_name() {
+    let lib = Library::from_declared_sources(
+        "dialect = \"wesl\"\n[[shader]]\nname = \"s\"\nentry = \"main.wesl\"\n[[shader.pass]]\nname = \"P\"\nmulti_compile = [[\"_\", \"A\"]]\n",
+        [(
+            "main.wesl",
+            "struct In { @location(0) ddx_uv: f32, @location(1) @if(A) uv: f32, }\n\
+             @fragment fn fs(v: In) -> @location(0) vec4f {\n    let ddx_uv = v.ddx_uv;\n    return vec4f(ddx_uv + uv + v.uv);\n}\n",
+        )],
+    )
+    .unwrap();
+    let composed = lib.compose(&lib.variant("s", "P", &["A"]).unwrap());
+    let e = composed.failure.expect("`uv` is not declared");
+    let at = e.location(lib.files()).expect("located").to_string();
+    assert_eq!(at, "main.wesl:4:27", "{e:?}");
+}

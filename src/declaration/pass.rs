@@ -43,7 +43,7 @@ pub(super) struct PassToml {
     #[serde(default, rename = "use")]
     pub(super) uses: Vec<Spanned<String>>,
     #[serde(default)]
-    pub(super) stages: super::stage::StagesToml,
+    pub(super) stages: StagesToml,
     #[serde(default)]
     multi_compile: Vec<Names>,
     #[serde(default)]
@@ -65,6 +65,22 @@ pub(super) struct PassToml {
     #[serde(default)]
     options: OptionsToml,
 }
+
+/// A `[shader.pass.stages.NAME]` table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct StageToml {
+    /// The stage's entry module (default: the pass's).
+    pub(super) entry: Option<Spanned<String>>,
+    /// Keywords whose defs reach the stage (a valued set by its def name).
+    pub(super) keywords: Option<Vec<Spanned<String>>>,
+    /// Blocks (among those the pass uses) whose keywords' defs reach the stage.
+    #[serde(default, rename = "use")]
+    pub(super) uses: Vec<Spanned<String>>,
+}
+
+/// The `stages` table of a pass, by stage name as written.
+pub(super) type StagesToml = BTreeMap<Spanned<String>, StageToml>;
 
 /// A `[blocks.NAME]` table: keyword sets, constraints and options that passes share with
 /// `use = ["NAME"]` (one tonemapping block for every pass that tonemaps).
@@ -142,6 +158,11 @@ pub(super) fn keyword_names(
     let mut pragmas = Vec::new();
     // The block's own errors are reported where the passes using it are built.
     keyword_pragmas(&block.sets(), at, &mut Vec::new(), &mut pragmas);
+    declared_keywords(&pragmas)
+}
+
+/// The keywords `pragmas` declare, in order, `_` left out.
+pub(super) fn declared_keywords(pragmas: &[Pragma]) -> Vec<String> {
     pragmas
         .iter()
         .filter_map(|p| match p {

@@ -17,32 +17,15 @@
 //! stages alike); a keyword whose defs do not reach a stage is, in that stage, an option that
 //! sets no def.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
-use serde::Deserialize;
 use toml::Spanned;
 
 use super::DeclarationError;
-use super::pass::{Shared, at_file, keyword_names};
+use super::pass::{Shared, StageToml, StagesToml, at_file, declared_keywords, keyword_names};
 use crate::diagnostic::Span;
-use crate::preprocess::tree::{PassDecl, Pragma};
+use crate::preprocess::tree::PassDecl;
 use crate::stage::PipelineStage;
-
-/// A `[shader.pass.stages.NAME]` table.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct StageToml {
-    /// The stage's entry module (default: the pass's).
-    entry: Option<Spanned<String>>,
-    /// Keywords whose defs reach the stage (a valued set by its def name).
-    keywords: Option<Vec<Spanned<String>>>,
-    /// Blocks (among those the pass uses) whose keywords' defs reach the stage.
-    #[serde(default, rename = "use")]
-    uses: Vec<Spanned<String>>,
-}
-
-/// The `stages` table of a pass, by stage name as written.
-pub(super) type StagesToml = BTreeMap<Spanned<String>, StageToml>;
 
 /// `decl` split into one pass per stage of `stages`, in pipeline order; `decl` itself when
 /// the pass has no `stages`. `uses` are the blocks the pass uses.
@@ -57,17 +40,7 @@ pub(super) fn split(
     if stages.is_empty() {
         return vec![decl];
     }
-    let declared: Vec<String> = decl
-        .pragmas
-        .iter()
-        .filter_map(|p| match p {
-            Pragma::Keywords { names, .. } => Some(names),
-            _ => None,
-        })
-        .flatten()
-        .map(|(n, _)| n.to_string())
-        .filter(|n| n != "_")
-        .collect();
+    let declared = declared_keywords(&decl.pragmas);
     let mut split: Vec<(PipelineStage, PassDecl)> = Vec::new();
     for (name, stage) in stages {
         let Some(kind) = PipelineStage::from_name(name.get_ref()) else {

@@ -631,7 +631,7 @@ impl WeslEngine {
                 .find_map(|file| {
                     let text = files.text(file);
                     let unit = self.parsed_file(files, modules, file)?;
-                    locate(text, unit, decl, word)
+                    locate(text, unit, decl, (word, 0))
                         .filter(|r| text.get(r.clone()) == Some(word))
                         .map(|r| (file, r))
                 });
@@ -696,8 +696,14 @@ impl WeslEngine {
                     None => (modules[variant.pass.module].file, name.clone()),
                 };
                 let snippet = text.get(range.clone()).unwrap_or("");
+                // Which of the declaration's occurrences of the snippet naga points at.
+                let before = text
+                    .get(decl.span().range().start..range.start)
+                    .unwrap_or("");
+                let nth = occurrences(before, snippet).count();
                 let unit = self.parsed_file(files, modules, module)?;
-                locate(files.text(module), unit, &item, snippet).map(|r| Span::new(module, r))
+                locate(files.text(module), unit, &item, (snippet, nth))
+                    .map(|r| Span::new(module, r))
             });
             match located {
                 Some(span) => labels.push((span, unmangle(&label))),
@@ -747,14 +753,15 @@ fn canonical(mut compiled: wesl::CompileResult, root: &ModulePath) -> wesl::Comp
     compiled
 }
 
-/// Bytes of `source` (parsed: `unit`) for `snippet` of the compiled program inside the
-/// declaration named `item`: the snippet where the declaration has it verbatim, otherwise the
-/// declaration's name.
+/// Bytes of `source` (parsed: `unit`) for the `nth` occurrence of `snippet` in the
+/// compiled program's declaration named `item`: the same occurrence of the snippet in the
+/// source declaration (its last where the source has fewer: the branches the variant leaves
+/// out only add occurrences), otherwise the declaration's name.
 fn locate(
     source: &str,
     unit: &TranslationUnit,
     item: &str,
-    snippet: &str,
+    (snippet, nth): (&str, usize),
 ) -> Option<std::ops::Range<usize>> {
     let decl = unit
         .global_declarations
@@ -762,13 +769,28 @@ fn locate(
         .find(|d| d.ident().is_some_and(|i| *i.name() == item))?;
     let r = decl.span().range();
     let body = source.get(r.clone())?;
-    if !snippet.trim().is_empty()
-        && let Some(at) = body.find(snippet)
-    {
-        return Some(r.start + at..r.start + at + snippet.len());
+    if !snippet.trim().is_empty() {
+        let found: Vec<usize> = occurrences(body, snippet).collect();
+        if let Some(&at) = found.get(nth).or(found.last()) {
+            return Some(r.start + at..r.start + at + snippet.len());
+        }
     }
     let at = whole_word(body, item)?;
     Some(r.start + at..r.start + at + item.len())
+}
+
+/// Where `snippet` appears in `text`: as a whole identifier when it is one (`uv` is not in
+/// `ddx_uv`), anywhere otherwise.
+fn occurrences<'t>(text: &'t str, snippet: &'t str) -> impl Iterator<Item = usize> + 't {
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    let word = !snippet.is_empty() && snippet.chars().all(ident);
+    text.match_indices(snippet)
+        .map(|(i, _)| i)
+        .filter(move |&i| {
+            !word
+                || (!text[..i].chars().next_back().is_some_and(ident)
+                    && !text[i + snippet.len()..].chars().next().is_some_and(ident))
+        })
 }
 
 /// The first place `word` appears in `text` as a whole identifier.
