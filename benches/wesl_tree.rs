@@ -6,8 +6,8 @@
 //! bench --bench wesl_tree` on any WESL tree, one package or several (the declaration file's
 //! `[packages]`), e.g. Bevy 0.20.1's (assembled by `scripts/bevy.sh --bevy 0.20.1`):
 //! `WGSL_VARIANTS_TREE=target/bevy-0.20.1 WGSL_VARIANTS_PASS=standard_material/Forward/fragment
-//! cargo bench --bench wesl_tree`. `WGSL_VARIANTS_PASS=shader/pass` (comma-separated) keeps only those passes.
-//! Each pass's 2-wise covering set is the work.
+//! cargo bench --bench wesl_tree`. `WGSL_VARIANTS_PASS=shader/pass` (comma-separated) keeps
+//! only those passes. Each pass's 2-wise covering set is the work.
 //!
 //! - this crate: `validate_pass` (wesl's passes compile each variant from the loaded tree,
 //!   each module parsed once, its declarations are put in a fixed order, naga parses and
@@ -26,8 +26,9 @@
 //! Measured 2026-11-27 on a shared 2-core machine, `WGSL_VARIANTS_TREE=target/bevy-0.20.1
 //! WGSL_VARIANTS_PASS=pbr/Forward BENCH_ROUNDS=3 cargo bench --ignore-rust-version --bench
 //! wesl_tree` (624 variants; `pbr/Forward` is `standard_material/Forward/fragment` since the
-//! declaration split the forward pipeline into its stages): this crate 27.3 s, wesl alone 35.4 s, ratio 0.77 (1.45 before
-//! the engine parsed each module once; docs/guide/wesl-trees.md says where the time goes).
+//! declaration split the forward pipeline into its stages): this crate 27.3 s, wesl alone
+//! 35.4 s, ratio 0.77 (1.45 before the engine parsed each module once;
+//! docs/guide/wesl-trees.md says where the time goes).
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
