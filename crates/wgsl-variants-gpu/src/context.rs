@@ -59,9 +59,12 @@ impl std::fmt::Debug for GpuContext {
 impl GpuContext {
     /// Optional features requested when the adapter has them: URP's G-buffer renders into
     /// `Rg11b10Ufloat` (`RG11B10UFLOAT_RENDERABLE`) and, without accurate normals,
-    /// `Rgba8Snorm` (renderable only as an adapter-specific format feature).
+    /// `Rgba8Snorm` (renderable only as an adapter-specific format feature); the frame bench
+    /// times each pass with timestamp queries (`TIMESTAMP_QUERY`; without it, it says so and
+    /// times the frame by the wall clock).
     pub const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::RG11B10UFLOAT_RENDERABLE
-        .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+        .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
+        .union(wgpu::Features::TIMESTAMP_QUERY);
 
     /// Creates a headless context.
     ///
@@ -155,6 +158,14 @@ impl GpuContext {
     /// Name of the selected adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits)` for lavapipe.
     pub fn adapter_name(&self) -> &str {
         &self.info.name
+    }
+
+    /// Whether the device can time passes with timestamp queries (the adapter has
+    /// `TIMESTAMP_QUERY`, requested by [`GpuContext::OPTIONAL_FEATURES`]).
+    pub fn has_timestamps(&self) -> bool {
+        self.device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
     /// Full information about the selected adapter.

@@ -55,8 +55,8 @@ pub use readback::{
     PendingReadback, encode_texture_readback, finish_readbacks, map_buffers, read_texture,
 };
 pub use render::{
-    ColorTarget, DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, RenderJob, VertexBuffer,
-    render, render_pass, render_with,
+    ColorTarget, DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, PassSpan, RenderJob,
+    VertexBuffer, render, render_pass, render_with,
 };
 pub use resources::{BoundResource, GpuResources, Resource};
 pub use urp::urp_gbuffer_formats;

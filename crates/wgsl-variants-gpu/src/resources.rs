@@ -90,6 +90,8 @@ enum GpuResource {
         _texture: wgpu::Texture,
     },
     Sampler(wgpu::Sampler),
+    /// A view of a texture already on the GPU (an earlier pass's target), not uploaded here.
+    View(wgpu::TextureView),
 }
 
 /// Resources uploaded to the GPU once, to be bound by any number of pipelines
@@ -178,7 +180,27 @@ impl GpuResources {
             GpuResource::Buffer(buffer) => buffer.as_entire_binding(),
             GpuResource::Texture { view, .. } => wgpu::BindingResource::TextureView(view),
             GpuResource::Sampler(sampler) => wgpu::BindingResource::Sampler(sampler),
+            GpuResource::View(view) => wgpu::BindingResource::TextureView(view),
         })
+    }
+
+    /// Binds `view`, a texture already on the GPU, at `slot` (a G-buffer target the lighting
+    /// pass reads where it was rendered: no copy through the CPU). A slot already holding a
+    /// resource is a [`GpuError::Validation`] labelled `label`.
+    pub(crate) fn insert_view(
+        &mut self,
+        label: &str,
+        slot: Slot,
+        view: wgpu::TextureView,
+    ) -> Result<(), GpuError> {
+        if self.slots.contains_key(&slot) {
+            return Err(invalid(
+                label,
+                format!("@group({}) @binding({}) given twice", slot.0, slot.1),
+            ));
+        }
+        self.slots.insert(slot, GpuResource::View(view));
+        Ok(())
     }
 }
 

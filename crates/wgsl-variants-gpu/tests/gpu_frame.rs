@@ -7,7 +7,8 @@ mod common;
 
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::{
-    FrameScene, check_frame, compare, render_deferred, render_forward, render_shadows,
+    FrameScene, ResidentFrame, check_frame, compare, render_deferred, render_forward,
+    render_shadows,
 };
 
 /// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
@@ -105,4 +106,115 @@ fn a_light_too_bright_or_missing_is_caught() {
             );
         }
     }
+}
+
+/// The frame's scenes the GPU-resident frame can draw: the test frame without its
+/// screen-space shadows (the point light's cube shadow, the spot's map, both cookies and the
+/// spot's volume stay), and the bench's frame of 16 point lights.
+fn resident_scenes() -> Vec<(&'static str, FrameScene)> {
+    let mut four = FrameScene::new();
+    four.main_shadow = None;
+    four.lights[1].shadow = None;
+    vec![
+        ("four lights", four),
+        ("16 point lights", FrameScene::new().with_point_lights(16)),
+    ]
+}
+
+/// The frame kept on the GPU between passes (what the frame bench times) is the frame read
+/// back between passes, bit for bit, forward and deferred, HDR and LDR; so it passes the
+/// reference comparison too. Each timed pass's timestamps are in order (start ≤ end, passes
+/// in submission order), where the adapter has timestamp queries; without them (forced) no
+/// pass times come back. The Lighting pass's fragment count lies between one full-screen
+/// light and every light full screen, and its bytes per fragment are the bound formats'.
+#[test]
+fn the_gpu_resident_frame_is_the_read_back_frame() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
+    if !ctx.has_timestamps() {
+        eprintln!(
+            "NOTE: {} has no timestamp queries: pass times not checked",
+            ctx.adapter_name()
+        );
+    }
+    for (name, frame) in resident_scenes() {
+        let shadows = render_shadows(&ctx, &lib, &frame).expect("shadows");
+        for hdr in [true, false] {
+            let what = format!("{name}, hdr {hdr}");
+            let forward = ResidentFrame::forward(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
+            let deferred = ResidentFrame::deferred(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
+            assert_eq!(forward.pass_names(), ["forward base", "forward add"]);
+            let mut names = vec!["G-buffer", "lighting"];
+            if !hdr {
+                names.push("final");
+            }
+            assert_eq!(deferred.pass_names(), names);
+            for path in [&forward, &deferred] {
+                let time = path.run(&ctx).expect(&what);
+                assert_eq!(time.passes.is_some(), ctx.has_timestamps(), "{what}");
+                if let Some(spans) = &time.passes {
+                    assert_eq!(spans.len(), path.pass_names().len(), "{what}");
+                    for (i, s) in spans.iter().enumerate() {
+                        assert!(s.start_ns <= s.end_ns, "{what}: pass {i} {spans:?}");
+                        if i > 0 {
+                            assert!(spans[i - 1].start_ns <= s.start_ns, "{what}: {spans:?}");
+                        }
+                    }
+                }
+            }
+            let (f, d) = (
+                forward.image(&ctx).expect(&what),
+                deferred.image(&ctx).expect(&what),
+            );
+            let read_back_f = render_forward(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
+            let read_back_d = render_deferred(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
+            assert!(f.bytes == read_back_f.bytes, "{what}: forward differs");
+            assert!(d.bytes == read_back_d.bytes, "{what}: deferred differs");
+            assert_eq!(f.draws, read_back_f.draws, "{what}");
+            // The read-back frame counts the depth fill as no draw; the resident frame has none.
+            assert_eq!(d.draws, read_back_d.draws, "{what}");
+            assert_eq!(d.volumes, read_back_d.volumes, "{what}");
+            let report = compare(&frame, &shadows, &f, &d, hdr);
+            assert_eq!(report.failures, [0; 3], "{what}\n{report}");
+
+            let traffic = deferred.lighting_traffic(&ctx).expect(&what).expect(&what);
+            let pixels = u64::from(frame.width * frame.height);
+            let lights = frame.lights.len() as u64;
+            assert!(
+                traffic.fragments > pixels && traffic.fragments < pixels * (1 + lights),
+                "{what}: {traffic:?}"
+            );
+            let expected = if hdr { (24, 8) } else { (20, 4) };
+            assert_eq!(
+                (
+                    traffic.bytes_read_per_fragment,
+                    traffic.bytes_written_per_fragment
+                ),
+                expected,
+                "{what}"
+            );
+            assert!(forward.lighting_traffic(&ctx).expect(&what).is_none());
+            let untimed = forward.without_timestamps();
+            assert!(!untimed.timed());
+            assert!(untimed.run(&ctx).expect(&what).passes.is_none(), "{what}");
+        }
+    }
+}
+
+/// A scene whose directional lights need screen-space masks (made from a depth read-back) is
+/// refused by the GPU-resident frame with a message that says why.
+#[test]
+fn the_gpu_resident_frame_refuses_screen_space_masks() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
+    let frame = FrameScene::new();
+    let shadows = render_shadows(&ctx, &lib, &frame).expect("shadows");
+    let err = ResidentFrame::deferred(&ctx, &lib, &frame, &shadows, true)
+        .expect_err("screen-space masks need a read-back")
+        .to_string();
+    assert!(err.contains("screen-space shadow masks"), "{err}");
 }

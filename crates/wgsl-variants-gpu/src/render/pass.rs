@@ -273,82 +273,13 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
         &pass.targets,
         pass.depth,
     )?;
-    let mut keys: Vec<PipelineKey<'_>> = Vec::new();
-    let mut pipelines: Vec<(wgpu::RenderPipeline, BTreeSet<Slot>)> = Vec::new();
-    let mut prepared = Vec::with_capacity(pass.draws.len());
-    let mut pool = ResourcePool::default();
-    let mut meshes: Vec<(&VertexBuffer, wgpu::Buffer)> = Vec::new();
-    for draw in &pass.draws {
-        let dl = draw.label.as_str();
-        check_vertex_buffers(dl, &draw.vertex_buffers, draw.vertex_count)?;
-        if draw.depth.is_some() && !pass.depth {
-            return Err(GpuError::Validation {
-                label: dl.to_owned(),
-                message: String::from("the draw tests depth but the pass has no depth buffer"),
-            });
-        }
-        let key = PipelineKey::of(draw);
-        let index = match keys.iter().position(|k| *k == key) {
-            Some(i) => i,
-            None => {
-                let color_states: Vec<Option<wgpu::ColorTargetState>> = pass
-                    .targets
-                    .iter()
-                    .map(|t| {
-                        Some(wgpu::ColorTargetState {
-                            format: t.format.wgpu_format(),
-                            blend: draw.blend.or(t.blend),
-                            write_mask: draw.color_writes,
-                        })
-                    })
-                    .collect();
-                let depth_stencil = pass.depth.then(|| {
-                    let test = draw.depth.unwrap_or(DepthTest {
-                        compare: wgpu::CompareFunction::Always,
-                        write: false,
-                    });
-                    depth_state(pass.depth_format, test)
-                });
-                let compiled = create_pipeline(
-                    ctx,
-                    &PipelineDesc {
-                        label: dl,
-                        wgsl: &draw.wgsl,
-                        vertex: &draw.vertex_entry,
-                        fragment: Some(&draw.fragment_entry),
-                        vertex_buffers: &vertex_layouts(&draw.vertex_buffers),
-                        cull: draw.cull,
-                        depth_stencil,
-                        targets: &color_states,
-                    },
-                )?;
-                keys.push(key);
-                pipelines.push(compiled);
-                pipelines.len() - 1
-            }
-        };
-        let all = draw
-            .shared
-            .iter()
-            .flat_map(|l| l.iter())
-            .chain(&draw.resources);
-        let resources = GpuResources::upload_pooled(ctx, dl, all, &mut pool)?;
-        let (pipeline, used) = &pipelines[index];
-        let groups = bind(ctx, dl, pipeline, used, &resources)?;
-        let buffers = draw
-            .vertex_buffers
-            .iter()
-            .map(|vb| match meshes.iter().find(|(known, _)| *known == vb) {
-                Some((_, buffer)) => buffer.clone(),
-                None => {
-                    let buffer = upload_vertex_buffers(ctx, dl, std::slice::from_ref(vb)).remove(0);
-                    meshes.push((vb, buffer.clone()));
-                    buffer
-                }
-            })
-            .collect::<Vec<_>>();
-        prepared.push((index, groups, buffers));
-    }
+    let prepared = prepare_draws(
+        ctx,
+        &pass.targets,
+        pass.depth.then_some(pass.depth_format),
+        &pass.draws,
+        &[],
+    )?;
 
     let pending = ctx.scoped(label, || {
         let targets = create_targets(ctx, label, pass.width, pass.height, &pass.targets);
@@ -394,16 +325,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            for ((index, groups, buffers), draw) in prepared.iter().zip(&pass.draws) {
-                rp.set_pipeline(&pipelines[*index].0);
-                for (group, bind_group) in groups {
-                    rp.set_bind_group(*group, bind_group, &[]);
-                }
-                for (slot, buffer) in (0u32..).zip(buffers) {
-                    rp.set_vertex_buffer(slot, buffer.slice(..));
-                }
-                rp.draw(0..draw.vertex_count, 0..1);
-            }
+            prepared.record(&mut rp);
         }
         let pending = targets
             .iter()
@@ -430,6 +352,151 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
         }
     });
     Ok(PassOutput { targets, depth })
+}
+
+/// The draws of a pass made ready to record: each distinct pipeline compiled once (same text,
+/// entry points, blend, depth test and vertex layout), each distinct resource uploaded once,
+/// and every draw's bind groups and vertex buffers. Recording them again costs no upload,
+/// which is what a timed frame needs ([`crate::check::frame::timed`]).
+#[derive(Debug)]
+pub(crate) struct PreparedDraws {
+    pipelines: Vec<wgpu::RenderPipeline>,
+    draws: Vec<PreparedDraw>,
+}
+
+/// One draw of [`PreparedDraws`]: its pipeline's index, bind groups, vertex buffers and
+/// vertex count.
+#[derive(Debug)]
+struct PreparedDraw {
+    pipeline: usize,
+    groups: Vec<(u32, wgpu::BindGroup)>,
+    buffers: Vec<wgpu::Buffer>,
+    vertex_count: u32,
+}
+
+/// Checks and prepares `draws` for a pass over `targets` (their formats and blends) and a
+/// depth buffer of `depth_format` (`None`: no depth buffer). `views` bind textures already on
+/// the GPU (an earlier pass's targets) at their slots for every draw whose entry points use
+/// the slot, before the draw's own resources (a slot given twice is an error).
+///
+/// Errors as [`render_pass`]: a vertex buffer too small, a used slot without a resource, a
+/// depth test without a depth buffer ([`GpuError::Validation`]), a shader that does not
+/// compile ([`GpuError::PipelineCompile`]).
+pub(crate) fn prepare_draws(
+    ctx: &GpuContext,
+    targets: &[ColorTarget],
+    depth_format: Option<wgpu::TextureFormat>,
+    draws: &[Draw],
+    views: &[(Slot, wgpu::TextureView)],
+) -> Result<PreparedDraws, GpuError> {
+    let mut keys: Vec<PipelineKey<'_>> = Vec::new();
+    let mut pipelines: Vec<(wgpu::RenderPipeline, BTreeSet<Slot>)> = Vec::new();
+    let mut prepared = Vec::with_capacity(draws.len());
+    let mut pool = ResourcePool::default();
+    let mut meshes: Vec<(&VertexBuffer, wgpu::Buffer)> = Vec::new();
+    for draw in draws {
+        let dl = draw.label.as_str();
+        check_vertex_buffers(dl, &draw.vertex_buffers, draw.vertex_count)?;
+        if draw.depth.is_some() && depth_format.is_none() {
+            return Err(GpuError::Validation {
+                label: dl.to_owned(),
+                message: String::from("the draw tests depth but the pass has no depth buffer"),
+            });
+        }
+        let key = PipelineKey::of(draw);
+        let index = match keys.iter().position(|k| *k == key) {
+            Some(i) => i,
+            None => {
+                let color_states: Vec<Option<wgpu::ColorTargetState>> = targets
+                    .iter()
+                    .map(|t| {
+                        Some(wgpu::ColorTargetState {
+                            format: t.format.wgpu_format(),
+                            blend: draw.blend.or(t.blend),
+                            write_mask: draw.color_writes,
+                        })
+                    })
+                    .collect();
+                let depth_stencil = depth_format.map(|format| {
+                    let test = draw.depth.unwrap_or(DepthTest {
+                        compare: wgpu::CompareFunction::Always,
+                        write: false,
+                    });
+                    depth_state(format, test)
+                });
+                let compiled = create_pipeline(
+                    ctx,
+                    &PipelineDesc {
+                        label: dl,
+                        wgsl: &draw.wgsl,
+                        vertex: &draw.vertex_entry,
+                        fragment: Some(&draw.fragment_entry),
+                        vertex_buffers: &vertex_layouts(&draw.vertex_buffers),
+                        cull: draw.cull,
+                        depth_stencil,
+                        targets: &color_states,
+                    },
+                )?;
+                keys.push(key);
+                pipelines.push(compiled);
+                pipelines.len() - 1
+            }
+        };
+        let all = draw
+            .shared
+            .iter()
+            .flat_map(|l| l.iter())
+            .chain(&draw.resources);
+        let mut resources = GpuResources::upload_pooled(ctx, dl, all, &mut pool)?;
+        let (pipeline, used) = &pipelines[index];
+        for (slot, view) in views.iter().filter(|(slot, _)| used.contains(slot)) {
+            resources.insert_view(dl, *slot, view.clone())?;
+        }
+        let groups = bind(ctx, dl, pipeline, used, &resources)?;
+        let buffers = draw
+            .vertex_buffers
+            .iter()
+            .map(|vb| match meshes.iter().find(|(known, _)| *known == vb) {
+                Some((_, buffer)) => buffer.clone(),
+                None => {
+                    let buffer = upload_vertex_buffers(ctx, dl, std::slice::from_ref(vb)).remove(0);
+                    meshes.push((vb, buffer.clone()));
+                    buffer
+                }
+            })
+            .collect::<Vec<_>>();
+        prepared.push(PreparedDraw {
+            pipeline: index,
+            groups,
+            buffers,
+            vertex_count: draw.vertex_count,
+        });
+    }
+    Ok(PreparedDraws {
+        pipelines: pipelines.into_iter().map(|(p, _)| p).collect(),
+        draws: prepared,
+    })
+}
+
+impl PreparedDraws {
+    /// Records every draw, in order, into `rp`.
+    pub(crate) fn record(&self, rp: &mut wgpu::RenderPass<'_>) {
+        for draw in &self.draws {
+            rp.set_pipeline(&self.pipelines[draw.pipeline]);
+            for (group, bind_group) in &draw.groups {
+                rp.set_bind_group(*group, bind_group, &[]);
+            }
+            for (slot, buffer) in (0u32..).zip(&draw.buffers) {
+                rp.set_vertex_buffer(slot, buffer.slice(..));
+            }
+            rp.draw(0..draw.vertex_count, 0..1);
+        }
+    }
+
+    /// Number of draws.
+    pub(crate) fn len(&self) -> usize {
+        self.draws.len()
+    }
 }
 
 /// The depth-only state of `test` on a buffer of `format`, no stencil, no bias.

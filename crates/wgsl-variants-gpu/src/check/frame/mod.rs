@@ -28,6 +28,7 @@
 
 pub mod scene;
 pub mod shadow;
+pub mod timed;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -37,6 +38,7 @@ use glam::Vec3;
 
 pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
 pub use shadow::{FrameShadow, FrameShadows, ShadowSpec, render_shadows};
+pub use timed::{FrameTime, LightingTraffic, ResidentFrame};
 
 use super::compare::pixel;
 use super::deferred::final_pass;
@@ -213,6 +215,28 @@ const ADD: wgpu::BlendState = wgpu::BlendState {
     },
 };
 
+/// The forward path's draws: ForwardBase per object (with the main light's shadow), then
+/// ForwardAdd per light and object (blended One / One onto the same surface).
+fn forward_draws(
+    drawer: &mut Drawer<'_>,
+    frame: &FrameScene,
+    shadows: &FrameShadows,
+) -> Result<(Vec<Draw>, Vec<Draw>), GpuError> {
+    let base = drawer.opaque("ForwardBase", shadows.main.as_ref())?;
+    let mut add = Vec::with_capacity(frame.lights.len() * frame.objects.len());
+    for (light, shadow) in frame.lights.iter().zip(&shadows.lights) {
+        for o in 0..frame.objects.len() {
+            add.push(
+                drawer
+                    .object(o, "ForwardAdd", Some(light), shadow.as_ref())?
+                    .with_blend(ADD)
+                    .with_depth(DepthTest::SAME_SURFACE),
+            );
+        }
+    }
+    Ok((base, add))
+}
+
 /// Renders the forward path: ForwardBase per object, then ForwardAdd per light and object
 /// (with the light's shadow keywords and `shadows`' maps). Where a directional light has a
 /// shadow, first a depth pre-pass (every object's `ShadowCaster` with the camera's view) and
@@ -254,17 +278,9 @@ pub fn render_forward(
     } else {
         shadows
     };
-    pass.draws = drawer.opaque("ForwardBase", shadows.main.as_ref())?;
-    for (light, shadow) in frame.lights.iter().zip(&shadows.lights) {
-        for o in 0..frame.objects.len() {
-            pass.draws.push(
-                drawer
-                    .object(o, "ForwardAdd", Some(light), shadow.as_ref())?
-                    .with_blend(ADD)
-                    .with_depth(DepthTest::SAME_SURFACE),
-            );
-        }
-    }
+    let (base, add) = forward_draws(&mut drawer, frame, shadows)?;
+    pass.draws = base;
+    pass.draws.extend(add);
     draws += pass.draws.len();
     let bytes = render_pass(ctx, &pass)?.targets.remove(0);
     Ok(PathImage {
@@ -284,6 +300,82 @@ pub struct GBufferFrame {
     pub depth: Vec<f32>,
 }
 
+/// RT3's format: `Rgba16Float` in HDR, the `exp2(−c)` `Rgb10a2Unorm` in LDR.
+fn rt3_format(hdr: bool) -> TargetFormat {
+    if hdr {
+        TargetFormat::Rgba16Float
+    } else {
+        TargetFormat::Rgb10a2Unorm
+    }
+}
+
+/// The G-buffer pass's targets: RT0 and RT1 (`Rgba8Unorm`), RT2 (`Rgb10a2Unorm`) and RT3
+/// cleared to no light (0 in HDR, `exp2(−0)` = 1 in LDR).
+fn gbuffer_targets(hdr: bool) -> Vec<ColorTarget> {
+    let empty = if hdr { 0.0 } else { 1.0 };
+    vec![
+        ColorTarget::new(TargetFormat::Rgba8Unorm),
+        ColorTarget::new(TargetFormat::Rgba8Unorm),
+        ColorTarget::new(TargetFormat::Rgb10a2Unorm),
+        ColorTarget::new(rt3_format(hdr)).with_clear([empty, empty, empty, 1.0]),
+    ]
+}
+
+/// The Lighting pass's draws, one per light (the main light first, full screen; the others
+/// as their volumes where [`light_draw`] allows, else full screen; with the light's shadow
+/// keywords and `shadows`' maps), each with `shared` (the G-buffer's bindings and the camera,
+/// however the caller binds them), and how many are volumes.
+fn lighting_draws(
+    drawer: &mut Drawer<'_>,
+    frame: &FrameScene,
+    shadows: &FrameShadows,
+    hdr: bool,
+    shared: &Arc<[BoundResource]>,
+) -> Result<(Vec<Draw>, usize), GpuError> {
+    let mut volumes = 0;
+    let mut draws = Vec::with_capacity(1 + frame.lights.len());
+    let main = (
+        LightType::Directional,
+        frame.main_light,
+        None,
+        shadows.main.as_ref(),
+    );
+    let lights = frame
+        .lights
+        .iter()
+        .zip(&shadows.lights)
+        .map(|(l, s)| (l.light_type, l.params, Some(&l.light), s.as_ref()));
+    for (light_type, params, light, shadow) in std::iter::once(main).chain(lights) {
+        let mut names = vec![light_type.keyword()];
+        names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
+        if hdr {
+            names.push("UNITY_HDR_ON");
+        }
+        let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
+        let mut resources = frame.light_resources(&params);
+        resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
+        let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
+            Some(Ok(LightDraw::Volume(v))) => Some(v),
+            Some(Err(e)) => {
+                return Err(GpuError::Validation {
+                    label: label.clone(),
+                    message: e.to_string(),
+                });
+            }
+            _ => None,
+        };
+        let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+            .with_shared(shared)
+            .with_resources(resources);
+        volumes += usize::from(volume.is_some());
+        draws.push(match volume {
+            Some(v) => over_volume(draw, "vs_volume", &v),
+            None => draw,
+        });
+    }
+    Ok((draws, volumes))
+}
+
 /// Renders the deferred path: the G-buffer pass over every object, the screen-space masks of
 /// the directional lights' shadows over its depth ([`FrameShadows::with_masks`]), one
 /// Lighting draw per light (the main light first, full screen; the others as their volumes
@@ -297,24 +389,8 @@ pub fn render_deferred(
     hdr: bool,
 ) -> Result<PathImage, GpuError> {
     let (w, h) = (frame.width, frame.height);
-    let rt3_format = if hdr {
-        TargetFormat::Rgba16Float
-    } else {
-        TargetFormat::Rgb10a2Unorm
-    };
-    // Empty RT3: no light, 0 in HDR and exp2(−0) = 1 in LDR.
-    let empty = if hdr { 0.0 } else { 1.0 };
-    let mut gbuffer = DrawPass::new(
-        "frame: G-buffer",
-        w,
-        h,
-        vec![
-            ColorTarget::new(TargetFormat::Rgba8Unorm),
-            ColorTarget::new(TargetFormat::Rgba8Unorm),
-            ColorTarget::new(TargetFormat::Rgb10a2Unorm),
-            ColorTarget::new(rt3_format).with_clear([empty, empty, empty, 1.0]),
-        ],
-    );
+    let rt3_format = rt3_format(hdr);
+    let mut gbuffer = DrawPass::new("frame: G-buffer", w, h, gbuffer_targets(hdr));
     gbuffer.depth = true;
     let mut drawer = Drawer::new(lib, frame, hdr);
     gbuffer.draws = drawer.opaque("Deferred", None)?;
@@ -357,46 +433,8 @@ pub fn render_deferred(
         BoundResource::new(0, 3, depth_texture),
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
     ]);
-    let mut volumes = 0;
-    let main = (
-        LightType::Directional,
-        frame.main_light,
-        None,
-        shadows.main.as_ref(),
-    );
-    let lights = frame
-        .lights
-        .iter()
-        .zip(&shadows.lights)
-        .map(|(l, s)| (l.light_type, l.params, Some(&l.light), s.as_ref()));
-    for (light_type, params, light, shadow) in std::iter::once(main).chain(lights) {
-        let mut names = vec![light_type.keyword()];
-        names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
-        if hdr {
-            names.push("UNITY_HDR_ON");
-        }
-        let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
-        let mut resources = frame.light_resources(&params);
-        resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
-        let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
-            Some(Ok(LightDraw::Volume(v))) => Some(v),
-            Some(Err(e)) => {
-                return Err(GpuError::Validation {
-                    label: label.clone(),
-                    message: e.to_string(),
-                });
-            }
-            _ => None,
-        };
-        let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
-            .with_shared(&shared)
-            .with_resources(resources);
-        volumes += usize::from(volume.is_some());
-        lighting.draws.push(match volume {
-            Some(v) => over_volume(draw, "vs_volume", &v),
-            None => draw,
-        });
-    }
+    let (draws, volumes) = lighting_draws(&mut drawer, frame, &shadows, hdr, &shared)?;
+    lighting.draws.extend(draws);
     // The depth fill is this harness's way to hand the G-buffer's depth to the next pass.
     let mut draws = gbuffer.draws.len() + collects + lighting.draws.len() - 1;
     let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
