@@ -15,6 +15,8 @@
 //!   return their bytes; [`TargetFormat`] decodes them.
 //! - [`render_pass`] records many [`Draw`]s (each its own variant, mesh and resources) into
 //!   one pass over shared targets and a depth buffer: a frame.
+//! - [`check::frame::ResidentFrame`] keeps a frame's targets on the GPU between passes and
+//!   times each pass with timestamp queries ([`PassSpan`]): the frame bench.
 //! - [`check`] is the GPU proof of the bundled library built on these: every variant of the
 //!   standard passes, the deferred reflection and final passes, and compute kernels, compared
 //!   with [`wgsl_variants_shaders::reference`] (the `check-gpu` and `render` commands).

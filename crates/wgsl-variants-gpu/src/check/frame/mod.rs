@@ -17,6 +17,9 @@
 //! the reference's change over the rasterizer's sub-pixel window. Pixels whose window sees two
 //! objects (silhouettes) are left out and counted; the background is compared (nothing drawn).
 //!
+//! These paths read every pass back, as a per-pixel proof needs; [`timed`] draws the same
+//! frame with its targets kept on the GPU between passes, each pass timed (the frame bench).
+//!
 //! ```no_run
 //! use wgsl_variants_gpu::GpuContext;
 //! use wgsl_variants_gpu::check::frame::{FrameScene, check_frame};

@@ -1,9 +1,10 @@
-//! The frame as a renderer draws it, for timing: the same draws as [`render_forward`] and
-//! [`render_deferred`](super::render_deferred), but every target stays on the GPU between
-//! passes (the G-buffer and the light buffer are read where they were written, the depth
-//! buffer is the light volumes' read-only depth attachment), prepared once (pipelines
-//! compiled, resources uploaded) and recorded into one submission per frame, each pass timed
-//! with timestamp queries where the adapter has them ([`crate::PassSpan`]).
+//! The frame as a renderer draws it, for timing: the same draws as
+//! [`render_forward`](super::render_forward) and [`render_deferred`](super::render_deferred),
+//! but every target stays on the GPU between passes (the G-buffer and the light buffer are
+//! read where they were written, the depth buffer is the light volumes' read-only depth
+//! attachment), prepared once (pipelines compiled, resources uploaded) and recorded into one
+//! submission per frame, each pass timed with timestamp queries where the adapter has them
+//! ([`crate::PassSpan`]).
 //!
 //! - forward: `forward base` (ForwardBase per object), `forward add` (ForwardAdd per light and
 //!   object, blended One / One, the depth buffer read-only);
