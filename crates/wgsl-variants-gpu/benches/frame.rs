@@ -261,8 +261,12 @@ fn main() {
             }));
         }
         match crossover {
-            Some(n) => println!("deferred takes less {clock} time from {n} point lights on"),
-            None => println!("deferred did not take less {clock} time at any light count measured"),
+            Some(n) => {
+                println!("crossover ({clock}): deferred takes less time from {n} point lights on")
+            }
+            None => {
+                println!("crossover ({clock}): deferred took less time at no light count measured")
+            }
         }
         crossovers.insert(mode.clone(), crossover);
         print_traffic(&traffic_rows, bandwidth);
