@@ -9,9 +9,12 @@
 //! cargo bench --bench wesl_tree`. `WGSL_VARIANTS_PASS=shader/pass` (comma-separated) keeps
 //! only those passes. Each pass's 2-wise covering set is the work.
 //!
-//! - this crate: `validate_pass` (wesl's passes compile each variant from the loaded tree,
-//!   each module parsed once, its declarations are put in a fixed order, naga parses and
-//!   validates it once), one thread;
+//! - this crate: the tree loaded (`Library::from_dir`, inside the timing: each of the 8
+//!   slices of a round is a run of its own, nothing kept from the slice before), then
+//!   `validate_pass` (wesl's passes compile each variant from the loaded tree, each module
+//!   parsed once, its declarations are put in a fixed order, naga parses and validates it
+//!   once; a variant that compiles to a program compiled before takes its verdict), one
+//!   thread;
 //! - wesl alone: `wesl::compile` with a resolver that maps the declaration's package names to
 //!   their folders and reads each module from disk on every compile (as `wesl`'s own
 //!   `FileResolver` does), the same features, constants and visibility as the engine, then
@@ -227,9 +230,17 @@ fn main() {
             ours_valid as usize, alone_valid,
             "{label}: this crate and wesl alone disagree on the number of valid variants"
         );
+        // Each slice is a run of its own: the tree loaded anew, so nothing the engine keeps
+        // per loaded tree (parsed modules, checked modules, compiled programs) outlives it.
+        let pass_index = lib.passes().position(|p| std::ptr::eq(p, pass));
         let mut ours = |slice: &[Choice]| {
+            let fresh = Library::from_dir(&root).unwrap_or_else(|e| panic!("{root}: {e}"));
+            let pass = fresh
+                .passes()
+                .nth(pass_index.expect("the pass"))
+                .expect("the pass");
             one.install(|| {
-                validate_pass(&lib, pass, slice, &|_| {});
+                validate_pass(&fresh, pass, slice, &|_| {});
             })
         };
         let mut alone = |slice: &[Choice]| {

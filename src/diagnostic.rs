@@ -316,6 +316,22 @@ impl Diagnostic {
     }
 }
 
+/// `; did you mean `x`?`, the closest of `candidates` to `name` ([`suggest`]), or nothing: the
+/// tail of a message about a name that is not there.
+pub(crate) fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    hint(suggest(name, candidates).as_deref())
+}
+
+/// `; did you mean `x`?` for a suggestion, or nothing.
+pub(crate) fn hint(suggestion: Option<&str>) -> String {
+    suggestion
+        .map(|s| format!("; did you mean `{s}`?"))
+        .unwrap_or_default()
+}
+
 /// The closest of `candidates` to `name` by edit distance, if reasonably close.
 pub(crate) fn suggest<'a>(
     name: &str,

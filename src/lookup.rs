@@ -12,7 +12,7 @@ use crate::variants::{Choice, Space};
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum LookupError {
     /// No shader of that name.
-    #[error("no shader named `{name}`{}", hint(suggestion))]
+    #[error("no shader named `{name}`{}", crate::diagnostic::hint(suggestion.as_deref()))]
     UnknownShader {
         /// The name asked for.
         name: String,
@@ -32,7 +32,7 @@ pub enum LookupError {
     /// A keyword the pass does not declare.
     #[error(
         "pass `{shader}/{pass}` declares no keyword `{keyword}`{}",
-        hint(suggestion)
+        crate::diagnostic::hint(suggestion.as_deref())
     )]
     UnknownKeyword {
         /// The shader.
@@ -74,13 +74,6 @@ pub enum LookupError {
         /// The nearest built variants.
         nearest: Vec<String>,
     },
-}
-
-fn hint(suggestion: &Option<String>) -> String {
-    suggestion
-        .as_ref()
-        .map(|s| format!("; did you mean `{s}`?"))
-        .unwrap_or_default()
 }
 
 /// The strict lookup of [`Pass::resolve`].

@@ -53,7 +53,7 @@ pub enum MaterialsError {
     /// A material names a shader the library does not have.
     #[error(
         "material `{material}` uses shader `{shader}`, which the library does not have{}",
-        hint(suggestion)
+        crate::diagnostic::hint(suggestion.as_deref())
     )]
     UnknownShader {
         /// The material.
@@ -66,7 +66,7 @@ pub enum MaterialsError {
     /// A keyword no pass of the shader declares.
     #[error(
         "material `{material}` enables `{keyword}`, which no pass of shader `{shader}` declares{}",
-        hint(suggestion)
+        crate::diagnostic::hint(suggestion.as_deref())
     )]
     UnknownKeyword {
         /// The material.
@@ -124,12 +124,6 @@ pub enum MaterialsError {
         /// The constraint as written, e.g. `exclude _A _B`.
         constraint: String,
     },
-}
-
-fn hint(s: &Option<String>) -> String {
-    s.as_ref()
-        .map(|s| format!("; did you mean `{s}`?"))
-        .unwrap_or_default()
 }
 
 /// Reads a materials file (`.toml`, otherwise JSON).

@@ -53,7 +53,7 @@ pub enum BudgetFileError {
     /// A key names no shader or pass of the library.
     #[error(
         "budget file `{path}`: `{key}` names no {what} of the library{}",
-        hint(suggestion)
+        crate::diagnostic::hint(suggestion.as_deref())
     )]
     Unknown {
         /// The file.
@@ -65,12 +65,6 @@ pub enum BudgetFileError {
         /// The closest name.
         suggestion: Option<String>,
     },
-}
-
-fn hint(s: &Option<String>) -> String {
-    s.as_ref()
-        .map(|s| format!("; did you mean `{s}`?"))
-        .unwrap_or_default()
 }
 
 /// The budget that applies to a pass, and where it comes from.

@@ -229,12 +229,10 @@ pub(super) fn pass_decl(
         match shared.block(name.get_ref()) {
             Some(b) => parts.push((b.block.sets(), b.file)),
             None => {
-                let hint = crate::diagnostic::suggest(
+                let hint = crate::diagnostic::did_you_mean(
                     name.get_ref(),
                     shared.blocks.iter().map(|b| b.name.get_ref().as_str()),
-                )
-                .map(|s| format!("; did you mean `{s}`?"))
-                .unwrap_or_default();
+                );
                 errors.push(DeclarationError {
                     message: format!(
                         "pass `{}` uses block `{}`, which no `[blocks.{}]` table declares{hint}",

@@ -44,12 +44,10 @@ pub(super) fn split(
     let mut split: Vec<(PipelineStage, PassDecl)> = Vec::new();
     for (name, stage) in stages {
         let Some(kind) = PipelineStage::from_name(name.get_ref()) else {
-            let hint = crate::diagnostic::suggest(
+            let hint = crate::diagnostic::did_you_mean(
                 name.get_ref(),
                 PipelineStage::ALL.iter().map(|s| s.name()),
-            )
-            .map(|s| format!("; did you mean `{s}`?"))
-            .unwrap_or_default();
+            );
             errors.push(DeclarationError {
                 message: format!(
                     "pass `{}` has a stage `{}`: a pass's stages are `vertex` and `fragment`{hint}",
@@ -144,12 +142,10 @@ fn reached<'d>(
                     .map(|k| (k, at(b.span()))),
             ),
             None => {
-                let hint = crate::diagnostic::suggest(
+                let hint = crate::diagnostic::did_you_mean(
                     b.get_ref(),
                     uses.iter().map(|u| u.get_ref().as_str()),
-                )
-                .map(|s| format!("; did you mean `{s}`?"))
-                .unwrap_or_default();
+                );
                 errors.push(DeclarationError {
                     message: format!(
                         "a stage of pass `{}` uses block `{}`, which the pass does not use (its `use` list){hint}",
@@ -170,14 +166,12 @@ fn reached<'d>(
             .filter(|k| *k == name || k.split_once('=').is_some_and(|(d, _)| d == name))
             .collect();
         if matching.is_empty() {
-            let hint = crate::diagnostic::suggest(
+            let hint = crate::diagnostic::did_you_mean(
                 &name,
                 declared
                     .iter()
                     .map(|k| k.split_once('=').map_or(k.as_str(), |(d, _)| d)),
-            )
-            .map(|s| format!("; did you mean `{s}`?"))
-            .unwrap_or_default();
+            );
             errors.push(DeclarationError {
                 message: format!(
                     "a stage of pass `{pass_name}` names keyword `{name}`, which the pass does not declare{hint}"
@@ -196,12 +190,10 @@ pub(super) fn check_block_stages(shared: &Shared<'_>, errors: &mut Vec<Declarati
         let at = at_file(b.file);
         for s in b.block.stages.iter().flat_map(|s| s.get_ref()) {
             if PipelineStage::from_name(s.get_ref()).is_none() {
-                let hint = crate::diagnostic::suggest(
+                let hint = crate::diagnostic::did_you_mean(
                     s.get_ref(),
                     PipelineStage::ALL.iter().map(|s| s.name()),
-                )
-                .map(|s| format!("; did you mean `{s}`?"))
-                .unwrap_or_default();
+                );
                 errors.push(DeclarationError {
                     message: format!(
                         "block `{}` names a stage `{}`: the stages are `vertex` and `fragment`{hint}",

@@ -79,9 +79,7 @@ pub(super) fn apply_module_constants(
         .collect();
     for mc in &module_constants {
         let Some(module) = paths.iter().position(|p| *p == mc.path) else {
-            let hint = crate::diagnostic::suggest(&mc.path, paths.iter().copied())
-                .map(|s| format!("; did you mean `{s}`?"))
-                .unwrap_or_default();
+            let hint = crate::diagnostic::did_you_mean(&mc.path, paths.iter().copied());
             fail(
                 format!(
                     "`[modules.\"{}\"]` names no module of the tree (a path relative to the root, with its extension){hint}",

@@ -461,9 +461,10 @@ fn resolve_paths(
                         let reason = if paths.iter().any(|p| p.starts_with(&dir)) {
                             format!("`{}` is a directory, not a module", import.path)
                         } else {
-                            let hint = suggest(&import.path, paths.iter().map(String::as_str))
-                                .map(|s| format!("; did you mean `{s}`?"))
-                                .unwrap_or_default();
+                            let hint = crate::diagnostic::did_you_mean(
+                                &import.path,
+                                paths.iter().map(String::as_str),
+                            );
                             format!("no file `{file}` in the library{hint}")
                         };
                         LinkError::MissingImport {
@@ -611,9 +612,7 @@ fn resolve_names(
                     found[0]
                 }
                 None => {
-                    let hint = suggest(&import.path, names.keys().map(String::as_str))
-                        .map(|s| format!("; did you mean `{s}`?"))
-                        .unwrap_or_default();
+                    let hint = crate::diagnostic::did_you_mean(&import.path, names.keys().map(String::as_str));
                     let reason = match dialect {
                         Dialect::Wesl if names.keys().any(|n| n.split("::").next() == import.path.split("::").next()) => format!(
                             "no module of its package is this path or a prefix of it (`package::a::b` is the file `a/b.wesl` or `a/b.wgsl` of the module's package){hint}"

@@ -45,6 +45,9 @@ use crate::preprocess::tree::ParsedModule;
 
 use super::Variant;
 
+mod check;
+mod memo;
+
 /// naga's error on the compiled program: its stage, message, labels (ranges of the program)
 /// and notes.
 type NagaError = (
@@ -76,6 +79,11 @@ pub(crate) struct WeslEngine {
     /// ([`WeslEngine::feature_key`]). What the check sees is the module as its conditions
     /// leave it, a function of the module's text and of those values alone.
     checked: Mutex<HashSet<(usize, String)>>,
+    /// The programs compiled so far, for variants that compile to one of them.
+    programs: memo::Programs,
+    /// Per module id and feature values ([`WeslEngine::feature_key`]): the module's parse as
+    /// `wesl`'s conditions leave it (`condcomp`), made at its first use.
+    conditioned: Mutex<HashMap<(usize, String), std::sync::Arc<TranslationUnit>>>,
 }
 
 /// Most entries [`WeslEngine::checked`] keeps before it starts again (memory stays bounded
@@ -204,15 +212,16 @@ fn fresh_copy(unit: &TranslationUnit) -> TranslationUnit {
 /// check of a loaded module skipped where it found the same module valid before: the same
 /// passes in the same order, the same source map (the resolver still supplies each module's
 /// text, which the source map records), the same errors. Options the engine never sets
-/// (no stripping, `keep`, `keep_main`, no source map) go to `wesl::compile` itself.
+/// (no stripping, `keep`, `keep_main`, no source map) go to `wesl::compile` itself. With the
+/// result, the tree modules the compile loaded (`None` where `wesl::compile` ran).
 fn compile(
     main_path: &ModulePath,
     options: &CompileOptions,
     resolver: &TreeResolver<'_>,
     tree: &TreeModules<'_>,
-) -> Result<wesl::CompileResult, wesl::Error> {
+) -> (Result<wesl::CompileResult, wesl::Error>, Option<Vec<usize>>) {
     if !options.strip || options.keep.is_some() || options.keep_main || !options.sourcemap {
-        return wesl::compile(main_path, options, resolver);
+        return (wesl::compile(main_path, options, resolver), None);
     }
     let mangler = Box::<dyn Mangler>::from(options.mangler);
     let sourcemapper = SourceMapper::new(main_path.clone(), resolver, &mangler);
@@ -222,16 +231,20 @@ fn compile(
         resolver: &sourcemapper,
         mangler: &sourcemapper,
         tree,
+        loaded: Vec::new(),
     };
     let res = CompilerDriver::compile(&mut driver);
+    let loaded = std::mem::take(&mut driver.loaded);
     let sourcemap = sourcemapper.finish();
-    let res = res.map_err(|e| Diagnostic::from(e).with_sourcemap(&sourcemap))?;
-    Ok(wesl::CompileResult {
-        syntax: res.syntax,
-        modules: res.modules,
-        sourcemap: Some(sourcemap),
-        used_items: res.used_items,
-    })
+    let res = res
+        .map_err(|e| Diagnostic::from(e).with_sourcemap(&sourcemap).into())
+        .map(|res| wesl::CompileResult {
+            syntax: res.syntax,
+            modules: res.modules,
+            sourcemap: Some(sourcemap),
+            used_items: res.used_items,
+        });
+    (res, Some(loaded))
 }
 
 /// `wesl` 0.6.0's own compilation pass (`frontend.rs`, `CompilationPass`), for stripping
@@ -242,6 +255,8 @@ struct CachedDriver<'a> {
     resolver: &'a dyn Resolver,
     mangler: &'a dyn Mangler,
     tree: &'a TreeModules<'a>,
+    /// The tree modules loaded so far.
+    loaded: Vec<usize>,
 }
 
 /// The loaded tree's modules as [`CachedDriver`] reads them: parsed once, and `wesl`'s
@@ -251,16 +266,6 @@ struct TreeModules<'a> {
     files: &'a SourceFiles,
     modules: &'a [ParsedModule],
     resolver: &'a TreeResolver<'a>,
-}
-
-impl TreeModules<'_> {
-    /// The id and a fresh copy of the parse of the tree module at `path` (`None` for the
-    /// `constants` package, or a module that does not parse).
-    fn parsed(&self, path: &ModulePath) -> Option<(usize, TranslationUnit)> {
-        let m = self.resolver.module(path)?;
-        let unit = self.engine.parsed(self.files, self.modules, m)?;
-        Some((m, fresh_copy(unit)))
-    }
 }
 
 impl CompilerDriver for CachedDriver<'_> {
@@ -309,30 +314,43 @@ impl CompilerDriver for CachedDriver<'_> {
     }
 
     fn load_module(&mut self, path: &ModulePath) -> Result<TranslationUnit, wesl::Error> {
-        let (id, mut module) = match self.tree.parsed(path) {
-            Some((m, module)) => {
+        let engine = self.tree.engine;
+        let m = self.tree.resolver.module(path);
+        // The values of the features the module can read: what its conditions leave of it
+        // and `wesl`'s check of it depend on nothing else.
+        let key = m.filter(|_| self.options.condcomp).map(|m| {
+            let key = engine.feature_key(
+                self.tree.files,
+                self.tree.modules,
+                m,
+                &self.options.features,
+            );
+            (m, key)
+        });
+        let parsed =
+            m.and_then(|m| Some((m, engine.parsed(self.tree.files, self.tree.modules, m)?)));
+        let (id, mut module, conditioned) = match parsed {
+            Some((m, unit)) => {
                 // The source map records the module's text, as when `wesl` parses it.
                 self.resolver.resolve_source(path)?;
-                (Some(m), module)
+                self.loaded.push(m);
+                let conditioned = key
+                    .as_ref()
+                    .and_then(|k| engine.conditioned(k, unit, &self.options.features));
+                match conditioned {
+                    Some(module) => (Some(m), module, true),
+                    None => (Some(m), fresh_copy(unit), false),
+                }
             }
-            None => (None, pass::load_module(path, &self.resolver)?),
+            None => (None, pass::load_module(path, &self.resolver)?, false),
         };
-        if self.options.condcomp {
+        if self.options.condcomp && !conditioned {
             pass::condcomp(&mut module, &self.options.features)?;
         }
         pass::retarget_idents(&mut module);
         if self.options.validate {
-            let engine = self.tree.engine;
             // Found valid before with the same features: the same module, valid again.
-            let key = id.filter(|_| self.options.condcomp).map(|m| {
-                let key = engine.feature_key(
-                    self.tree.files,
-                    self.tree.modules,
-                    m,
-                    &self.options.features,
-                );
-                (m, key)
-            });
+            let key = key.filter(|_| id.is_some());
             let known = key
                 .as_ref()
                 .is_some_and(|k| engine.checked.lock().is_ok_and(|c| c.contains(k)));
@@ -366,7 +384,7 @@ impl CompilerDriver for CachedDriver<'_> {
             pass::lower(&mut module)?;
         }
         if self.options.validate {
-            pass::validate_wgsl(&module)?;
+            check::validate_wgsl(&module)?;
         }
         Ok(module)
     }
@@ -389,6 +407,8 @@ impl WeslEngine {
             parsed: modules.iter().map(|_| OnceLock::new()).collect(),
             words: modules.iter().map(|_| OnceLock::new()).collect(),
             checked: Mutex::new(HashSet::new()),
+            programs: memo::Programs::default(),
+            conditioned: Mutex::new(HashMap::new()),
         }
     }
 
@@ -402,6 +422,40 @@ impl WeslEngine {
         self.parsed[m]
             .get_or_init(|| files.text(modules[m].file).parse().ok())
             .as_ref()
+    }
+
+    /// A fresh copy of module `key.0`'s parse (`unit`) as `wesl`'s conditions leave it for
+    /// the feature values `key.1` (those of `features`), or `None` where the conditions fail
+    /// (the caller runs them itself, for their error). The same as conditioning a fresh copy
+    /// of the parse, which is what `wesl` does with a new parse: conditions only remove
+    /// nodes and attributes, and a fresh copy gives new identifiers to the same places.
+    fn conditioned(
+        &self,
+        key: &(usize, String),
+        unit: &TranslationUnit,
+        features: &wesl::Features,
+    ) -> Option<TranslationUnit> {
+        let known = self
+            .conditioned
+            .lock()
+            .ok()
+            .and_then(|c| c.get(key).cloned());
+        let tree = match known {
+            Some(tree) => tree,
+            None => {
+                let mut tree = unit.clone();
+                pass::condcomp(&mut tree, features).ok()?;
+                let tree = std::sync::Arc::new(tree);
+                if let Ok(mut c) = self.conditioned.lock() {
+                    if c.len() >= CHECKED_MAX {
+                        c.clear();
+                    }
+                    c.insert(key.clone(), tree.clone());
+                }
+                tree
+            }
+        };
+        Some(fresh_copy(&tree))
     }
 
     /// The values `features` gives the features module `m` can read (the feature names its
@@ -507,14 +561,24 @@ impl WeslEngine {
             modules,
             resolver: &resolver,
         };
+        let features = |m: usize| self.feature_key(files, modules, m, &options.features);
+        let probe = memo::Probe {
+            root: variant.pass.module,
+            profile: format!("{profile:?}"),
+            constants: &resolver.constants,
+            features: &features,
+        };
+        if let Some(known) = self.programs.get(&probe) {
+            return Ok(known);
+        }
         // The compiler may panic on input it does not expect: one variant's failure.
-        let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let (compiled, loaded) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             compile(&root, &options, &resolver, &tree)
         }))
-        .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?
-        .map_err(|e| self.wesl_error(&e, files, modules, variant))?;
+        .map_err(|panic| super::composer_panicked(variant, "the wesl crate", panic))?;
+        let compiled = compiled.map_err(|e| self.wesl_error(&e, files, modules, variant))?;
         let compiled = canonical(compiled, &root);
-        let text = compiled.to_string();
+        let (text, spans) = program_text(&compiled.syntax);
         let module = naga::front::wgsl::parse_str(&text).map_err(|e| {
             let labels = e
                 .labels()
@@ -522,7 +586,7 @@ impl WeslEngine {
                 .collect();
             self.output_error(
                 (Stage::Parse, e.message().to_string(), labels, Vec::new()),
-                (&text, &compiled),
+                (&text, &spans, &compiled),
                 (files, modules),
                 variant,
             )
@@ -545,12 +609,15 @@ impl WeslEngine {
                     labels,
                     notes,
                 ),
-                (&text, &compiled),
+                (&text, &spans, &compiled),
                 (files, modules),
                 variant,
             ));
         }
         let taken = profile.refuses(&module).is_none();
+        if let Some(loaded) = loaded {
+            self.programs.put(&probe, &loaded, &text, taken);
+        }
         Ok((text, taken))
     }
 
@@ -668,7 +735,7 @@ impl WeslEngine {
     fn output_error(
         &self,
         (stage, message, raw, notes): NagaError,
-        (text, compiled): (&str, &wesl::CompileResult),
+        (text, spans, compiled): (&str, &[DeclSpan], &wesl::CompileResult),
         (files, modules): (&SourceFiles, &[ParsedModule]),
         variant: &Variant<'_>,
     ) -> VariantError {
@@ -677,16 +744,12 @@ impl WeslEngine {
             Some(map) => unmangle(s, map),
             None => s.to_string(),
         };
-        // The output's declarations, with their spans in the output.
-        let output: Option<wgsl_parse::syntax::TranslationUnit> = text.parse().ok();
         let mut labels = Vec::new();
         let mut notes: Vec<String> = notes.iter().map(|n| unmangle(n)).collect();
         for (range, label) in raw {
-            let located = output.as_ref().and_then(|unit| {
-                let decl = unit
-                    .global_declarations
-                    .iter()
-                    .find(|d| d.span().range().contains(&range.start))?;
+            let located = (|| {
+                let (span, i) = spans.iter().find(|(r, _)| r.contains(&range.start))?;
+                let decl = &compiled.syntax.global_declarations[*i];
                 let name = decl.ident()?.name().to_string();
                 let (module, item) = match map
                     .and_then(|m| m.item(&name))
@@ -697,14 +760,12 @@ impl WeslEngine {
                 };
                 let snippet = text.get(range.clone()).unwrap_or("");
                 // Which of the declaration's occurrences of the snippet naga points at.
-                let before = text
-                    .get(decl.span().range().start..range.start)
-                    .unwrap_or("");
+                let before = text.get(span.start..range.start).unwrap_or("");
                 let nth = occurrences(before, snippet).count();
                 let unit = self.parsed_file(files, modules, module)?;
                 locate(files.text(module), unit, &item, (snippet, nth))
                     .map(|r| Span::new(module, r))
-            });
+            })();
             match located {
                 Some(span) => labels.push((span, unmangle(&label))),
                 None => notes.push(format!(
@@ -722,6 +783,46 @@ impl WeslEngine {
             source: None,
         }
     }
+}
+
+/// A declaration's byte range in the program's text, and its index in the program's
+/// declarations.
+type DeclSpan = (std::ops::Range<usize>, usize);
+
+/// The program's text exactly as its `Display` writes it (imports, directives, then each
+/// declaration but the empty ones, a blank line apart), with each declaration's range in it:
+/// what a parse of the text would give, without parsing it.
+fn program_text(unit: &TranslationUnit) -> (String, Vec<DeclSpan>) {
+    use std::fmt::Write;
+    let mut text = String::new();
+    let mut spans = Vec::new();
+    for import in &unit.imports {
+        let _ = writeln!(text, "{import}\n");
+    }
+    if !unit.global_directives.is_empty() {
+        for (i, directive) in unit.global_directives.iter().enumerate() {
+            if i > 0 {
+                text.push('\n');
+            }
+            let _ = write!(text, "{directive}");
+        }
+        text.push_str("\n\n");
+    }
+    let decls = unit
+        .global_declarations
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| !matches!(d.node(), GlobalDeclaration::Void));
+    for (n, (i, decl)) in decls.enumerate() {
+        if n > 0 {
+            text.push_str("\n\n");
+        }
+        let start = text.len();
+        let _ = write!(text, "{decl}");
+        spans.push((start..text.len(), i));
+    }
+    text.push('\n');
+    (text, spans)
 }
 
 /// The compiled program with its declarations in one order. `wesl` appends each
@@ -842,6 +943,35 @@ impl super::engine::Engine for WeslEngine {
                 ..crate::preprocess::Composed::default()
             },
             Err(e) => crate::preprocess::Composed::failed(e),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The text with declaration ranges is the program's `Display`, and each range holds its
+    /// declaration.
+    #[test]
+    fn program_text_is_the_display_with_each_declaration_located() {
+        let unit: TranslationUnit = "enable f16;
+            diagnostic(off, derivative_uniformity);
+            @group(0) @binding(1) var<uniform> u: vec4f;
+            ;
+            struct S { a: f32 }
+            const_assert 1 < 2;
+            fn f(s: S) -> f32 { return s.a; }"
+            .parse()
+            .expect("parses");
+        let (text, spans) = program_text(&unit);
+        assert_eq!(text, unit.to_string());
+        assert_eq!(spans.len(), 4, "the empty declaration has no range");
+        for (range, i) in &spans {
+            assert_eq!(
+                &text[range.clone()],
+                unit.global_declarations[*i].to_string()
+            );
         }
     }
 }
