@@ -282,13 +282,13 @@ pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, Bi
             ) {
                 continue;
             }
-            if let Some(Ty::Struct(d)) = types.next() {
-                if let Some(u) = usage.get_mut(names.get(d)) {
-                    u.bindings.insert(format!(
-                        "@group({}) @binding({}) `{}`",
-                        b.group, b.binding, b.name
-                    ));
-                }
+            if let Some(Ty::Struct(d)) = types.next()
+                && let Some(u) = usage.get_mut(names.get(d))
+            {
+                u.bindings.insert(format!(
+                    "@group({}) @binding({}) `{}`",
+                    b.group, b.binding, b.name
+                ));
             }
         }
     }

@@ -310,7 +310,7 @@ pub fn element_type(
         let _ = writeln!(
             code,
             "/// One element of an array of `{}` with a stride of {stride} bytes: the value and",
-            wgsl_name(element, names)
+            wgsl_name(element)
         );
         let _ = writeln!(code, "/// {pad} bytes of padding.");
         let _ = writeln!(code, "#[repr(C, align({align}))]");
@@ -362,7 +362,7 @@ fn type_ident(ty: &Ty, names: &Names) -> String {
 }
 
 /// The WGSL spelling of a type, for doc comments.
-pub fn wgsl_name(ty: &Ty, names: &Names) -> String {
+pub fn wgsl_name(ty: &Ty) -> String {
     let scalar = |s: &Scalar| match s.rust {
         "u16" => "f16",
         other => other,
@@ -377,8 +377,8 @@ pub fn wgsl_name(ty: &Ty, names: &Names) -> String {
             ..
         } => format!("mat{columns}x{rows}<{}>", scalar(s)),
         Ty::Array { element, len, .. } => match len {
-            Some(n) => format!("array<{}, {n}>", wgsl_name(element, names)),
-            None => format!("array<{}>", wgsl_name(element, names)),
+            Some(n) => format!("array<{}, {n}>", wgsl_name(element)),
+            None => format!("array<{}>", wgsl_name(element)),
         },
         Ty::Struct(s) => s.name.clone(),
     }
@@ -454,7 +454,7 @@ pub fn write_struct(
             pads += 1;
         }
         let ty = rust_type(&m.ty, names, wrappers);
-        let mut field_doc = format!("`{}: {}`", m.name, wgsl_name(&m.ty, names));
+        let mut field_doc = format!("`{}: {}`", m.name, wgsl_name(&m.ty));
         if let Ty::Matrix {
             rows: 3,
             columns,
@@ -481,7 +481,7 @@ pub fn write_struct(
     }
     // A head of a runtime-sized array keeps naga's alignment only when its size allows it:
     // `repr(align)` would otherwise add padding Rust does not show and `Pod` refuses.
-    let align = if def.size % def.align == 0 {
+    let align = if def.size.is_multiple_of(def.align) {
         def.align
     } else {
         1 << def.size.trailing_zeros().min(def.align.trailing_zeros())
