@@ -484,8 +484,8 @@ pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, Bi
     })
 }
 
-/// `: those with `A`, not `B`` — the options a struct's variants take in each set where they
-/// take fewer than the pass's variants do.
+/// `: those with `A` and without `B`` — the options a struct's variants take in each set
+/// where they take fewer than the pass's variants do.
 fn describe(pass: &Pass, used: &[BTreeSet<u16>], all: &[BTreeSet<u16>]) -> String {
     let mut parts = Vec::new();
     for (set, (u, a)) in used.iter().zip(all).enumerate() {
@@ -496,10 +496,10 @@ fn describe(pass: &Pass, used: &[BTreeSet<u16>], all: &[BTreeSet<u16>]) -> Strin
         let names: Vec<String> = u
             .iter()
             .map(|&o| match &options[o as usize] {
-                Some(k) => format!("`{k}`"),
+                Some(k) => format!("with `{k}`"),
                 None => {
                     let keywords: Vec<&str> = pass.sets[set].keywords().collect();
-                    format!("no `{}`", keywords.join("`/`"))
+                    format!("without `{}`", keywords.join("`/`"))
                 }
             })
             .collect();
@@ -508,7 +508,7 @@ fn describe(pass: &Pass, used: &[BTreeSet<u16>], all: &[BTreeSet<u16>]) -> Strin
     if parts.is_empty() {
         String::new()
     } else {
-        format!(": those with {}", parts.join(", "))
+        format!(": those {}", parts.join(" and "))
     }
 }
 
