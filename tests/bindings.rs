@@ -332,3 +332,27 @@ fn every_pass_compiles_with_its_layout_assertions() {
         "{stderr}"
     );
 }
+
+/// `Bake::bindings`: a `build.rs` bake writes the same module per pass as `bindings`, and an
+/// index file that includes each in a module of its own.
+#[test]
+fn bake_writes_the_bindings_of_each_pass() {
+    let tree = tempfile::tempdir().unwrap();
+    std::fs::write(tree.path().join("padding.wgsl"), PADDING).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    wgsl_variants::bake::Bake::new(tree.path())
+        .bindings(true)
+        .write_to(out.path())
+        .unwrap();
+    let index = std::fs::read_to_string(out.path().join("wgsl_variants_bindings.rs")).unwrap();
+    assert!(index.contains("pub mod padding_p {"), "{index}");
+    let module =
+        std::fs::read_to_string(out.path().join("wgsl_variants_bindings/padding_p.rs")).unwrap();
+    assert_eq!(
+        module,
+        padding_library()
+            .bindings("padding", "P", 100)
+            .unwrap()
+            .code
+    );
+}
