@@ -122,7 +122,7 @@ pub enum BakeError {
     },
     /// The typed Rust of a pass could not be generated ([`Bake::bindings`]).
     #[error("error: {0}")]
-    Bindings(crate::bindings::BindingsError),
+    Bindings(Box<crate::bindings::BindingsError>),
     /// An output could not be written.
     #[error("error: cannot write `{}`: {source}", .path.display())]
     Io {
@@ -357,8 +357,8 @@ fn write_bindings(
         env!("CARGO_PKG_VERSION")
     );
     for (pass, _) in selection {
-        let generated =
-            crate::bindings::generate(lib, pass, budget).map_err(BakeError::Bindings)?;
+        let generated = crate::bindings::generate(lib, pass, budget)
+            .map_err(|e| BakeError::Bindings(Box::new(e)))?;
         let name: String = format!("{}_{}", pass.shader, pass.name)
             .to_lowercase()
             .chars()
