@@ -46,6 +46,7 @@
 //! 5. [`validate`] runs naga over plans ([`cache`] remembers valid texts); [`audit`] measures a
 //!    variant explosion without building anything.
 //! 6. [`emit`] writes every naga back end and whole build sets; [`reflect`] lists bindings;
+//!    [`bindings`] writes typed Rust for a pass (variant key, buffer structs, layouts);
 //!    [`bake`] does it all from a `build.rs`; [`snapshot`] serves insta tests; [`merge`] puts
 //!    the outputs of `--shard K/N` runs back together, byte for byte; [`watch`] validates a
 //!    tree again as it changes (`wgsl-variants watch`, hot reload).
@@ -57,6 +58,7 @@
 pub mod analysis;
 pub mod audit;
 pub mod bake;
+pub mod bindings;
 pub mod cache;
 pub mod covering;
 pub mod data_file;

@@ -3,6 +3,7 @@
 
 mod audit;
 mod audit_profiles;
+mod bindings;
 mod cache;
 #[cfg(feature = "gpu")]
 mod check_gpu;
@@ -120,6 +121,9 @@ enum Command {
     Emit(emit::EmitArgs),
     /// The bind groups and bindings a variant uses: kind, size, stage visibility.
     Reflect(reflect::ReflectArgs),
+    /// Typed Rust for a pass: variant key, buffer structs with WGSL's padding (bytemuck),
+    /// bindings, vertex inputs and colour targets of every variant.
+    Bindings(bindings::BindingsArgs),
     /// One module with its imports on its own: prefixed self-contained WGSL, naga_oil's dialect or WESL's (--all --dialect wesl --out DIR: a WESL tree with its declaration file).
     Export(export::ExportArgs),
     /// Every variant of every pass's full space with a content hash of its canonical WGSL
@@ -334,6 +338,7 @@ fn main() -> ExitCode {
         Command::Validate { all, build, run } => validate::run(&ctx, all, &build, &run),
         Command::Emit(args) => emit::run(&ctx, &args),
         Command::Reflect(args) => reflect::run(&ctx, &args),
+        Command::Bindings(args) => bindings::run(&ctx, &args),
         Command::Export(args) => export::run(&ctx, &args),
         Command::Audit(args) => audit::run(&ctx, &args),
         Command::Merge(args) => merge::run(&ctx, &args),

@@ -1,0 +1,358 @@
+//! Typed bindings (`wgsl_variants::bindings`): the snapshot of `standard/Deferred`'s module,
+//! the offsets it asserts against naga's layouter for structs that need padding, and one
+//! crate that compiles the module of every pass of the bundled library (so that every
+//! size, alignment and offset assertion is checked by rustc) and runs the typed keys.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use wgsl_variants::Library;
+
+/// A pass whose buffers need every kind of padding: a `vec3` followed by an `f32`, an array
+/// of `vec3`, a nested struct, a `mat3x3`, an array of structs and a runtime-sized array.
+const PADDING: &str = "#shader padding\n#pass P\n#pragma multi_compile _ WIDE\n\
+struct Inner {\n    a: vec2<f32>,\n    b: f32,\n}\n\
+struct Params {\n    v: vec3<f32>,\n    s: f32,\n    arr: array<vec3<f32>, 3>,\n    inner: Inner,\n    m: mat3x3<f32>,\n    items: array<Inner, 2>,\n    u: u32,\n#if WIDE\n    w: vec4<f32>,\n#endif\n}\n\
+struct Lights {\n    count: u32,\n    lights: array<vec3<f32>>,\n}\n\
+@group(0) @binding(0) var<uniform> params: Params;\n\
+@group(0) @binding(1) var<storage, read> lights: Lights;\n\
+@vertex fn vs(@location(0) position: vec3<f32>, @location(1) uv: vec2<f32>) -> @builtin(position) vec4<f32> {\n\
+    return vec4<f32>(position + params.v * params.s + params.m[0] + params.arr[2] + lights.lights[0], uv.x + params.inner.b + params.items[1].b + f32(params.u + lights.count));\n}\n\
+@fragment fn fs() -> @location(0) vec4<f32> {\n\
+#if WIDE\n    return params.w;\n#else\n    return vec4<f32>(1.0);\n#endif\n}\n#endpass\n";
+
+fn padding_library() -> Library {
+    Library::from_sources([("padding.wgsl", PADDING)]).unwrap()
+}
+
+/// `(struct, field) → offset` of every `offset_of!` assertion of a generated module.
+fn asserted_offsets(code: &str) -> BTreeMap<(String, String), u32> {
+    let mut out = BTreeMap::new();
+    for line in code.lines() {
+        let Some(rest) = line.trim().strip_prefix("assert!(core::mem::offset_of!(") else {
+            continue;
+        };
+        let (args, value) = rest.split_once(") == ").unwrap();
+        let (name, field) = args.split_once(", ").unwrap();
+        let value: u32 = value.trim_end_matches(");").parse().unwrap();
+        out.insert((name.to_string(), field.to_string()), value);
+    }
+    out
+}
+
+/// `struct → size` of every `size_of` assertion.
+fn asserted_sizes(code: &str) -> BTreeMap<String, u32> {
+    let mut out = BTreeMap::new();
+    for line in code.lines() {
+        let Some(rest) = line.trim().strip_prefix("assert!(core::mem::size_of::<") else {
+            continue;
+        };
+        let (name, value) = rest.split_once(">() == ").unwrap();
+        out.insert(
+            name.to_string(),
+            value.trim_end_matches(");").parse().unwrap(),
+        );
+    }
+    out
+}
+
+/// Every member offset and struct size naga gives the padding pass's variant, against the
+/// generated assertions: `vec3` then `f32` share 16 bytes, arrays of `vec3` have a stride of
+/// 16, `mat3x3` columns are 16 bytes apart, a runtime-sized array's head ends at the array.
+#[test]
+fn padding_offsets_are_naga_layouts() {
+    let lib = padding_library();
+    let generated = lib.bindings("padding", "P", 100).unwrap();
+    let offsets = asserted_offsets(&generated.code);
+    let sizes = asserted_sizes(&generated.code);
+    for keywords in [&[] as &[&str], &["WIDE"]] {
+        let v = lib.variant("padding", "P", keywords).unwrap();
+        let (module, _) = lib.naga_module(&v).unwrap();
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).unwrap();
+        for (handle, ty) in module.types.iter() {
+            let naga::TypeInner::Struct { members, span } = &ty.inner else {
+                continue;
+            };
+            let wgsl = ty.name.clone().unwrap();
+            // `Params` has two layouts (with and without `w`): `Params` and `Params2`.
+            let rust = match (wgsl.as_str(), keywords.is_empty()) {
+                ("Params", false) => "Params2".to_string(),
+                _ => wgsl.clone(),
+            };
+            let mut checked = 0;
+            for m in members {
+                let name = m.name.clone().unwrap();
+                if let naga::TypeInner::Array {
+                    size: naga::ArraySize::Dynamic,
+                    stride,
+                    ..
+                } = module.types[m.ty].inner
+                {
+                    // The head ends where the runtime-sized array starts.
+                    assert_eq!(sizes[&rust], m.offset, "{rust}: head size");
+                    assert_eq!(stride, 16, "array<vec3<f32>> stride");
+                    assert!(
+                        generated
+                            .code
+                            .contains(&format!("pub type {rust}Element = Vec3F32Stride16;"))
+                    );
+                    continue;
+                }
+                assert_eq!(
+                    offsets.get(&(rust.clone(), name.clone())),
+                    Some(&m.offset),
+                    "{rust}.{name}"
+                );
+                checked += 1;
+            }
+            assert!(checked > 0);
+            if rust != "Lights" {
+                assert_eq!(sizes[&rust], *span, "{rust}: size");
+                assert_eq!(layouter[handle].size, *span);
+            }
+        }
+    }
+    // The shapes the WGSL rules give, spelled out.
+    assert_eq!(offsets[&("Params".into(), "s".into())], 12);
+    assert_eq!(offsets[&("Params".into(), "arr".into())], 16);
+    assert_eq!(offsets[&("Params".into(), "inner".into())], 64);
+    assert_eq!(offsets[&("Params".into(), "m".into())], 80);
+    assert_eq!(sizes["Vec3F32Stride16"], 16);
+    assert!(generated.code.contains("pub arr: [Vec3F32Stride16; 3],"));
+    assert!(generated.code.contains("pub m: [[f32; 4]; 3],"));
+    assert!(generated.code.contains("pub inner: Inner,"));
+}
+
+/// The key of the padding pass: a bool for `_ WIDE`, and the interface it picks lists the
+/// uniform buffer's Rust type and the packed vertex inputs.
+#[test]
+fn padding_key_and_interface() {
+    let code = padding_library()
+        .bindings("padding", "P", 100)
+        .unwrap()
+        .code;
+    assert!(code.contains("    pub wide: bool,"), "{code}");
+    assert!(code.contains("rust_type: \"Params2\""));
+    assert!(code.contains(
+        "VertexAttribute { location: 1, name: \"uv\", format: VertexFormat::Float32x2, offset: 12 }"
+    ));
+    assert!(code.contains("vertex_stride: 20,"));
+}
+
+/// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`).
+#[test]
+fn snapshot_standard_deferred() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let generated = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
+    // Deterministic: a second run writes the same bytes.
+    let again = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
+    assert_eq!(generated.code, again.code);
+    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
+        insta::assert_snapshot!("bindings.standard.Deferred", generated.code);
+    });
+}
+
+/// The folder the check crate builds in: kept between runs, so `bytemuck` builds once.
+fn check_target() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("bindings-check")
+}
+
+/// What the check crate's `main` runs: the typed keys refuse impossible combinations with a
+/// typed error, and give the keywords and interfaces of possible ones.
+const CHECK_MAIN: &str = r#"
+fn main() {
+    use deferred_shading_lighting::{keywords, Key, KeyError, Keywords};
+    let err = Key::new(Keywords {
+        set0: keywords::Set0::Point,
+        shadows: keywords::Shadows::Depth,
+        ..Keywords::default()
+    })
+    .unwrap_err();
+    assert_eq!(
+        err,
+        KeyError::Excludes {
+            keyword: "SHADOWS_DEPTH",
+            excluded: "POINT"
+        }
+    );
+    let ok = Key::new(Keywords {
+        set0: keywords::Set0::Spot,
+        shadows: keywords::Shadows::Depth,
+        ..Keywords::default()
+    })
+    .unwrap();
+    assert_eq!(ok.keywords(), ["SPOT", "SHADOWS_DEPTH"]);
+
+    use stencil_deferred_directionallit as dl;
+    let err = dl::Key::new(dl::Keywords {
+        main_light_shadows: true,
+        ..dl::Keywords::DEFAULT
+    })
+    .unwrap_err();
+    assert_eq!(
+        err,
+        dl::KeyError::Requires {
+            keyword: "_MAIN_LIGHT_SHADOWS",
+            required: "_DEFERRED_MAIN_LIGHT"
+        }
+    );
+    assert!(err.to_string().contains("requires"));
+
+    use standard_deferred as sd;
+    const KEY: sd::Key = sd::Key::checked(sd::Keywords {
+        normal_map: true,
+        ..sd::Keywords::DEFAULT
+    });
+    assert_eq!(KEY.keywords(), ["_NORMAL_MAP"]);
+    let with = KEY.interface();
+    let without = sd::Key::new(sd::Keywords::DEFAULT).unwrap().interface();
+    let normal_map = |i: &sd::Interface| i.bindings.iter().any(|b| b.name == "normal_map");
+    assert!(normal_map(with) && !normal_map(without));
+    assert!(KEY.index() < sd::Key::COMBINATIONS);
+    println!("keys ok");
+}
+
+#[cfg(feature = "impossible")]
+const _IMPOSSIBLE: stencil_deferred_directionallit::Key =
+    stencil_deferred_directionallit::Key::checked(stencil_deferred_directionallit::Keywords {
+        main_light_shadows: true,
+        ..stencil_deferred_directionallit::Keywords::DEFAULT
+    });
+"#;
+
+/// Generates the module of every pass of the bundled library (and of the padding pass),
+/// checks each with `rustfmt --check`, compiles them all in one crate depending on
+/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys;
+/// then the same crate with an impossible `Key::checked` constant must fail to compile.
+#[test]
+fn every_pass_compiles_with_its_layout_assertions() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    // Kept after the run (under the target folder), to read or build again by hand.
+    let crate_dir = check_target().join("crate");
+    let _ = std::fs::remove_dir_all(&crate_dir);
+    let src = crate_dir.join("src");
+    std::fs::create_dir_all(&src).unwrap();
+    let mut lib_rs = String::new();
+    let started = std::time::Instant::now();
+    let mut modules = vec![(
+        "padding_p".to_string(),
+        padding_library().bindings("padding", "P", 100).unwrap(),
+    )];
+    for pass in lib.passes() {
+        let one = std::time::Instant::now();
+        let generated = wgsl_variants::bindings::generate(&lib, pass, 1_000_000).unwrap();
+        eprintln!(
+            "{}/{}: {} variants, {} distinct texts, {} structs, {} interfaces in {:.1?}",
+            pass.shader,
+            pass.name,
+            generated.variants,
+            generated.distinct_texts,
+            generated.structs,
+            generated.interfaces,
+            one.elapsed()
+        );
+        let name = format!("{}_{}", pass.shader, pass.name).to_lowercase();
+        modules.push((name, generated));
+    }
+    eprintln!(
+        "generated {} modules in {:.1?}",
+        modules.len(),
+        started.elapsed()
+    );
+    let mut unformatted = String::new();
+    for (name, generated) in &modules {
+        let file = src.join(format!("{name}.rs"));
+        std::fs::write(&file, &generated.code).unwrap();
+        let fmt = Command::new("rustfmt")
+            .args(["--check", "--edition", "2024"])
+            .arg(&file)
+            .output();
+        match fmt {
+            Ok(out) if !out.status.success() => {
+                unformatted.push_str(&format!(
+                    "{name}: not rustfmt-clean:\n{}\n",
+                    String::from_utf8_lossy(&out.stdout)
+                ));
+            }
+            Ok(_) => {}
+            Err(e) => eprintln!("rustfmt not run ({e})"),
+        }
+        lib_rs.push_str(&format!(
+            "#[allow(dead_code)]\nmod {name} {{\n    include!(\"{name}.rs\");\n}}\n"
+        ));
+    }
+    assert!(unformatted.is_empty(), "{unformatted}");
+    lib_rs.push_str(CHECK_MAIN);
+    std::fs::write(src.join("main.rs"), lib_rs).unwrap();
+    std::fs::write(
+        crate_dir.as_path().join("Cargo.toml"),
+        "[package]\nname = \"bindings-check\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
+         [dependencies]\nbytemuck = { version = \"1\", features = [\"derive\", \"min_const_generics\"] }\n\n\
+         [features]\nimpossible = []\n\n[workspace]\n",
+    )
+    .unwrap();
+    // The workspace's lock file pins bytemuck and its derive's dependencies: offline works.
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock"),
+        crate_dir.as_path().join("Cargo.lock"),
+    )
+    .unwrap();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let run = |extra: &[&str]| {
+        Command::new(&cargo)
+            .args(["run", "--offline", "--quiet"])
+            .args(extra)
+            .current_dir(crate_dir.as_path())
+            .env("CARGO_TARGET_DIR", check_target())
+            .env_remove("RUSTFLAGS")
+            .output()
+            .unwrap()
+    };
+    let started = std::time::Instant::now();
+    let out = run(&[]);
+    eprintln!("check crate built and ran in {:.1?}", started.elapsed());
+    assert!(
+        out.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "keys ok\n");
+    // An impossible combination in a constant does not compile.
+    let out = run(&["--features", "impossible"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("these keywords name no variant of stencil_deferred/DirectionalLit"),
+        "{stderr}"
+    );
+}
+
+/// `Bake::bindings`: a `build.rs` bake writes the same module per pass as `bindings`, and an
+/// index file that includes each in a module of its own.
+#[test]
+fn bake_writes_the_bindings_of_each_pass() {
+    let tree = tempfile::tempdir().unwrap();
+    std::fs::write(tree.path().join("padding.wgsl"), PADDING).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    wgsl_variants::bake::Bake::new(tree.path())
+        .bindings(true)
+        .write_to(out.path())
+        .unwrap();
+    let index = std::fs::read_to_string(out.path().join("wgsl_variants_bindings.rs")).unwrap();
+    assert!(index.contains("pub mod padding_p {"), "{index}");
+    let module =
+        std::fs::read_to_string(out.path().join("wgsl_variants_bindings/padding_p.rs")).unwrap();
+    assert_eq!(
+        module,
+        padding_library()
+            .bindings("padding", "P", 100)
+            .unwrap()
+            .code
+    );
+}
