@@ -27,11 +27,9 @@
 //! `target/bench-summary.json`.
 //!
 //! Measured 2026-11-27 on a shared 2-core machine, `WGSL_VARIANTS_TREE=target/bevy-0.20.1
-//! WGSL_VARIANTS_PASS=pbr/Forward BENCH_ROUNDS=3 cargo bench --ignore-rust-version --bench
-//! wesl_tree` (624 variants; `pbr/Forward` is `standard_material/Forward/fragment` since the
-//! declaration split the forward pipeline into its stages): this crate 27.3 s, wesl alone
-//! 35.4 s, ratio 0.77 (1.45 before the engine parsed each module once;
-//! docs/guide/wesl-trees.md says where the time goes).
+//! WGSL_VARIANTS_PASS=standard_material/Forward/fragment BENCH_ROUNDS=3 cargo bench
+//! --ignore-rust-version --bench wesl_tree` (627 variants): this crate 22.3 s, wesl alone
+//! 43.7 s, ratio 0.51 (docs/guide/wesl-trees.md says where the time goes).
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -160,7 +158,7 @@ fn alone(
             pass,
             choice: c.clone(),
         };
-        // As the engine composes (src/library/wesl.rs): every keyword's defs off unless set,
+        // As the engine composes (src/library/wesl/mod.rs): every keyword's defs off unless set,
         // every def a constant, a Bool def a feature, a valued def a feature that is on.
         let defs = pass.defs(v.keywords());
         let mut options = wesl::CompileOptions {
