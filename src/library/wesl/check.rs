@@ -286,7 +286,9 @@ mod tests {
         assert!(!agrees("fn f() { g(); } fn g() { f(); }"));
         assert!(!agrees("struct S { s: array<S, 2> }"));
         // Calls: wrong arity, a constant called, a struct with too few members.
-        assert!(!agrees("fn f(x: f32) -> f32 { return x; } fn g() { let a = f(); }"));
+        assert!(!agrees(
+            "fn f(x: f32) -> f32 { return x; } fn g() { let a = f(); }"
+        ));
         assert!(!agrees("const C = 1; fn g() { let a = C(); }"));
         assert!(!agrees(
             "struct S { a: f32, b: f32 } fn g() { let s = S(1.0); }"
