@@ -62,24 +62,8 @@ fn snake_words(words: &[&str]) -> String {
     if out.starts_with(|c: char| c.is_ascii_digit()) || out.is_empty() {
         format!("k_{out}")
     } else {
-        super::structs::field_name(&out)
+        super::names::field_name(&out)
     }
-}
-
-/// A WGSL name as a Rust type name: `light_data` → `LightData`, `PerMaterial` unchanged.
-pub(crate) fn camel(name: &str) -> String {
-    let mut out = String::new();
-    for w in name.split(|c: char| !c.is_ascii_alphanumeric()) {
-        let mut chars = w.chars();
-        if let Some(first) = chars.next() {
-            out.push(first.to_ascii_uppercase());
-            out.push_str(chars.as_str());
-        }
-    }
-    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
-        out.insert(0, 'S');
-    }
-    out
 }
 
 /// The field of each keyword set of `pass`, in set order, with unique names.

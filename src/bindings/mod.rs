@@ -32,6 +32,7 @@
 
 mod key;
 mod layouts;
+mod names;
 mod structs;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};

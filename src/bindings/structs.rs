@@ -236,7 +236,7 @@ impl Names {
         if let Some(name) = self.names.get(def) {
             return name.clone();
         }
-        let base = super::key::camel(&def.name);
+        let base = super::names::camel(&def.name);
         let n = self.per_wgsl_name.entry(base.clone()).or_insert(0);
         *n += 1;
         let name = if *n == 1 { base } else { format!("{base}{n}") };
@@ -404,23 +404,6 @@ fn assertions(code: &mut String, name: &str, size: u32, align: u32, fields: &[(&
     let _ = writeln!(code, "}};");
 }
 
-/// A field name Rust accepts for a WGSL member name.
-pub(crate) fn field_name(name: &str) -> String {
-    const RESERVED: &[&str] = &[
-        "as", "async", "await", "box", "break", "const", "continue", "crate", "dyn", "else",
-        "enum", "extern", "false", "fn", "for", "gen", "if", "impl", "in", "let", "loop", "match",
-        "mod", "move", "mut", "pub", "ref", "return", "static", "struct", "trait", "true", "try",
-        "type", "unsafe", "use", "where", "while", "yield",
-    ];
-    if RESERVED.contains(&name) {
-        format!("r#{name}")
-    } else if name.is_empty() {
-        "unnamed".to_string()
-    } else {
-        name.to_string()
-    }
-}
-
 /// The Rust code of one struct: doc comment (`doc`, already `///` lines), definition with
 /// explicit padding, and assertions. Nested structs and wrappers are written by the caller.
 pub fn write_struct(
@@ -468,7 +451,7 @@ pub fn write_struct(
                 scalar.rust
             );
         }
-        fields.push((field_name(&m.name), ty, field_doc, m.offset));
+        fields.push((super::names::field_name(&m.name), ty, field_doc, m.offset));
         cursor = m.offset + rust_size(&m.ty);
     }
     if def.size > cursor {
