@@ -28,15 +28,12 @@ use std::collections::{HashMap, HashSet};
 use std::sync::{Mutex, OnceLock};
 
 use wesl::error::{Diagnostic, ResolveError};
-use wesl::pass::{self, CompilerDriver, Module, UsedItems, Visit};
+use wesl::pass::{self, CompilerDriver, Module, UsedItems};
 use wesl::sourcemap::{BasicSourceMap, SourceMap, SourceMapper};
 use wesl::syntax::{ModulePath, PathOrigin};
 use wesl::{CompileOptions, Mangler, Resolver};
 use wgsl_parse::SyntaxNode;
-use wgsl_parse::syntax::{
-    Expression, ExpressionNode, GlobalDeclaration, GlobalDeclarationNode, Ident, TranslationUnit,
-    TypeExpression, Visibility,
-};
+use wgsl_parse::syntax::{GlobalDeclaration, Ident, TranslationUnit, Visibility};
 
 use crate::declaration::DefValue;
 use crate::diagnostic::{SourceFiles, Span};
@@ -46,7 +43,10 @@ use crate::preprocess::tree::ParsedModule;
 use super::Variant;
 
 mod check;
+mod copy;
 mod memo;
+
+use copy::{Retargeted, fresh_copy};
 
 /// naga's error on the compiled program: its stage, message, labels (ranges of the program)
 /// and notes.
@@ -82,8 +82,9 @@ pub(crate) struct WeslEngine {
     /// The programs compiled so far, for variants that compile to one of them.
     programs: memo::Programs,
     /// Per module id and feature values ([`WeslEngine::feature_key`]): the module's parse as
-    /// `wesl`'s conditions leave it (`condcomp`), made at its first use.
-    conditioned: Mutex<HashMap<(usize, String), std::sync::Arc<TranslationUnit>>>,
+    /// `wesl`'s conditions leave it (`condcomp`) and `retarget_idents` points its names,
+    /// made at its first use.
+    conditioned: Mutex<HashMap<(usize, String), std::sync::Arc<Retargeted>>>,
 }
 
 /// Most entries [`WeslEngine::checked`] keeps before it starts again (memory stays bounded
@@ -154,62 +155,9 @@ impl Resolver for TreeResolver<'_> {
     }
 }
 
-/// A copy of a parsed module that compiling may change without changing the original, and
-/// that compiles as a new parse of the text would.
-///
-/// `wgsl-parse`'s identifiers are shared handles, and a parse shares none between two places:
-/// `wesl` points each use of a declaration at the declaration's identifier, names the
-/// output's declarations by renaming the module-scope declarations' identifiers, and takes a
-/// name used in a type or an expression whose identifier is shared with nothing for an
-/// undeclared one (`check_defined_symbols`). So the copy gets a new identifier for each
-/// module-scope declaration (never renamed in the original) and for each name used in a type
-/// or an expression (alone, as after parsing); the other identifiers (members, parameters,
-/// local declarations, imports) are neither renamed nor counted, and stay shared.
-fn fresh_copy(unit: &TranslationUnit) -> TranslationUnit {
-    fn new(ident: &mut Ident) {
-        let name = ident.name().clone();
-        *ident = Ident::new(name);
-    }
-    fn fresh_ty(ty: &mut TypeExpression) {
-        new(&mut ty.ident);
-        Visit::<TypeExpression>::visit_rec_mut(ty, &mut |t: &mut TypeExpression| new(&mut t.ident));
-    }
-    fn fresh_expr(expr: &mut ExpressionNode) {
-        match expr.node_mut() {
-            Expression::TypeOrIdentifier(ty) => fresh_ty(ty),
-            Expression::FunctionCall(call) => fresh_ty(&mut call.ty),
-            _ => {}
-        }
-        for e in Visit::<ExpressionNode>::visit_mut(expr.node_mut()) {
-            fresh_expr(e);
-        }
-    }
-    fn fresh_decls(decls: &mut [GlobalDeclarationNode]) {
-        for decl in decls {
-            match decl.node_mut() {
-                GlobalDeclaration::Declaration(d) => new(&mut d.ident),
-                GlobalDeclaration::TypeAlias(d) => new(&mut d.ident),
-                GlobalDeclaration::Struct(d) => new(&mut d.ident),
-                GlobalDeclaration::Function(d) => new(&mut d.ident),
-                GlobalDeclaration::Compound(c) => fresh_decls(&mut c.body),
-                GlobalDeclaration::Void | GlobalDeclaration::ConstAssert(_) => {}
-            }
-        }
-    }
-    let mut copy = unit.clone();
-    fresh_decls(&mut copy.global_declarations);
-    Visit::<TypeExpression>::visit_rec_mut(&mut copy, &mut |t: &mut TypeExpression| {
-        new(&mut t.ident)
-    });
-    for e in Visit::<ExpressionNode>::visit_mut(&mut copy) {
-        fresh_expr(e);
-    }
-    copy
-}
-
 /// `wesl::compile` (0.6.0, `frontend.rs`) with the modules of the tree taken from `tree` (a
-/// fresh copy of the module's parse) rather than parsed from the resolver's text, and `wesl`'s
-/// check of a loaded module skipped where it found the same module valid before: the same
+/// copy of the module's parse, [`copy`]) rather than parsed from the resolver's text, and
+/// `wesl`'s check of a loaded module skipped where it found the same module valid before: the same
 /// passes in the same order, the same source map (the resolver still supplies each module's
 /// text, which the source map records), the same errors. Options the engine never sets
 /// (no stripping, `keep`, `keep_main`, no source map) go to `wesl::compile` itself. With the
@@ -344,10 +292,13 @@ impl CompilerDriver for CachedDriver<'_> {
             }
             None => (None, pass::load_module(path, &self.resolver)?, false),
         };
-        if self.options.condcomp && !conditioned {
-            pass::condcomp(&mut module, &self.options.features)?;
+        // A conditioned copy comes retargeted (`Retargeted`).
+        if !conditioned {
+            if self.options.condcomp {
+                pass::condcomp(&mut module, &self.options.features)?;
+            }
+            pass::retarget_idents(&mut module);
         }
-        pass::retarget_idents(&mut module);
         if self.options.validate {
             // Found valid before with the same features: the same module, valid again.
             let key = key.filter(|_| id.is_some());
@@ -424,11 +375,12 @@ impl WeslEngine {
             .as_ref()
     }
 
-    /// A fresh copy of module `key.0`'s parse (`unit`) as `wesl`'s conditions leave it for
-    /// the feature values `key.1` (those of `features`), or `None` where the conditions fail
-    /// (the caller runs them itself, for their error). The same as conditioning a fresh copy
-    /// of the parse, which is what `wesl` does with a new parse: conditions only remove
-    /// nodes and attributes, and a fresh copy gives new identifiers to the same places.
+    /// A copy of module `key.0`'s parse (`unit`) as `wesl`'s conditions leave it for the
+    /// feature values `key.1` (those of `features`), after `retarget_idents`; `None` where the
+    /// conditions fail (the caller runs them itself, for their error). The same as
+    /// conditioning and retargeting a fresh copy of the parse, which is what `wesl` does with
+    /// a new parse: conditions only remove nodes and attributes, and [`Retargeted::copy`]
+    /// gives new identifiers to the same places, shared as retargeting shares them.
     fn conditioned(
         &self,
         key: &(usize, String),
@@ -445,7 +397,7 @@ impl WeslEngine {
             None => {
                 let mut tree = unit.clone();
                 pass::condcomp(&mut tree, features).ok()?;
-                let tree = std::sync::Arc::new(tree);
+                let tree = std::sync::Arc::new(Retargeted::new(&tree));
                 if let Ok(mut c) = self.conditioned.lock() {
                     if c.len() >= CHECKED_MAX {
                         c.clear();
@@ -455,7 +407,7 @@ impl WeslEngine {
                 tree
             }
         };
-        Some(fresh_copy(&tree))
+        Some(tree.copy())
     }
 
     /// The values `features` gives the features module `m` can read (the feature names its
