@@ -2,12 +2,11 @@
 //!
 //! Checks that cost a fraction of a millisecond per variant (validation, the canonical-WGSL
 //! manifest, reflection) run over the full space of every bundled pass. Checks that cost
-//! milliseconds per variant (every naga back end with `spirv-val`, shard merges of emit
-//! folders, GPU rendering) run over this selection instead: every variant of a pass whose
-//! space holds at most [`FULL_UP_TO`] variants, and a t = [`COVER_T`] covering set of a larger
-//! one (URP's `UniversalGBuffer`, 49,152 variants). The full-space form of each such test is an
-//! `#[ignore]`d test of its own, run by `cargo test --release -- --ignored` (the README gives
-//! the command and its time).
+//! milliseconds per variant (every naga back end with `spirv-val`, GPU rendering) run over
+//! this selection instead: every variant of a pass whose space holds at most [`FULL_UP_TO`]
+//! variants, and a t = [`COVER_T`] covering set of a larger one (URP's `UniversalGBuffer`,
+//! 49,152 variants). The full-space form of each such test is an `#[ignore]`d test of its own,
+//! run by `cargo test --release -- --ignored` (the README gives the command and its time).
 
 use wgsl_variants::Library;
 use wgsl_variants::plan::{Plan, PlanOptions, plan};
@@ -30,14 +29,4 @@ pub fn options() -> PlanOptions {
 /// The selection's plan for `lib`.
 pub fn plan_of(lib: &Library) -> Plan<'_> {
     plan(lib, &options()).expect("the bundled library plans")
-}
-
-/// The command-line arguments of the selection (after `--all`).
-pub fn args() -> Vec<String> {
-    vec![
-        "--cover".into(),
-        COVER_T.to_string(),
-        "--cover-above".into(),
-        FULL_UP_TO.to_string(),
-    ]
 }
