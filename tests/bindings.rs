@@ -1,7 +1,8 @@
 //! Typed bindings (`wgsl_variants::bindings`): the snapshot of `standard/Deferred`'s module,
 //! the offsets it asserts against naga's layouter for structs that need padding, and one
 //! crate that compiles the module of every pass of the bundled library (so that every
-//! size, alignment and offset assertion is checked by rustc) and runs the typed keys.
+//! size, alignment and offset assertion is checked by rustc) and runs the typed keys; and that
+//! the module the compile-fail tests (`crates/bindings-compile-fail`) use is current.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -216,19 +217,13 @@ fn main() {
     assert!(KEY.index() < sd::Key::COMBINATIONS);
     println!("keys ok");
 }
-
-#[cfg(feature = "impossible")]
-const _IMPOSSIBLE: stencil_deferred_directionallit::Key =
-    stencil_deferred_directionallit::Key::checked(stencil_deferred_directionallit::Keywords {
-        main_light_shadows: true,
-        ..stencil_deferred_directionallit::Keywords::DEFAULT
-    });
 "#;
 
 /// Generates the module of every pass of the bundled library (and of the padding pass),
 /// checks each with `rustfmt --check`, compiles them all in one crate depending on
-/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys;
-/// then the same crate with an impossible `Key::checked` constant must fail to compile.
+/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys.
+/// (That an impossible `Key::checked` constant does not compile is the compile-fail tests'
+/// job: `crates/bindings-compile-fail`.)
 #[test]
 fn every_pass_compiles_with_its_layout_assertions() {
     let lib = wgsl_variants_shaders::library().unwrap();
@@ -293,7 +288,7 @@ fn every_pass_compiles_with_its_layout_assertions() {
         crate_dir.as_path().join("Cargo.toml"),
         "[package]\nname = \"bindings-check\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
          [dependencies]\nbytemuck = { version = \"1\", features = [\"derive\", \"min_const_generics\"] }\n\n\
-         [features]\nimpossible = []\n\n[workspace]\n",
+         [workspace]\n",
     )
     .unwrap();
     // The workspace's lock file pins bytemuck and its derive's dependencies: offline works.
@@ -303,18 +298,14 @@ fn every_pass_compiles_with_its_layout_assertions() {
     )
     .unwrap();
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let run = |extra: &[&str]| {
-        Command::new(&cargo)
-            .args(["run", "--offline", "--quiet"])
-            .args(extra)
-            .current_dir(crate_dir.as_path())
-            .env("CARGO_TARGET_DIR", check_target())
-            .env_remove("RUSTFLAGS")
-            .output()
-            .unwrap()
-    };
     let started = std::time::Instant::now();
-    let out = run(&[]);
+    let out = Command::new(&cargo)
+        .args(["run", "--offline", "--quiet"])
+        .current_dir(crate_dir.as_path())
+        .env("CARGO_TARGET_DIR", check_target())
+        .env_remove("RUSTFLAGS")
+        .output()
+        .unwrap();
     eprintln!("check crate built and ran in {:.1?}", started.elapsed());
     assert!(
         out.status.success(),
@@ -323,13 +314,23 @@ fn every_pass_compiles_with_its_layout_assertions() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(String::from_utf8_lossy(&out.stdout), "keys ok\n");
-    // An impossible combination in a constant does not compile.
-    let out = run(&["--features", "impossible"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success());
+}
+
+/// The module the compile-fail tests (`crates/bindings-compile-fail`, trybuild) compile
+/// against is committed there, so that their build needs only `bytemuck`: it must be what the
+/// generator writes for its `shaders/keys.wgsl` today.
+#[test]
+fn compile_fail_module_is_current() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/bindings-compile-fail");
+    let lib = Library::from_dir(dir.join("shaders")).unwrap();
+    let code = lib.bindings("keys", "P", 100).unwrap().code;
+    let committed = std::fs::read_to_string(dir.join("src/keys.rs")).unwrap();
     assert!(
-        stderr.contains("these keywords name no variant of stencil_deferred/DirectionalLit"),
-        "{stderr}"
+        code == committed,
+        "crates/bindings-compile-fail/src/keys.rs differs from the generator's output; \
+         regenerate with\n  cargo run --release --ignore-rust-version -p wgsl-variants-cli -- \
+         --root crates/bindings-compile-fail/shaders bindings keys P \
+         --out crates/bindings-compile-fail/src/keys.rs"
     );
 }
 
