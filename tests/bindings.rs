@@ -142,6 +142,31 @@ fn padding_key_and_interface() {
     assert!(code.contains("vertex_stride: 20,"));
 }
 
+/// The plain module names no wgpu type; with the wgpu option the module is the same plus the
+/// wgpu conversions (compiled and run against wgpu by the GPU crate's `gpu_bindings` tests).
+#[test]
+fn wgpu_option_adds_only_the_wgpu_conversions() {
+    let lib = padding_library();
+    let pass = lib.pass("padding", "P").unwrap();
+    let plain = wgsl_variants::bindings::generate(&lib, pass, 100)
+        .unwrap()
+        .code;
+    let options = wgsl_variants::bindings::Options::default().wgpu(true);
+    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 100, &options)
+        .unwrap()
+        .code;
+    assert!(!plain.contains("wgpu::"), "{plain}");
+    assert!(wgpu.contains("and `wgpu` 30."));
+    assert!(wgpu.contains(
+        "pub fn bind_group_layout_entries(&self, group: u32) -> Vec<wgpu::BindGroupLayoutEntry> {"
+    ));
+    // Every line of the plain module is in the wgpu one, in order (only the header differs).
+    let mut lines = wgpu.lines();
+    for line in plain.lines().filter(|l| !l.starts_with("// It needs")) {
+        assert!(lines.any(|l| l == line), "missing: {line}");
+    }
+}
+
 /// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`).
 #[test]
 fn snapshot_standard_deferred() {

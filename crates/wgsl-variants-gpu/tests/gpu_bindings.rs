@@ -5,51 +5,147 @@
 //! it reads bit-cast to `u32`, and the bits must equal those the host put in the Rust fields.
 //! Both variants run: `Params` (without `WIDE`) and `Params2` (with it) are two layouts.
 //!
+//! The modules are generated with the wgpu option: their bind group layout entries are those
+//! the GPU crate derives from reflection, and the render pass `Draw` gets a pipeline from its
+//! generated layouts, vertex buffer layout and colour targets alone.
+//!
 //! Without a wgpu adapter the GPU test prints a loud SKIPPED line and passes, unless `CI=true`
 //! or `WGSL_VARIANTS_REQUIRE_GPU=1`. `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter.
 
 mod common;
 
 use wgsl_variants::Library;
-use wgsl_variants_gpu::{GpuContext, run_compute};
+use wgsl_variants::bindings::Options;
+use wgsl_variants_gpu::{GpuContext, compile_scoped, layout_entries, run_compute};
 
 #[allow(dead_code)]
 mod padding {
     include!("bindings_padding/padding_roundtrip.rs");
 }
 
+#[allow(dead_code)]
+mod draw {
+    include!("bindings_padding/padding_draw.rs");
+}
+
 use padding::structs::{Data, Data2, Data2Element, DataElement, Inner, Vec3F32Stride16};
 
 const WGSL: &str = include_str!("bindings_padding/padding.wgsl");
-const GENERATED: &str = include_str!("bindings_padding/padding_roundtrip.rs");
-const REGENERATE: &str = "cargo run --release --ignore-rust-version -p wgsl-variants-cli -- \
-     --root crates/wgsl-variants-gpu/tests/bindings_padding bindings padding RoundTrip \
-     --out crates/wgsl-variants-gpu/tests/bindings_padding/padding_roundtrip.rs";
+/// Each pass, and its committed module.
+const GENERATED: [(&str, &str, &str); 2] = [
+    (
+        "RoundTrip",
+        "padding_roundtrip.rs",
+        include_str!("bindings_padding/padding_roundtrip.rs"),
+    ),
+    (
+        "Draw",
+        "padding_draw.rs",
+        include_str!("bindings_padding/padding_draw.rs"),
+    ),
+];
 
 fn library() -> Library {
     Library::from_sources([("padding.wgsl", WGSL)]).unwrap()
 }
 
-/// The committed module is what the generator writes today (a snapshot: the GPU test below
-/// proves the generator only through it).
+/// The committed modules are what the generator writes today (snapshots: the tests below
+/// prove the generator only through them).
 #[test]
-fn committed_module_is_current() {
-    let code = library()
-        .bindings(padding::SHADER, padding::PASS, 100)
-        .unwrap()
-        .code;
-    if code != GENERATED {
-        let line = code
-            .lines()
-            .zip(GENERATED.lines())
-            .position(|(a, b)| a != b)
-            .unwrap_or_else(|| code.lines().count().min(GENERATED.lines().count()));
-        panic!(
-            "tests/bindings_padding/padding_roundtrip.rs differs from the generator's output \
-             (first at line {}); regenerate with\n  {REGENERATE}",
-            line + 1
-        );
+fn committed_modules_are_current() {
+    let lib = library();
+    for (pass, file, committed) in GENERATED {
+        let pass_def = lib.pass("padding", pass).unwrap();
+        let options = Options::default().wgpu(true);
+        let code = wgsl_variants::bindings::generate_with(&lib, pass_def, 100, &options)
+            .unwrap()
+            .code;
+        if code != committed {
+            let line = code
+                .lines()
+                .zip(committed.lines())
+                .position(|(a, b)| a != b)
+                .unwrap_or_else(|| code.lines().count().min(committed.lines().count()));
+            panic!(
+                "tests/bindings_padding/{file} differs from the generator's output (first at \
+                 line {}); regenerate with\n  cargo run --release --ignore-rust-version -p \
+                 wgsl-variants-cli -- --root crates/wgsl-variants-gpu/tests/bindings_padding \
+                 bindings padding {pass} --wgpu --out \
+                 crates/wgsl-variants-gpu/tests/bindings_padding/{file}",
+                line + 1
+            );
+        }
     }
+}
+
+/// The generated wgpu layout entries are those the GPU crate derives from the variant's
+/// reflection, group by group, for every variant of both passes.
+#[test]
+fn generated_layout_entries_are_the_reflected_ones() {
+    let lib = library();
+    // Each module has its own `Interface` type: compare through its two methods.
+    let check = |pass: &str, keywords: &[&str], groups: u32, entries: &dyn Fn(u32) -> Vec<_>| {
+        let variant = lib.variant("padding", pass, keywords).unwrap();
+        let reflected = layout_entries(&lib.reflect(&variant).unwrap()).unwrap();
+        assert_eq!(groups as usize, reflected.len(), "{}", variant.label());
+        for (group, expected) in reflected.iter().enumerate() {
+            assert_eq!(
+                &entries(group as u32),
+                expected,
+                "{} group {group}",
+                variant.label()
+            );
+        }
+    };
+    for wide in [false, true] {
+        let key = padding::Key::checked(padding::Keywords { wide });
+        let i = key.interface();
+        check("RoundTrip", &key.keywords(), i.group_count(), &|g| {
+            i.bind_group_layout_entries(g)
+        });
+    }
+    let i = draw::Key::checked(draw::Keywords::DEFAULT).interface();
+    check("Draw", &[], i.group_count(), &|g| {
+        i.bind_group_layout_entries(g)
+    });
+}
+
+/// The vertex buffer layout packs the inputs in location order, and the colour targets take
+/// formats of their outputs' component types only, at their locations.
+#[test]
+fn generated_vertex_layout_and_color_targets() {
+    let interface = draw::Key::checked(draw::Keywords::DEFAULT).interface();
+    let attributes = interface.wgpu_vertex_attributes();
+    let layout = interface.vertex_buffer_layout(&attributes);
+    assert_eq!(layout.array_stride, 24);
+    assert_eq!(
+        layout.attributes,
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x2, 2 => Uint32]
+    );
+    let formats = [
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureFormat::Rgba8Uint,
+    ];
+    let states = interface.color_target_states(&formats).unwrap();
+    assert_eq!(states.len(), 3);
+    assert_eq!(states[0].as_ref().unwrap().format, formats[0]);
+    assert_eq!(states[1], None, "no output at @location(1)");
+    assert_eq!(states[2].as_ref().unwrap().format, formats[1]);
+    assert_eq!(
+        interface.color_target_states(&[formats[1], formats[1]]),
+        Err(draw::ColorTargetError::Format {
+            location: 0,
+            kind: draw::ColorKind::Float,
+            format: formats[1],
+        })
+    );
+    assert_eq!(
+        interface.color_target_states(&formats[..1]),
+        Err(draw::ColorTargetError::Count {
+            targets: 2,
+            formats: 1
+        })
+    );
 }
 
 /// Distinct values for every scalar, and the bits the kernel must write back for each.
@@ -155,6 +251,85 @@ fn round_trip(ctx: &GpuContext, lib: &Library, keywords: &[&str], input: &[u8], 
         "{label} on {}: {words} scalars of {} bytes read back",
         ctx.adapter_name(),
         input.len()
+    );
+}
+
+/// wgpu accepts a render pipeline built from the generated layouts alone (its validation
+/// checks them against the shader: bindings, vertex formats, colour target types).
+#[test]
+fn draw_pipeline_from_generated_layouts() {
+    let Some(ctx) = common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "the GPU context",
+    ) else {
+        return;
+    };
+    let lib = library();
+    let key = draw::Key::checked(draw::Keywords::DEFAULT);
+    let interface = key.interface();
+    let variant = lib
+        .variant(draw::SHADER, draw::PASS, &key.keywords())
+        .unwrap();
+    let label = variant.label();
+    let wgsl = lib.wgsl(&variant);
+    let attributes = interface.wgpu_vertex_attributes();
+    let targets = interface
+        .color_target_states(&[
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureFormat::Rgba8Uint,
+        ])
+        .unwrap();
+    compile_scoped(&ctx, &label, || {
+        let groups: Vec<wgpu::BindGroupLayout> = (0..interface.group_count())
+            .map(|group| {
+                ctx.device
+                    .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                        label: Some(&label),
+                        entries: &interface.bind_group_layout_entries(group),
+                    })
+            })
+            .collect();
+        let groups: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().map(Some).collect();
+        let layout = ctx
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(&label),
+                bind_group_layouts: &groups,
+                immediate_size: 0,
+            });
+        let module = ctx
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&label),
+                source: wgpu::ShaderSource::Wgsl(wgsl.as_str().into()),
+            });
+        ctx.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(interface.vertex_buffer_layout(&attributes))],
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                multiview_mask: None,
+                cache: None,
+            })
+    })
+    .unwrap_or_else(|e| panic!("{label}: {e}"));
+    eprintln!(
+        "{label} on {}: pipeline from generated layouts",
+        ctx.adapter_name()
     );
 }
 

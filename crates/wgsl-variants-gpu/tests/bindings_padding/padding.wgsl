@@ -1,11 +1,11 @@
 #shader padding
-// Every padding rule of WGSL's host-shareable layout, for the GPU round trip of the structs
-// `wgsl_variants::bindings` generates (tests/gpu_bindings.rs): the host writes `Data` through
-// the generated Rust, and this kernel writes every scalar it reads, bit-cast to u32, in
-// declaration order.
-//   group 0: 0 data (read), 1 output array<u32> (read_write)
+// The passes of tests/gpu_bindings.rs, for the Rust `wgsl_variants::bindings` generates:
+// RoundTrip has every padding rule of WGSL's host-shareable layout (the host writes `Data`
+// through the generated Rust, and the kernel writes every scalar it reads, bit-cast to u32, in
+// declaration order); Draw builds a render pipeline from the generated wgpu layouts.
 
 #pass RoundTrip
+//   group 0: 0 data (read), 1 output array<u32> (read_write)
 #pragma multi_compile _ WIDE
 
 // Size 16, aligned to 8: 4 bytes of trailing padding.
@@ -102,5 +102,41 @@ fn main() {
     for (var i = 0u; i < n; i += 1u) {
         put_v3(data.lights[i]);
     }
+}
+#endpass
+
+#pass Draw
+// A render pass for the wgpu types of generated bindings: bind groups with a uniform, a
+// texture and a sampler, vertex inputs of three formats, colour targets of two component types
+// with a hole at location 1.
+struct Tint {
+    color: vec3<f32>,
+    scale: f32,
+}
+
+@group(0) @binding(0) var<uniform> tint: Tint;
+@group(1) @binding(0) var tex: texture_2d<f32>;
+@group(1) @binding(1) var samp: sampler;
+
+struct VertexOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) uv: vec2<f32>,
+    @location(1) @interpolate(flat) id: u32,
+}
+
+@vertex
+fn vs(@location(0) position: vec3<f32>, @location(1) uv: vec2<f32>, @location(2) id: u32) -> VertexOut {
+    return VertexOut(vec4<f32>(position * tint.scale, 1.0), uv, id);
+}
+
+struct FragmentOut {
+    @location(0) color: vec4<f32>,
+    @location(2) id: vec4<u32>,
+}
+
+@fragment
+fn fs(in: VertexOut) -> FragmentOut {
+    let c = textureSample(tex, samp, in.uv).rgb * tint.color;
+    return FragmentOut(vec4<f32>(c, 1.0), vec4<u32>(in.id));
 }
 #endpass
