@@ -172,9 +172,31 @@ fn wgpu_option_adds_only_the_wgpu_conversions() {
 fn snapshot_standard_deferred() {
     let lib = wgsl_variants_shaders::library().unwrap();
     let generated = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
-    // Deterministic: a second run writes the same bytes.
-    let again = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
-    assert_eq!(generated.code, again.code);
+    // A second run, with the wgpu option: the module the `render_variant` example draws
+    // through, committed there.
+    let pass = lib.pass("standard", "Deferred").unwrap();
+    let options = wgsl_variants::bindings::Options::default().wgpu(true);
+    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
+        .unwrap()
+        .code;
+    let example = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs");
+    assert!(
+        std::fs::read_to_string(&example).unwrap() == wgpu,
+        "{} differs from the generator's output; regenerate with\n  cargo run --release \
+         --ignore-rust-version -p wgsl-variants-cli -- bindings standard Deferred --wgpu \
+         --out crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs",
+        example.display()
+    );
+    // Deterministic: less its wgpu conversions (one block) and header line, the second run
+    // wrote the same bytes.
+    let start = wgpu.find("/// The interfaces as wgpu's types").unwrap();
+    let end = wgpu.find("pub use tables::").unwrap();
+    let again = format!("{}{}", &wgpu[..start], &wgpu[end..]).replace(
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features, and `wgpu` 30.",
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features.",
+    );
+    assert_eq!(generated.code, again);
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
         insta::assert_snapshot!("bindings.standard.Deferred", generated.code);
     });

@@ -9,6 +9,10 @@
 //! the GPU crate derives from reflection, and the render pass `Draw` gets a pipeline from its
 //! generated layouts, vertex buffer layout and colour targets alone.
 //!
+//! The `render_variant` example draws a `standard/Deferred` G-buffer through generated code
+//! alone (`examples/render_variant/deferred.rs`, compiled here too): its uniform buffers are
+//! byte for byte the scene's, and its texels are the GPU check's for the same variant.
+//!
 //! Without a wgpu adapter the GPU test prints a loud SKIPPED line and passes, unless `CI=true`
 //! or `WGSL_VARIANTS_REQUIRE_GPU=1`. `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter.
 
@@ -16,7 +20,9 @@ mod common;
 
 use wgsl_variants::Library;
 use wgsl_variants::bindings::Options;
-use wgsl_variants_gpu::{GpuContext, compile_scoped, layout_entries, run_compute};
+use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
+use wgsl_variants_gpu::check::{TestScene, render_gbuffer};
+use wgsl_variants_gpu::{GpuContext, Resource, compile_scoped, layout_entries, run_compute};
 
 #[allow(dead_code)]
 mod padding {
@@ -27,6 +33,9 @@ mod padding {
 mod draw {
     include!("bindings_padding/padding_draw.rs");
 }
+
+#[path = "../examples/render_variant/deferred.rs"]
+mod deferred;
 
 use padding::structs::{Data, Data2, Data2Element, DataElement, Inner, Vec3F32Stride16};
 
@@ -369,4 +378,65 @@ fn padded_structs_round_trip_through_the_gpu() {
     let mut input = bytemuck::bytes_of(&head).to_vec();
     input.extend_from_slice(bytemuck::cast_slice(&lights));
     round_trip(&ctx, &lib, &WIDE.keywords(), &input, &values.expected);
+}
+
+/// Same inputs: every uniform buffer the example fills through the generated structs holds the
+/// bytes the GPU check packs for the scene by hand.
+#[test]
+fn example_uniforms_are_the_scenes() {
+    let scene = TestScene::new(DEFAULT_SEED);
+    let packed = scene.standard_resources();
+    let ours = deferred::uniforms(&scene);
+    let interface = deferred::KEY.interface();
+    let buffers = interface
+        .bindings
+        .iter()
+        .filter(|b| {
+            matches!(
+                b.kind,
+                deferred::standard_deferred::BindingKind::UniformBuffer { .. }
+            )
+        })
+        .count();
+    assert_eq!(ours.len(), buffers, "every uniform buffer of the variant");
+    for u in &ours {
+        let theirs = packed
+            .iter()
+            .find(|r| (r.group, r.binding) == (u.group, u.binding))
+            .unwrap();
+        let (Resource::Uniform(a), Resource::Uniform(b)) = (&u.resource, &theirs.resource) else {
+            panic!("@group({}) @binding({}) is no uniform", u.group, u.binding);
+        };
+        assert_eq!(a, b, "@group({}) @binding({})", u.group, u.binding);
+    }
+}
+
+/// The example's G-buffer, drawn through generated code alone, is the GPU check's for the
+/// same variant and scene, texel for texel.
+#[test]
+fn example_gbuffer_is_the_gpu_checks() {
+    let Some(ctx) = common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "the GPU context",
+    ) else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let scene = TestScene::new(DEFAULT_SEED);
+    let ours = deferred::render(&ctx, &lib, &scene).unwrap();
+    let keywords = deferred::KEY.keywords();
+    let check = render_gbuffer(&ctx, &lib, &scene, &keywords).unwrap();
+    assert_eq!(ours.len(), check.targets.len());
+    for (i, (a, b)) in ours.iter().zip(&check.targets).enumerate() {
+        assert_eq!(a.len(), b.len(), "RT{i}");
+        let differ = a.iter().zip(b).filter(|(x, y)| x != y).count();
+        assert_eq!(differ, 0, "RT{i}: {differ} of {} bytes differ", a.len());
+    }
+    eprintln!(
+        "standard/Deferred {keywords:?} on {}: {} targets of {}x{} equal the GPU check's",
+        ctx.adapter_name(),
+        ours.len(),
+        scene.width,
+        scene.height
+    );
 }
