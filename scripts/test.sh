@@ -27,13 +27,14 @@ fi
 # Mesa's device-select layer complains about XDG_RUNTIME_DIR on headless machines; harmless.
 export NODEVICE_SELECT=1
 
-# Every crate of the workspace (library, command line, GPU harness). --nocapture: the GPU tests
-# print how much they compared.
+# Every crate of the workspace (library, command line, GPU harness, the bindings' compile-fail
+# tests). --nocapture: the GPU tests print how much they compared.
 cargo test --release --ignore-rust-version --workspace -- --nocapture
 
-# The examples (README "Using the shaders in your renderer"): a wgpu program that builds its
-# layouts from reflection and writes a PNG, and a crate whose build.rs bakes the library. The
-# crate has its own workspace; it shares this target folder.
+# The examples (README "Using the shaders in your renderer"): a wgpu program that draws a
+# G-buffer through generated bindings (typed key, structs, layouts) and writes a PNG, and a crate
+# whose build.rs bakes the library. The crate has its own workspace; it shares this target
+# folder.
 # `cargo test` built the example with the workspace's features; running that binary avoids a
 # second build of the library with the GPU crate's features alone (about 3 minutes cold).
 echo "== example: render_variant"

@@ -1,7 +1,8 @@
 //! Typed bindings (`wgsl_variants::bindings`): the snapshot of `standard/Deferred`'s module,
 //! the offsets it asserts against naga's layouter for structs that need padding, and one
 //! crate that compiles the module of every pass of the bundled library (so that every
-//! size, alignment and offset assertion is checked by rustc) and runs the typed keys.
+//! size, alignment and offset assertion is checked by rustc) and runs the typed keys; and that
+//! the module the compile-fail tests (`crates/bindings-compile-fail`) use is current.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -141,14 +142,61 @@ fn padding_key_and_interface() {
     assert!(code.contains("vertex_stride: 20,"));
 }
 
+/// The plain module names no wgpu type; with the wgpu option the module is the same plus the
+/// wgpu conversions (compiled and run against wgpu by the GPU crate's `gpu_bindings` tests).
+#[test]
+fn wgpu_option_adds_only_the_wgpu_conversions() {
+    let lib = padding_library();
+    let pass = lib.pass("padding", "P").unwrap();
+    let plain = wgsl_variants::bindings::generate(&lib, pass, 100)
+        .unwrap()
+        .code;
+    let options = wgsl_variants::bindings::Options::default().wgpu(true);
+    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 100, &options)
+        .unwrap()
+        .code;
+    assert!(!plain.contains("wgpu::"), "{plain}");
+    assert!(wgpu.contains("and `wgpu` 30."));
+    assert!(wgpu.contains(
+        "pub fn bind_group_layout_entries(&self, group: u32) -> Vec<wgpu::BindGroupLayoutEntry> {"
+    ));
+    // Every line of the plain module is in the wgpu one, in order (only the header differs).
+    let mut lines = wgpu.lines();
+    for line in plain.lines().filter(|l| !l.starts_with("// It needs")) {
+        assert!(lines.any(|l| l == line), "missing: {line}");
+    }
+}
+
 /// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`).
 #[test]
 fn snapshot_standard_deferred() {
     let lib = wgsl_variants_shaders::library().unwrap();
     let generated = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
-    // Deterministic: a second run writes the same bytes.
-    let again = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
-    assert_eq!(generated.code, again.code);
+    // A second run, with the wgpu option: the module the `render_variant` example draws
+    // through, committed there.
+    let pass = lib.pass("standard", "Deferred").unwrap();
+    let options = wgsl_variants::bindings::Options::default().wgpu(true);
+    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
+        .unwrap()
+        .code;
+    let example = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs");
+    assert!(
+        std::fs::read_to_string(&example).unwrap() == wgpu,
+        "{} differs from the generator's output; regenerate with\n  cargo run --release \
+         --ignore-rust-version -p wgsl-variants-cli -- bindings standard Deferred --wgpu \
+         --out crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs",
+        example.display()
+    );
+    // Deterministic: less its wgpu conversions (one block) and header line, the second run
+    // wrote the same bytes.
+    let start = wgpu.find("/// The interfaces as wgpu's types").unwrap();
+    let end = wgpu.find("pub use tables::").unwrap();
+    let again = format!("{}{}", &wgpu[..start], &wgpu[end..]).replace(
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features, and `wgpu` 30.",
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features.",
+    );
+    assert_eq!(generated.code, again);
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
         insta::assert_snapshot!("bindings.standard.Deferred", generated.code);
     });
@@ -216,19 +264,13 @@ fn main() {
     assert!(KEY.index() < sd::Key::COMBINATIONS);
     println!("keys ok");
 }
-
-#[cfg(feature = "impossible")]
-const _IMPOSSIBLE: stencil_deferred_directionallit::Key =
-    stencil_deferred_directionallit::Key::checked(stencil_deferred_directionallit::Keywords {
-        main_light_shadows: true,
-        ..stencil_deferred_directionallit::Keywords::DEFAULT
-    });
 "#;
 
 /// Generates the module of every pass of the bundled library (and of the padding pass),
 /// checks each with `rustfmt --check`, compiles them all in one crate depending on
-/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys;
-/// then the same crate with an impossible `Key::checked` constant must fail to compile.
+/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys.
+/// (That an impossible `Key::checked` constant does not compile is the compile-fail tests'
+/// job: `crates/bindings-compile-fail`.)
 #[test]
 fn every_pass_compiles_with_its_layout_assertions() {
     let lib = wgsl_variants_shaders::library().unwrap();
@@ -293,7 +335,7 @@ fn every_pass_compiles_with_its_layout_assertions() {
         crate_dir.as_path().join("Cargo.toml"),
         "[package]\nname = \"bindings-check\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
          [dependencies]\nbytemuck = { version = \"1\", features = [\"derive\", \"min_const_generics\"] }\n\n\
-         [features]\nimpossible = []\n\n[workspace]\n",
+         [workspace]\n",
     )
     .unwrap();
     // The workspace's lock file pins bytemuck and its derive's dependencies: offline works.
@@ -303,18 +345,14 @@ fn every_pass_compiles_with_its_layout_assertions() {
     )
     .unwrap();
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let run = |extra: &[&str]| {
-        Command::new(&cargo)
-            .args(["run", "--offline", "--quiet"])
-            .args(extra)
-            .current_dir(crate_dir.as_path())
-            .env("CARGO_TARGET_DIR", check_target())
-            .env_remove("RUSTFLAGS")
-            .output()
-            .unwrap()
-    };
     let started = std::time::Instant::now();
-    let out = run(&[]);
+    let out = Command::new(&cargo)
+        .args(["run", "--offline", "--quiet"])
+        .current_dir(crate_dir.as_path())
+        .env("CARGO_TARGET_DIR", check_target())
+        .env_remove("RUSTFLAGS")
+        .output()
+        .unwrap();
     eprintln!("check crate built and ran in {:.1?}", started.elapsed());
     assert!(
         out.status.success(),
@@ -323,13 +361,23 @@ fn every_pass_compiles_with_its_layout_assertions() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(String::from_utf8_lossy(&out.stdout), "keys ok\n");
-    // An impossible combination in a constant does not compile.
-    let out = run(&["--features", "impossible"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success());
+}
+
+/// The module the compile-fail tests (`crates/bindings-compile-fail`, trybuild) compile
+/// against is committed there, so that their build needs only `bytemuck`: it must be what the
+/// generator writes for its `shaders/keys.wgsl` today.
+#[test]
+fn compile_fail_module_is_current() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/bindings-compile-fail");
+    let lib = Library::from_dir(dir.join("shaders")).unwrap();
+    let code = lib.bindings("keys", "P", 100).unwrap().code;
+    let committed = std::fs::read_to_string(dir.join("src/keys.rs")).unwrap();
     assert!(
-        stderr.contains("these keywords name no variant of stencil_deferred/DirectionalLit"),
-        "{stderr}"
+        code == committed,
+        "crates/bindings-compile-fail/src/keys.rs differs from the generator's output; \
+         regenerate with\n  cargo run --release --ignore-rust-version -p wgsl-variants-cli -- \
+         --root crates/bindings-compile-fail/shaders bindings keys P \
+         --out crates/bindings-compile-fail/src/keys.rs"
     );
 }
 

@@ -80,7 +80,7 @@ pub struct Bake {
     cover: Option<usize>,
     cover_above: Option<u64>,
     options: Options,
-    bindings: bool,
+    bindings: Option<crate::bindings::Options>,
 }
 
 /// What [`Bake::write_to`] wrote.
@@ -157,7 +157,7 @@ impl Bake {
             cover: None,
             cover_above: None,
             options: Options::default(),
-            bindings: false,
+            bindings: None,
         }
     }
 
@@ -224,7 +224,15 @@ impl Bake {
     /// own. The consuming crate then depends on `bytemuck` with the `derive` and
     /// `min_const_generics` features.
     pub fn bindings(mut self, on: bool) -> Bake {
-        self.bindings = on;
+        self.bindings = on.then(crate::bindings::Options::default);
+        self
+    }
+
+    /// [`Bake::bindings`] with the generator's [`Options`](crate::bindings::Options): with
+    /// `wgpu`, each module also converts its interfaces to wgpu's types (the consuming crate
+    /// then depends on `wgpu` 30 as well).
+    pub fn bindings_with(mut self, options: crate::bindings::Options) -> Bake {
+        self.bindings = Some(options);
         self
     }
 
@@ -330,8 +338,8 @@ impl Bake {
             Source::Files(_, origin) => origin.clone(),
         };
         let outputs = generate(out_dir, &self.file_name, &origin, &selection, &jobs, &baked)?;
-        if self.bindings {
-            write_bindings(&lib, out_dir, &selection, self.budget)?;
+        if let Some(options) = &self.bindings {
+            write_bindings(&lib, out_dir, &selection, self.budget, options)?;
         }
         Ok(Baked {
             file: out_dir.join(&self.file_name),
@@ -349,6 +357,7 @@ fn write_bindings(
     out_dir: &Path,
     selection: &crate::plan::Plan<'_>,
     budget: u64,
+    options: &crate::bindings::Options,
 ) -> Result<(), BakeError> {
     let dir = out_dir.join("wgsl_variants_bindings");
     std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
@@ -357,7 +366,7 @@ fn write_bindings(
         env!("CARGO_PKG_VERSION")
     );
     for (pass, _) in selection {
-        let generated = crate::bindings::generate(lib, pass, budget)
+        let generated = crate::bindings::generate_with(lib, pass, budget, options)
             .map_err(|e| BakeError::Bindings(Box::new(e)))?;
         let name: String = format!("{}_{}", pass.shader, pass.name)
             .to_lowercase()

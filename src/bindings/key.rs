@@ -439,8 +439,12 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
     if needs_k {
         let _ = writeln!(code, "        let k = &self.0;");
     }
-    let mutable = if live.is_empty() { "" } else { "mut " };
-    let _ = writeln!(code, "        let {mutable}choice = [0; {n}];");
+    if live.is_empty() {
+        // No set to read: the array itself (a `let` returned at once is a clippy warning).
+        let _ = writeln!(code, "        [0; {n}]");
+    } else {
+        let _ = writeln!(code, "        let mut choice = [0; {n}];");
+    }
     for &i in &live {
         match &fields[i] {
             Field::Flag { field, on } => {
@@ -456,7 +460,9 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
             Field::Always => {}
         }
     }
-    let _ = writeln!(code, "        choice");
+    if !live.is_empty() {
+        let _ = writeln!(code, "        choice");
+    }
     let _ = writeln!(code, "    }}");
     let _ = writeln!(code);
 

@@ -27,6 +27,11 @@
 //!   naga's [`Layouter`](naga::proc::Layouter). Generated code needs `bytemuck` with the
 //!   `derive` and `min_const_generics` features (padding arrays of any length are `Pod`).
 //!
+//! - With [`Options::wgpu`] ([`generate_with`]), the interfaces as wgpu's types too:
+//!   `Interface::bind_group_layout_entries`, `Interface::vertex_buffer_layout`,
+//!   `Interface::color_target_states` (checked against each output's component type) and
+//!   `to_wgpu` on the plain types. The module then needs `wgpu` 30; this library does not.
+//!
 //! Every variant of the pass's space after `skip_variants` is composed and validated by naga,
 //! once per distinct text, in parallel. Output is byte-identical across runs.
 
@@ -102,6 +107,70 @@ pub struct Generated {
     /// Distinct interfaces (bindings, vertex inputs, colour targets) written.
     pub interfaces: usize,
 }
+
+/// What the generator writes besides the plain-data module.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Options {
+    /// Also write the interfaces as wgpu's types: `Interface::bind_group_layout_entries`,
+    /// `Interface::vertex_buffer_layout`, `Interface::color_target_states` and `to_wgpu` on
+    /// the plain types. The module then needs the `wgpu` crate (version 30, whose API it is
+    /// written for); the library itself never depends on wgpu.
+    pub wgpu: bool,
+}
+
+impl Options {
+    /// The options with the wgpu types on or off.
+    pub fn wgpu(mut self, on: bool) -> Options {
+        self.wgpu = on;
+        self
+    }
+}
+
+/// WGSL storage texel formats wgpu has a `TextureFormat` for (the wgpu prelude's table).
+const WGPU_STORAGE_FORMATS: &[&str] = &[
+    "r8unorm",
+    "r8snorm",
+    "r8uint",
+    "r8sint",
+    "r16uint",
+    "r16sint",
+    "r16float",
+    "rg8unorm",
+    "rg8snorm",
+    "rg8uint",
+    "rg8sint",
+    "r32uint",
+    "r32sint",
+    "r32float",
+    "rg16uint",
+    "rg16sint",
+    "rg16float",
+    "rgba8unorm",
+    "rgba8snorm",
+    "rgba8uint",
+    "rgba8sint",
+    "bgra8unorm",
+    "rgb10a2uint",
+    "rgb10a2unorm",
+    "rg11b10ufloat",
+    "r64uint",
+    "rg32uint",
+    "rg32sint",
+    "rg32float",
+    "rgba16uint",
+    "rgba16sint",
+    "rgba16float",
+    "rgba32uint",
+    "rgba32sint",
+    "rgba32float",
+    "r16unorm",
+    "r16snorm",
+    "rg16unorm",
+    "rg16snorm",
+    "rgba16unorm",
+    "rgba16snorm",
+];
 
 /// Most option combinations the interface table holds (one `u16`/`u32` each).
 const MAX_COMBINATIONS: u128 = 1 << 22;
@@ -201,9 +270,20 @@ struct Usage {
     bindings: BTreeSet<String>,
 }
 
-/// Generates the typed module of `pass` (see the [module docs](self)); `budget` bounds the
-/// variants read.
+/// Generates the typed module of `pass` (see the [module docs](self)) as plain data;
+/// `budget` bounds the variants read.
 pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, BindingsError> {
+    generate_with(lib, pass, budget, &Options::default())
+}
+
+/// [`generate`] with [`Options`]: with `wgpu`, the module also converts its interfaces to
+/// wgpu's types.
+pub fn generate_with(
+    lib: &Library,
+    pass: &Pass,
+    budget: u64,
+    options: &Options,
+) -> Result<Generated, BindingsError> {
     let combinations: u128 = pass.sets.iter().map(|s| s.len() as u128).product();
     if combinations > MAX_COMBINATIONS {
         return Err(BindingsError::TooManyCombinations {
@@ -237,6 +317,18 @@ pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, Bi
         .par_iter()
         .map(|&i| shape(lib, &variant(&choices[i])))
         .collect::<Result<_, _>>()?;
+    if options.wgpu {
+        for b in shapes.iter().flat_map(|s| &s.bindings) {
+            if let BindingKind::StorageTexture { format, .. } = &b.kind
+                && !WGPU_STORAGE_FORMATS.contains(&format.as_str())
+            {
+                return Err(BindingsError::UnsupportedType {
+                    ty: format!("texture_storage_*<{format}, …>"),
+                    reason: "wgpu has no TextureFormat for it".into(),
+                });
+            }
+        }
+    }
 
     // Names in order of first use, inner structs before the structs that hold them.
     let mut names = structs::Names::default();
@@ -363,10 +455,17 @@ pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, Bi
         code,
         "//     #[allow(dead_code)] mod deferred {{ include!(\"deferred.rs\"); }}"
     );
-    let _ = writeln!(
-        code,
-        "// It needs `bytemuck` with the `derive` and `min_const_generics` features."
-    );
+    if options.wgpu {
+        let _ = writeln!(
+            code,
+            "// It needs `bytemuck` with the `derive` and `min_const_generics` features, and `wgpu` 30."
+        );
+    } else {
+        let _ = writeln!(
+            code,
+            "// It needs `bytemuck` with the `derive` and `min_const_generics` features."
+        );
+    }
     let _ = writeln!(code);
     let _ = writeln!(code, "/// The shader.");
     let _ = writeln!(code, "pub const SHADER: &str = {:?};", pass.shader);
@@ -377,6 +476,10 @@ pub fn generate(lib: &Library, pass: &Pass, budget: u64) -> Result<Generated, Bi
     let _ = writeln!(code);
     code.push_str(PRELUDE);
     let _ = writeln!(code);
+    if options.wgpu {
+        code.push_str(PRELUDE_WGPU);
+        let _ = writeln!(code);
+    }
     let wide = interfaces.len() >= usize::from(u16::MAX);
     let (int, none) = if wide {
         ("u32", u32::MAX)
@@ -514,6 +617,7 @@ fn describe(pass: &Pass, used: &[BTreeSet<u16>], all: &[BTreeSet<u16>]) -> Strin
 }
 
 const PRELUDE: &str = include_str!("prelude.rs");
+const PRELUDE_WGPU: &str = include_str!("prelude_wgpu.rs");
 
 impl Library {
     /// The typed Rust module of `shader/pass` ([`bindings`](crate::bindings)): variant key,

@@ -17,6 +17,10 @@ pub struct BindingsArgs {
     /// Write the module to this file instead of stdout (rewritten only when it changes).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Also write the interfaces as wgpu's types (bind group layout entries, vertex buffer
+    /// layout, colour target states); the module then needs `wgpu` 30.
+    #[arg(long)]
+    wgpu: bool,
     /// Most variants read; past it the command fails.
     #[arg(long, value_name = "N", default_value_t = 1_000_000)]
     max_variants: u64,
@@ -24,7 +28,8 @@ pub struct BindingsArgs {
 
 pub fn run(ctx: &Context, args: &BindingsArgs) -> Result<ExitCode, Failed> {
     let pass = ctx.lib.pass(&args.shader, &args.pass)?;
-    let generated = match bindings::generate(&ctx.lib, pass, args.max_variants) {
+    let options = bindings::Options::default().wgpu(args.wgpu);
+    let generated = match bindings::generate_with(&ctx.lib, pass, args.max_variants, &options) {
         Ok(g) => g,
         Err(BindingsError::Variant(e)) => {
             eprint!("{}", ctx.render(&e.diagnostic()));
