@@ -4,8 +4,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// naga's exact version from the nearest Cargo.lock (the cache key of validated variants
-/// includes it: another naga may judge a text differently).
-fn naga_version() -> String {
+/// includes it: another naga may judge a text differently), and the lock file it came from.
+fn naga_version() -> (String, Option<PathBuf>) {
     let mut dir = PathBuf::from(std::env::var("OUT_DIR").unwrap_or_default());
     let mut candidates = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock")];
     while dir.pop() {
@@ -20,16 +20,21 @@ fn naga_version() -> String {
             if line == "name = \"naga\""
                 && let Some(v) = lines.next().and_then(|l| l.strip_prefix("version = \""))
             {
-                return v.trim_end_matches('"').to_string();
+                return (v.trim_end_matches('"').to_string(), Some(lock));
             }
         }
     }
-    "30".to_string()
+    ("30".to_string(), None)
 }
 
 fn main() {
-    println!(
-        "cargo:rustc-env=WGSL_VARIANTS_NAGA_VERSION={}",
-        naga_version()
-    );
+    let (version, lock) = naga_version();
+    println!("cargo:rustc-env=WGSL_VARIANTS_NAGA_VERSION={version}");
+    // Without these lines cargo runs the script again (and rebuilds the crate) after an edit
+    // of any file of the package, docs and tests included. Only an existing file is named: a
+    // missing one would make cargo run the script on every build.
+    println!("cargo:rerun-if-changed=build.rs");
+    if let Some(lock) = lock {
+        println!("cargo:rerun-if-changed={}", lock.display());
+    }
 }
