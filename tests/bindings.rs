@@ -381,8 +381,9 @@ fn compile_fail_module_is_current() {
     );
 }
 
-/// `Bake::bindings`: a `build.rs` bake writes the same module per pass as `bindings`, and an
-/// index file that includes each in a module of its own.
+/// `Bake::bindings`: a `build.rs` bake writes the module per pass that `bindings` writes, with
+/// the bake's table added (`Key::baked`, `KeyError::NotBaked`), and an index file that includes
+/// each in a module of its own.
 #[test]
 fn bake_writes_the_bindings_of_each_pass() {
     let tree = tempfile::tempdir().unwrap();
@@ -396,11 +397,175 @@ fn bake_writes_the_bindings_of_each_pass() {
     assert!(index.contains("pub mod padding_p {"), "{index}");
     let module =
         std::fs::read_to_string(out.path().join("wgsl_variants_bindings/padding_p.rs")).unwrap();
+    let plain = padding_library()
+        .bindings("padding", "P", 100)
+        .unwrap()
+        .code;
+    assert!(module.contains("pub fn baked<V>(") && module.contains("KeyError::NotBaked"));
+    assert!(!plain.contains("pub fn baked<V>(") && !plain.contains("NotBaked"));
+    // The structs, written after the tables, are the same.
+    let structs =
+        |code: &str| code[code.find("/// The types of the pass's buffers").unwrap()..].to_string();
+    assert_eq!(structs(&module), structs(&plain));
+}
+
+/// A pass with two `shader_feature` sets and a `multi_compile`; the one material uses
+/// `NORMAL_MAP`, so the bake strips every variant with `DETAIL` or without `NORMAL_MAP`.
+const FEATURES: &str = "#shader lit\n#pass P\n\
+#pragma shader_feature _ NORMAL_MAP\n\
+#pragma shader_feature _ DETAIL\n\
+#pragma multi_compile _ FOG\n\
+@fragment fn fs() -> @location(0) vec4<f32> {\n\
+#if NORMAL_MAP\n    return vec4<f32>(0.5);\n#else\n    return vec4<f32>(1.0);\n#endif\n}\n\
+#endpass\n";
+
+/// What the bake crate's `main` runs: a typed key finds the variant the string lookup finds,
+/// and a combination the materials strip is refused with a typed error.
+const BAKE_MAIN: &str = r#"
+mod shaders {
+    include!(concat!(env!("OUT"), "/shaders.rs"));
+}
+mod bindings {
+    include!(concat!(env!("OUT"), "/wgsl_variants_bindings.rs"));
+}
+
+fn main() {
+    use bindings::lit_p::{Key, KeyError, Keywords};
+    for fog in [false, true] {
+        let key = Key::new(Keywords {
+            normal_map: true,
+            fog,
+            ..Keywords::DEFAULT
+        })
+        .unwrap();
+        let typed = key.baked(shaders::variants());
+        let by_strings = shaders::variant("lit", "P", &key.keywords()).unwrap();
+        assert!(std::ptr::eq(typed, by_strings));
+        assert_eq!(typed.keywords, key.keywords());
+        assert!(typed.wgsl.unwrap().contains("0.5"));
+    }
+    // Stripped by the materials: refused by the key and by the string lookup alike.
+    for keywords in [
+        Keywords::DEFAULT,
+        Keywords {
+            normal_map: true,
+            detail: true,
+            fog: false,
+        },
+    ] {
+        assert_eq!(Key::new(keywords), Err(KeyError::NotBaked));
+        let mut on = Vec::new();
+        for (is_on, k) in [
+            (keywords.normal_map, "NORMAL_MAP"),
+            (keywords.detail, "DETAIL"),
+            (keywords.fog, "FOG"),
+        ] {
+            if is_on {
+                on.push(k);
+            }
+        }
+        assert!(matches!(
+            shaders::variant("lit", "P", &on),
+            Err(shaders::LookupError::NotBaked { .. })
+        ));
+    }
     assert_eq!(
-        module,
-        padding_library()
-            .bindings("padding", "P", 100)
-            .unwrap()
-            .code
+        KeyError::NotBaked.to_string(),
+        "not in the bake's build set"
     );
+    // What a refused `Key::checked` constant says.
+    assert_eq!(
+        KeyError::NotBaked.rule(),
+        "the bake left the combination out (materials, cover, budget)"
+    );
+    const KEY: Key = Key::checked(Keywords {
+        normal_map: true,
+        ..Keywords::DEFAULT
+    });
+    assert_eq!(KEY.baked(shaders::variants()).keywords, ["NORMAL_MAP"]);
+    println!("baked ok");
+}
+"#;
+
+/// `Bake::bindings` with materials: each key indexes the bake's `variants()` directly
+/// (`Key::baked`, no keyword strings) and finds the entry the string lookup finds; `Key::new`
+/// refuses what the materials strip (`KeyError::NotBaked`). The generated module is
+/// rustfmt-clean, and a small crate including both generated files builds and runs.
+#[test]
+fn bake_bindings_key_finds_its_baked_variant() {
+    let tree = tempfile::tempdir().unwrap();
+    std::fs::write(tree.path().join("lit.wgsl"), FEATURES).unwrap();
+    std::fs::write(
+        tree.path().join("materials.toml"),
+        "[[material]]\nname = \"Bumpy\"\nshader = \"lit\"\nkeywords = [\"NORMAL_MAP\"]\n",
+    )
+    .unwrap();
+    let crate_dir = check_target().join("bake-crate");
+    let _ = std::fs::remove_dir_all(&crate_dir);
+    let out = crate_dir.join("out");
+    std::fs::create_dir_all(crate_dir.join("src")).unwrap();
+    let baked = wgsl_variants::bake::Bake::new(tree.path())
+        .materials(tree.path().join("materials.toml"))
+        .file_name("shaders.rs")
+        .bindings(true)
+        .write_to(&out)
+        .unwrap();
+    // NORMAL_MAP on, DETAIL off (the material) × FOG off and on.
+    assert_eq!(baked.variants, 2);
+    let module = out.join("wgsl_variants_bindings/lit_p.rs");
+    let code = std::fs::read_to_string(&module).unwrap();
+    assert!(
+        code.contains("pub const BAKED_VARIANTS: usize = 2;"),
+        "{code}"
+    );
+    // Key::index: NORMAL_MAP, DETAIL, FOG, the last fastest; the 2 baked are 4 and 5.
+    assert!(
+        code.contains(
+            "pub const BAKED: [u32; 8] = [\n        4294967295, 4294967295, 4294967295, \
+             4294967295, 0, 1, 4294967295, 4294967295,\n    ];"
+        ),
+        "{code}"
+    );
+    let fmt = Command::new("rustfmt")
+        .args(["--check", "--edition", "2024"])
+        .arg(&module)
+        .output()
+        .expect("rustfmt runs");
+    assert!(
+        fmt.status.success(),
+        "not rustfmt-clean:\n{}",
+        String::from_utf8_lossy(&fmt.stdout)
+    );
+    std::fs::write(crate_dir.join("src/main.rs"), BAKE_MAIN).unwrap();
+    std::fs::write(
+        crate_dir.join("Cargo.toml"),
+        "[package]\nname = \"bake-check\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
+         [dependencies]\nbytemuck = { version = \"1\", features = [\"derive\", \"min_const_generics\"] }\n\n\
+         [workspace]\n",
+    )
+    .unwrap();
+    // The workspace's lock file pins bytemuck and its derive's dependencies: offline works.
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock"),
+        crate_dir.join("Cargo.lock"),
+    )
+    .unwrap();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let started = std::time::Instant::now();
+    let run = Command::new(&cargo)
+        .args(["run", "--offline", "--quiet"])
+        .current_dir(&crate_dir)
+        .env("CARGO_TARGET_DIR", check_target())
+        .env("OUT", &out)
+        .env_remove("RUSTFLAGS")
+        .output()
+        .unwrap();
+    eprintln!("bake crate built and ran in {:.1?}", started.elapsed());
+    assert!(
+        run.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(String::from_utf8_lossy(&run.stdout), "baked ok\n");
 }

@@ -201,8 +201,10 @@ fn on(fields: &[Field], set: usize, option: usize, negated: bool) -> String {
     }
 }
 
-/// Writes `keywords` (the enums), `Keywords`, `Key`, `KeyError` and `Key`'s methods.
-pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
+/// Writes `keywords` (the enums), `Keywords`, `Key`, `KeyError` and `Key`'s methods. With
+/// `baked` (the module of a `Bake::bindings` bake), `Key::new` also refuses the combinations
+/// the bake left out (`tables::BAKED`), and `Key::baked` finds a key's baked variant.
+pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field], baked: bool) {
     let label = format!("{}/{}", pass.shader, pass.name);
     // The enums.
     let enums: Vec<usize> = (0..fields.len())
@@ -325,7 +327,19 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
     let _ = writeln!(code);
 
     // KeyError.
-    code.push_str(KEY_ERROR);
+    code.push_str(KEY_ERROR_HEAD);
+    if baked {
+        code.push_str(KEY_ERROR_NOT_BAKED);
+    }
+    code.push_str(KEY_ERROR_DISPLAY);
+    if baked {
+        code.push_str(KEY_ERROR_NOT_BAKED_RULE);
+    }
+    code.push_str(KEY_ERROR_FMT);
+    if baked {
+        code.push_str(KEY_ERROR_NOT_BAKED_DISPLAY);
+    }
+    code.push_str(KEY_ERROR_TAIL);
     let _ = writeln!(code);
 
     // Key.
@@ -402,6 +416,16 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
         let _ = writeln!(code, "        let k = &keywords;");
         code.push_str(&checks);
     }
+    if baked {
+        // The bake's build set is any subset of the space (materials, covering, budget): a
+        // table lookup, not a rule.
+        let _ = writeln!(
+            code,
+            "        if tables::BAKED[Key(keywords).index()] == u32::MAX {{"
+        );
+        let _ = writeln!(code, "            return Err(KeyError::NotBaked);");
+        let _ = writeln!(code, "        }}");
+    }
     let _ = writeln!(code, "        Ok(Key(keywords))");
     let _ = writeln!(code, "    }}");
     let _ = writeln!(code);
@@ -415,10 +439,8 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
     );
     let _ = writeln!(code, "        match Key::new(keywords) {{");
     let _ = writeln!(code, "            Ok(key) => key,");
-    let _ = writeln!(
-        code,
-        "            Err(_) => panic!(\"these keywords name no variant of {label}\"),"
-    );
+    // A const panic formats no fields, but takes one `&str`: the rule, per kind of error.
+    let _ = writeln!(code, "            Err(e) => panic!(\"{{}}\", e.rule()),");
     let _ = writeln!(code, "        }}");
     let _ = writeln!(code, "    }}");
     let _ = writeln!(code);
@@ -564,10 +586,29 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field]) {
         "        &INTERFACES[VARIANT_INTERFACE[self.index()] as usize]"
     );
     let _ = writeln!(code, "    }}");
+    if baked {
+        code.push_str(BAKED_FN);
+    }
     let _ = writeln!(code, "}}");
 }
 
-const KEY_ERROR: &str = r#"/// Why [`Keywords`] name no variant of the pass.
+/// `Key::baked`: the key's entry in the bake's `variants()`, by index, no strings.
+const BAKED_FN: &str = r#"
+    /// The key's baked variant: `variants` is `variants()` of the file the same bake wrote
+    /// (`shaders::variants()`), which this module indexes by [`Key::index`] without keyword
+    /// strings. [`Key::new`] refused every combination the bake left out, so there is one.
+    ///
+    /// Panics if `variants` is not that bake's (its length differs).
+    pub fn baked<V>(&self, variants: &'static [V]) -> &'static V {
+        assert!(
+            variants.len() == tables::BAKED_VARIANTS,
+            "not the variants() of the bake that wrote this module"
+        );
+        &variants[tables::BAKED[self.index()] as usize]
+    }
+"#;
+
+const KEY_ERROR_HEAD: &str = r#"/// Why [`Keywords`] name no variant of the pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum KeyError {
     /// `#pragma require`: `keyword` is on without `required`.
@@ -589,6 +630,30 @@ pub enum KeyError {
         /// The skipped keyword.
         keyword: &'static str,
     },
+"#;
+
+const KEY_ERROR_NOT_BAKED: &str = r#"    /// The bake left the combination out: no material uses it (`shader_feature`), or the
+    /// bake's covering set or budget does not include it.
+    NotBaked,
+"#;
+
+const KEY_ERROR_DISPLAY: &str = r##"}
+
+impl KeyError {
+    /// The rule the keywords break, without them: what a refused [`Key::checked`] constant
+    /// says (a `const` panic cannot format the keywords).
+    pub const fn rule(&self) -> &'static str {
+        match self {
+            KeyError::Requires { .. } => "#pragma require: a keyword is on, its requirement off",
+            KeyError::Excludes { .. } => "#pragma exclude: two mutually exclusive keywords are on",
+            KeyError::Skipped { .. } => "skip_variants: a skipped keyword is on",
+"##;
+
+const KEY_ERROR_NOT_BAKED_RULE: &str = r#"            KeyError::NotBaked => "the bake left the combination out (materials, cover, budget)",
+"#;
+
+const KEY_ERROR_FMT: &str = r#"        }
+    }
 }
 
 impl core::fmt::Display for KeyError {
@@ -601,7 +666,12 @@ impl core::fmt::Display for KeyError {
                 write!(f, "`{keyword}` excludes `{excluded}` (#pragma exclude)")
             }
             KeyError::Skipped { keyword } => write!(f, "`{keyword}` is in skip_variants"),
-        }
+"#;
+
+const KEY_ERROR_NOT_BAKED_DISPLAY: &str = r#"            KeyError::NotBaked => write!(f, "not in the bake's build set"),
+"#;
+
+const KEY_ERROR_TAIL: &str = r#"        }
     }
 }
 

@@ -173,7 +173,7 @@ const WGPU_STORAGE_FORMATS: &[&str] = &[
 ];
 
 /// Most option combinations the interface table holds (one `u16`/`u32` each).
-const MAX_COMBINATIONS: u128 = 1 << 22;
+pub(crate) const MAX_COMBINATIONS: u128 = 1 << 22;
 
 /// What one distinct text yields.
 struct Shape {
@@ -283,6 +283,26 @@ pub fn generate_with(
     pass: &Pass,
     budget: u64,
     options: &Options,
+) -> Result<Generated, BindingsError> {
+    generate_baked(lib, pass, budget, options, None)
+}
+
+/// What a `Bake::bindings` module knows of its bake: the position in the bake's `variants()`
+/// of each [`Key::index`](key) (`u32::MAX`: left out), and how many variants the bake has.
+pub(crate) struct BakedTable {
+    /// One entry per combination of the pass.
+    pub(crate) index: Vec<u32>,
+    /// The length of the bake's `variants()`.
+    pub(crate) variants: usize,
+}
+
+/// [`generate_with`], with the table of the bake the module is written for.
+pub(crate) fn generate_baked(
+    lib: &Library,
+    pass: &Pass,
+    budget: u64,
+    options: &Options,
+    baked: Option<&BakedTable>,
 ) -> Result<Generated, BindingsError> {
     let combinations: u128 = pass.sets.iter().map(|s| s.len() as u128).product();
     if combinations > MAX_COMBINATIONS {
@@ -472,7 +492,7 @@ pub fn generate_with(
     let _ = writeln!(code, "/// The pass.");
     let _ = writeln!(code, "pub const PASS: &str = {:?};", pass.name);
     let _ = writeln!(code);
-    key::write(&mut code, pass, &fields);
+    key::write(&mut code, pass, &fields, baked.is_some());
     let _ = writeln!(code);
     code.push_str(PRELUDE);
     let _ = writeln!(code);
@@ -530,6 +550,33 @@ pub fn generate_with(
         let _ = writeln!(code, "        {},", row.join(", "));
     }
     let _ = writeln!(code, "    ];");
+    if let Some(baked) = baked {
+        let _ = writeln!(code);
+        let _ = writeln!(
+            code,
+            "    /// The length of the bake's `variants()`, which [`BAKED`] indexes."
+        );
+        let _ = writeln!(
+            code,
+            "    pub const BAKED_VARIANTS: usize = {};",
+            baked.variants
+        );
+        let _ = writeln!(
+            code,
+            "    /// The position in the bake's `variants()` of each [`Key::index`] (`u32::MAX`: not baked)."
+        );
+        // A `const`, not a `static`: `Key::new` is a `const fn` and reads it.
+        let _ = writeln!(
+            code,
+            "    pub const BAKED: [u32; {}] = [",
+            baked.index.len()
+        );
+        for row in baked.index.chunks(16) {
+            let row: Vec<String> = row.iter().map(u32::to_string).collect();
+            let _ = writeln!(code, "        {},", row.join(", "));
+        }
+        let _ = writeln!(code, "    ];");
+    }
     let _ = writeln!(code, "}}");
     let _ = writeln!(code);
 

@@ -98,6 +98,18 @@ pub enum KeyError {
     },
 }
 
+impl KeyError {
+    /// The rule the keywords break, without them: what a refused [`Key::checked`] constant
+    /// says (a `const` panic cannot format the keywords).
+    pub const fn rule(&self) -> &'static str {
+        match self {
+            KeyError::Requires { .. } => "#pragma require: a keyword is on, its requirement off",
+            KeyError::Excludes { .. } => "#pragma exclude: two mutually exclusive keywords are on",
+            KeyError::Skipped { .. } => "skip_variants: a skipped keyword is on",
+        }
+    }
+}
+
 impl core::fmt::Display for KeyError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
@@ -135,7 +147,7 @@ impl Key {
     pub const fn checked(keywords: Keywords) -> Key {
         match Key::new(keywords) {
             Ok(key) => key,
-            Err(_) => panic!("these keywords name no variant of standard/Deferred"),
+            Err(e) => panic!("{}", e.rule()),
         }
     }
 
