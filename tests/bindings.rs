@@ -167,11 +167,35 @@ fn wgpu_option_adds_only_the_wgpu_conversions() {
     }
 }
 
+/// Every pass of the bundled library through the generator (plain data), each with the time
+/// it took, generated once for the tests that read them (each large pass takes tens of seconds
+/// on 2 cores: every distinct text is validated).
+fn bundled_modules() -> &'static [(String, String, wgsl_variants::bindings::Generated, f64)] {
+    static MODULES: std::sync::OnceLock<
+        Vec<(String, String, wgsl_variants::bindings::Generated, f64)>,
+    > = std::sync::OnceLock::new();
+    MODULES.get_or_init(|| {
+        let lib = wgsl_variants_shaders::library().unwrap();
+        lib.passes()
+            .map(|pass| {
+                let one = std::time::Instant::now();
+                let generated = wgsl_variants::bindings::generate(&lib, pass, 1_000_000).unwrap();
+                let seconds = one.elapsed().as_secs_f64();
+                (pass.shader.clone(), pass.name.clone(), generated, seconds)
+            })
+            .collect()
+    })
+}
+
 /// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`).
 #[test]
 fn snapshot_standard_deferred() {
     let lib = wgsl_variants_shaders::library().unwrap();
-    let generated = lib.bindings("standard", "Deferred", 1_000_000).unwrap();
+    let generated = &bundled_modules()
+        .iter()
+        .find(|(shader, pass, ..)| shader == "standard" && pass == "Deferred")
+        .unwrap()
+        .2;
     // A second run, with the wgpu option: the module the `render_variant` example draws
     // through, committed there.
     let pass = lib.pass("standard", "Deferred").unwrap();
@@ -273,7 +297,6 @@ fn main() {
 /// job: `crates/bindings-compile-fail`.)
 #[test]
 fn every_pass_compiles_with_its_layout_assertions() {
-    let lib = wgsl_variants_shaders::library().unwrap();
     // Kept after the run (under the target folder), to read or build again by hand.
     let crate_dir = check_target().join("crate");
     let _ = std::fs::remove_dir_all(&crate_dir);
@@ -281,24 +304,14 @@ fn every_pass_compiles_with_its_layout_assertions() {
     std::fs::create_dir_all(&src).unwrap();
     let mut lib_rs = String::new();
     let started = std::time::Instant::now();
-    let mut modules = vec![(
-        "padding_p".to_string(),
-        padding_library().bindings("padding", "P", 100).unwrap(),
-    )];
-    for pass in lib.passes() {
-        let one = std::time::Instant::now();
-        let generated = wgsl_variants::bindings::generate(&lib, pass, 1_000_000).unwrap();
+    let padding = padding_library().bindings("padding", "P", 100).unwrap();
+    let mut modules = vec![("padding_p".to_string(), &padding)];
+    for (shader, pass, generated, seconds) in bundled_modules() {
         eprintln!(
-            "{}/{}: {} variants, {} distinct texts, {} structs, {} interfaces in {:.1?}",
-            pass.shader,
-            pass.name,
-            generated.variants,
-            generated.distinct_texts,
-            generated.structs,
-            generated.interfaces,
-            one.elapsed()
+            "{shader}/{pass}: {} variants, {} distinct texts, {} structs, {} interfaces in {seconds:.1} s",
+            generated.variants, generated.distinct_texts, generated.structs, generated.interfaces,
         );
-        let name = format!("{}_{}", pass.shader, pass.name).to_lowercase();
+        let name = format!("{shader}_{pass}").to_lowercase();
         modules.push((name, generated));
     }
     eprintln!(

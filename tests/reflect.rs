@@ -93,11 +93,11 @@ fn compute_all(lib: &Library) -> Vec<Reflection> {
 
 /// The rule the README documents: within a pass, a (group, binding) slot always holds the
 /// same resource — same name, same kind — in every variant that has it. Checked over the full
-/// space of every bundled pass (119983 variants).
+/// space of every bundled pass (150961 variants).
 #[test]
 fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
     let all = reflect_all();
-    assert_eq!(all.len(), 119983);
+    assert_eq!(all.len(), 150961);
     // (shader, pass, group, binding) -> (name, kind)
     type Slot = (String, String, u32, u32);
     let mut seen: BTreeMap<Slot, (String, BindingKind)> = BTreeMap::new();
@@ -175,9 +175,18 @@ fn keywords_add_and_remove_bindings() {
                 r.keywords
             );
         }
+        // BRDF3's lookup table is bound where the direct term reads it (never in Deferred).
+        let lut = (r.pass == "ForwardBase" || r.pass == "ForwardAdd") && on("UNITY_PBS_USE_BRDF3");
+        assert_eq!(
+            has("brdf_lut"),
+            lut.then_some((0, 17)),
+            "{}/{:?}",
+            r.pass,
+            r.keywords
+        );
         checked += 1;
     }
-    assert_eq!(checked, 3072 + 6144 + 6144 + 8);
+    assert_eq!(checked, 9216 + 18432 + 18432 + 8);
 }
 
 #[test]

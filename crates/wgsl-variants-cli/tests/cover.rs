@@ -134,12 +134,16 @@ fn validate_cover_2_of_the_urp_pass_and_cover_above() {
     ]);
     assert!(
         mixed.contains(
-            "standard/Deferred: built whole: its 6144-variant space is at most --cover-above"
+            "deferred_shading/Lighting: built whole: its 384-variant space is at most --cover-above"
         ),
         "{mixed}"
     );
     assert!(
-        mixed.contains("standard/Deferred: 6144 built (6144 full space)"),
+        mixed.contains("deferred_shading/Lighting: 384 built (384 full space)"),
+        "{mixed}"
+    );
+    assert!(
+        mixed.contains("standard/Deferred: covering t=2:"),
         "{mixed}"
     );
     assert!(

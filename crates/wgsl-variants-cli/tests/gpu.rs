@@ -121,14 +121,15 @@ fn check_gpu_cover_renders_the_covering_sets() {
 }
 
 /// A sample step that shares a factor with the shard count still splits the sample evenly:
-/// `--sample 64` of ForwardBase's 3072 variants is 48, and shard 2/2 runs 24 of them (it ran
-/// none when shards were taken by the index in the space).
+/// `--full --sample 64` of ForwardBase's 9216 variants is 144, and shard 2/2 runs 72 of them
+/// (it ran none when shards were taken by the index in the space).
 #[test]
 fn check_gpu_sample_and_shard_with_a_common_factor() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
         .args(["check-gpu", "--json", "--shader", "standard", "--pass"])
         .args([
             "ForwardBase",
+            "--full",
             "--sample",
             "64",
             "--shard",
@@ -145,7 +146,7 @@ fn check_gpu_sample_and_shard_with_a_common_factor() {
         String::from_utf8_lossy(&out.stderr)
     );
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(report["passes"][0]["variants_run"], 24, "{report}");
+    assert_eq!(report["passes"][0]["variants_run"], 72, "{report}");
 }
 
 /// URP's UniversalGBuffer: by default a 3-wise covering set plus one partner per keyword

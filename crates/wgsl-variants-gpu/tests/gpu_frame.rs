@@ -1,5 +1,6 @@
 //! The whole built-in frame forward and deferred, HDR and LDR, every pixel against the CPU
-//! reference and forward against deferred (docs/shading.md §12).
+//! reference and forward against deferred (docs/shading.md §12), in BRDF1 (Unity's desktop
+//! tier) and, HDR, BRDF3 (the lookup table), LDR, BRDF2.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
 
@@ -10,6 +11,7 @@ use wgsl_variants_gpu::check::frame::{
     FrameScene, ResidentFrame, check_frame, compare, render_deferred, render_forward,
     render_shadows,
 };
+use wgsl_variants_shaders::reference::brdf::Brdf;
 
 /// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
 fn context() -> Option<GpuContext> {
@@ -19,14 +21,14 @@ fn context() -> Option<GpuContext> {
     )
 }
 
-fn frame_passes(hdr: bool) {
+fn frame_passes(hdr: bool, brdf: Brdf) {
     let Some(ctx) = context() else {
         return;
     };
     let lib = wgsl_variants_shaders::library().expect("bundled library");
-    let frame = FrameScene::new();
+    let frame = FrameScene::new().with_brdf(brdf);
     let report = check_frame(&ctx, &lib, &frame, hdr).expect("the frame renders");
-    println!("{report}");
+    println!("{brdf:?}: {report}");
     assert!(report.passed(), "{report}");
     // Most of the frame is surface, not silhouette.
     assert!(report.compared > 2000, "{report}");
@@ -45,12 +47,14 @@ fn frame_passes(hdr: bool) {
 
 #[test]
 fn the_hdr_frame_is_the_same_forward_and_deferred() {
-    frame_passes(true);
+    frame_passes(true, Brdf::Brdf1);
+    frame_passes(true, Brdf::Brdf3);
 }
 
 #[test]
 fn the_ldr_frame_is_the_same_forward_and_deferred() {
-    frame_passes(false);
+    frame_passes(false, Brdf::Brdf1);
+    frame_passes(false, Brdf::Brdf2);
 }
 
 /// The comparison is sharp: a frame rendered with the main light 10 % too bright, the warm

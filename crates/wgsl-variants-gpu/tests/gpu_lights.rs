@@ -1,5 +1,5 @@
-//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (128) and
-//! of `standard/ForwardAdd` (6144; in CI a 3-wise covering set with keyword partners, every
+//! The GPU proof of the per-pixel lights: every variant of `deferred_shading/Lighting` (384) and
+//! of `standard/ForwardAdd` (18432; in CI a 3-wise covering set with keyword partners, every
 //! variant with `-- --ignored`), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
 //! with the CPU reference (`wgsl_variants_shaders::reference::light`), each keyword proven to change at
 //! least one pixel; and a library with a wrong falloff is caught.
@@ -13,8 +13,10 @@ mod common;
 use wgsl_variants::Library;
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
 
+/// Every variant of `shader/pass` (every `sample`-th), whatever the pass's size.
 fn run(lib: &Library, shader: &str, pass: &str, sample: usize) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
+    options.full = true;
     options.shader = Some(shader.to_owned());
     options.pass = Some(pass.to_owned());
     options.adapter = common::gpu::adapter_filter();
@@ -43,14 +45,14 @@ fn deferred_shading_every_variant_matches_the_reference() {
     );
     assert!(p.passed(), "{report}");
     assert_eq!(p.mismatches, 0, "{report}");
-    assert_eq!(p.variants_run, 128);
+    assert_eq!(p.variants_run, 384);
     // Every variant over two G-buffers of its HDR mode (with RT4 for SHADOWS_SHADOWMASK),
     // 16 × 16 pixels each.
-    assert_eq!((p.draws, p.pixels_compared), (256, 256 * 256));
+    assert_eq!((p.draws, p.pixels_compared), (768, 768 * 256));
     // Four light keywords against POINT (the set's first), SHADOWS_DEPTH, SHADOWS_CUBE,
-    // SHADOWS_SCREEN, SHADOWS_SOFT, SHADOWS_SHADOWMASK, LIGHTMAP_SHADOW_MIXING and
-    // UNITY_HDR_ON.
-    assert_eq!(p.keywords.len(), 11, "{report}");
+    // SHADOWS_SCREEN, SHADOWS_SOFT, SHADOWS_SHADOWMASK, LIGHTMAP_SHADOW_MIXING, UNITY_HDR_ON
+    // and the BRDF tiers UNITY_PBS_USE_BRDF2 and UNITY_PBS_USE_BRDF3.
+    assert_eq!(p.keywords.len(), 13, "{report}");
     for k in &p.keywords {
         eprintln!(
             "  {}: {} of {} pairs changed",
@@ -58,15 +60,15 @@ fn deferred_shading_every_variant_matches_the_reference() {
         );
         if k.keyword == "SHADOWS_SOFT" {
             // Only with a shadow keyword: without one it changes nothing (those 24 variants
-            // are duplicates, as in Unity); with one, every pair changes.
-            assert_eq!((k.pairs, k.pairs_changed), (48, 24), "{report}");
+            // per BRDF tier are duplicates, as in Unity); with one, every pair changes.
+            assert_eq!((k.pairs, k.pairs_changed), (144, 72), "{report}");
         } else if k.keyword == "SHADOWS_SHADOWMASK" {
             // Distance Shadowmask with a realtime shadow keeps the realtime factor (no fade):
-            // those 16 pairs are alike; every other pair reads the baked occlusion.
-            assert_eq!((k.pairs, k.pairs_changed), (64, 48), "{report}");
+            // those 16 pairs per tier are alike; every other pair reads the baked occlusion.
+            assert_eq!((k.pairs, k.pairs_changed), (192, 144), "{report}");
         } else if k.keyword == "LIGHTMAP_SHADOW_MIXING" {
             // Only with SHADOWS_SHADOWMASK and a realtime shadow: min(realtime, baked).
-            assert_eq!((k.pairs, k.pairs_changed), (64, 16), "{report}");
+            assert_eq!((k.pairs, k.pairs_changed), (192, 48), "{report}");
         } else {
             assert!(k.pairs_changed == k.pairs && k.pairs > 0, "{report}");
         }
@@ -83,14 +85,14 @@ fn deferred_shading_every_variant_matches_the_reference() {
 fn forward_add_covering_set_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // 4 light keywords (against DIRECTIONAL), 4 shadow keywords, 10 material keywords.
-    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardAdd", 18) else {
+    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardAdd", 20) else {
         return;
     };
     assert_eq!(p.pixels_compared, p.variants_run * 256);
 }
 
-/// Every variant of `standard/ForwardAdd` (6144, 4992 distinct texts; minutes on lavapipe with
-/// a cold shader cache, so CI runs the covering set above).
+/// Every variant of `standard/ForwardAdd` (18432, 13104 distinct texts; many minutes on
+/// lavapipe with a cold shader cache, so CI runs the covering set above).
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_lights -- --ignored"]
 fn forward_add_every_variant_matches_the_reference() {
@@ -100,7 +102,7 @@ fn forward_add_every_variant_matches_the_reference() {
         return;
     };
     let p = &report.passes[0];
-    let variants = 6144usize.div_ceil(n);
+    let variants = 18432usize.div_ceil(n);
     eprintln!(
         "standard/ForwardAdd on {}: {} pixels over {} variants ({} discarded) in {:.1} s",
         report.adapter, p.pixels_compared, p.variants_run, p.discarded_compared, p.seconds
@@ -109,8 +111,9 @@ fn forward_add_every_variant_matches_the_reference() {
     assert_eq!(p.variants_run, variants, "{report}");
     assert_eq!(p.pixels_compared, variants * 256);
     if n == 1 {
-        // 4 light keywords (against DIRECTIONAL), 4 shadow keywords, 10 material keywords.
-        assert_eq!(p.keywords.len(), 18, "{report}");
+        // 4 light keywords (against DIRECTIONAL), 4 shadow keywords, 10 material keywords,
+        // 2 BRDF tiers.
+        assert_eq!(p.keywords.len(), 20, "{report}");
         assert!(p.untested_keywords.is_empty(), "{report}");
         assert!(p.passed(), "{report}");
     }
@@ -163,6 +166,44 @@ fn a_wrong_pcf_weight_fails_the_check() {
     }
 }
 
+/// The BRDF tiers are each checked: a planted fault in one tier's direct term fails the
+/// lighting check in that tier's variants only — BRDF1's Smith-joint visibility with 0.45 for 0.5,
+/// BRDF2's lobe with `a + 0.6` for `a + 0.5`, BRDF3's lookup table read with its axes swapped.
+#[test]
+fn a_wrong_brdf_term_fails_the_check_in_its_tier() {
+    let tier_of = |m: &check::Mismatch| {
+        if m.keywords.contains("UNITY_PBS_USE_BRDF2") {
+            2
+        } else if m.keywords.contains("UNITY_PBS_USE_BRDF3") {
+            3
+        } else {
+            1
+        }
+    };
+    let faults = [
+        (
+            1,
+            "lighting/direct.wgsl",
+            "let vis = 0.5 / (lambda_v",
+            "let vis = 0.45 / (lambda_v",
+        ),
+        (2, "lighting/direct.wgsl", "(a + 0.5)", "(a + 0.6)"),
+        (
+            3,
+            "lighting/brdf_lut.wgsl",
+            "vec2f(x, pr) * vec2f(size)",
+            "vec2f(pr, x) * vec2f(size)",
+        ),
+    ];
+    for (tier, file, from, to) in faults {
+        let lib = common::mutate::bundled_with(file, from, to);
+        let caught = lighting_check_fails(&lib, |m| tier_of(m) == tier);
+        if let Some(n) = caught {
+            eprintln!("a wrong BRDF{tier} term is caught: {n} mismatches");
+        }
+    }
+}
+
 /// The shadowmask check is not vacuous: a Shadowmask mode that takes the lighter of the
 /// realtime and baked shadows fails it, in the mixing variants with a realtime shadow only
 /// (without SHADOWS_SHADOWMASK too: baked is 1 there, so `max` drops the realtime shadow).
@@ -186,11 +227,13 @@ fn a_wrong_shadowmask_mix_fails_the_check() {
 
 /// Forward = deferred for one light: ForwardAdd and G-buffer + Lighting (HDR) agree on every
 /// pixel within the bound derived from the G-buffer's quantization
-/// (`reference::tolerance::gbuffer_light_bound`), for every light type and two keyword sets.
+/// (`reference::tolerance::gbuffer_light_bound`), for every light type and three keyword sets,
+/// one per BRDF tier.
 #[test]
 fn forward_and_deferred_light_agree_per_pixel() {
     use wgsl_variants_gpu::check::forward_deferred::forward_vs_deferred;
     use wgsl_variants_gpu::check::{LightRig, TestScene};
+    use wgsl_variants_shaders::reference::brdf::Brdf;
     use wgsl_variants_shaders::reference::light::LightType;
     use wgsl_variants_shaders::reference::surface::{Keywords, SmoothnessSource};
 
@@ -204,12 +247,18 @@ fn forward_and_deferred_light_agree_per_pixel() {
     let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::default();
     let rig = LightRig::new(&scene);
+    // One input per BRDF tier.
     let inputs = [
         Keywords::EVERY_MAP,
         Keywords {
             smoothness: SmoothnessSource::Albedo,
             normal_map: true,
+            brdf: Brdf::Brdf2,
             ..Keywords::NONE
+        },
+        Keywords {
+            brdf: Brdf::Brdf3,
+            ..Keywords::EVERY_MAP
         },
     ];
     let (mut pixels, mut lit, mut worst, mut sum_light, mut sum_allowed) = (0, 0, 0.0f32, 0.0, 0.0);

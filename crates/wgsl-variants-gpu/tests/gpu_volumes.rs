@@ -101,10 +101,14 @@ fn volume_and_full_screen_draws_are_bit_identical() {
                 c.differing.len()
             );
             assert!(c.identical(), "{} hdr={}: {:?}", case.name, g.hdr, c);
-            // Some geometry lies outside the light's reach; some is lit, except by the light
+            // Some geometry lies outside the light's reach, except for the light around the
+            // camera, whose range (6) holds the whole view: GGX's long tail (BRDF1) then lights
+            // every pixel, metallic ones included (a Blinn-Phong lobe of exponent 256
+            // underflowed to 0 away from its highlight). Some is lit, except by the light
             // behind the surface (which faces away from it: n · l < 0).
             let behind = case.name == "point behind the surface";
-            assert!(c.lit < pixels, "{}: {} lit", case.name, c.lit);
+            let whole_view = case.name == "point around the camera";
+            assert!(whole_view || c.lit < pixels, "{}: {} lit", case.name, c.lit);
             assert!(behind || c.lit > 0, "{}: nothing lit", case.name);
             let marked = chosen.stencil_marked;
             match (&how, case.name) {

@@ -27,6 +27,7 @@
 
 #![deny(missing_docs)]
 
+pub mod brdf_lut;
 pub mod reference;
 
 use wgsl_variants::bake::Bake;

@@ -1,7 +1,8 @@
 #shader standard
-// Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow:
-// a forward base pass (3072 variants), a forward add pass for each extra per-pixel light (6144),
-// a G-buffer pass for the deferred path (6144 variants) and the shadow caster (8). The program is
+// Catlike Coding's "My First Lighting Shader" (Rendering 13, Deferred Shading), metallic workflow,
+// lit with Unity's Standard BRDF in its three tiers: a forward base pass (9216 variants), a
+// forward add pass for each extra per-pixel light (18432), a G-buffer pass for the deferred path
+// (18432 variants) and the shadow caster (8). The program is
 // standard/my_lighting; the lit passes differ only in their keyword sets and in which of
 // FORWARD_BASE_PASS / FORWARD_ADD_PASS / DEFERRED_PASS they define. The caster is
 // standard/shadow_caster.
@@ -19,6 +20,9 @@
 #pragma shader_feature _DETAIL_NORMAL_MAP
 // Unity's multi_compile_fwdbase, of which the main directional light's screen-space shadow.
 #pragma multi_compile _ SHADOWS_SCREEN
+// Unity's Standard BRDF per graphics tier (UNITY_PBS_USE_BRDF1/2/3, which Unity's tier settings
+// select; docs/shading.md §5): no keyword is BRDF1, the desktop tiers' choice.
+#pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
 #define FORWARD_BASE_PASS
 #import standard/my_lighting
 #endpass
@@ -51,6 +55,7 @@
 #pragma exclude SHADOWS_CUBE DIRECTIONAL_COOKIE
 #pragma exclude SHADOWS_SOFT DIRECTIONAL
 #pragma exclude SHADOWS_SOFT DIRECTIONAL_COOKIE
+#pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
 #define FORWARD_ADD_PASS
 #import standard/my_lighting
 #endpass
@@ -72,6 +77,9 @@
 // Unity's multi_compile_prepassfinal shadowmask keyword (the Shadowmask and Distance Shadowmask
 // lighting modes): a fifth target, RT4, holds the object's baked occlusion of up to four lights.
 #pragma multi_compile _ SHADOWS_SHADOWMASK
+// The tier changes the indirect specular only, so with UNITY_ENABLE_REFLECTION_BUFFERS its
+// variants are duplicates (as Unity builds them).
+#pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
 #define DEFERRED_PASS
 #import standard/my_lighting
 #endpass

@@ -26,6 +26,7 @@ use crate::{
 };
 use wgsl_variants::Library;
 use wgsl_variants::variants::Choice;
+use wgsl_variants_shaders::reference::brdf::Brdf;
 use wgsl_variants_shaders::reference::cube::face_margin;
 use wgsl_variants_shaders::reference::gbuffer::{GBufferTexel, decode_normal};
 use wgsl_variants_shaders::reference::probe::{box_project_grown, composite, draw_order, falloff};
@@ -95,11 +96,12 @@ pub fn reflection_buffer(
     gbuffer: &GBufferImage,
     drawing: ProbeDrawing,
 ) -> Result<Reflections, GpuError> {
-    run_reflections(ctx, lib, scene, gbuffer, None, drawing)
+    run_reflections(ctx, lib, scene, gbuffer, None, drawing, Brdf::Brdf1)
 }
 
-/// Draws the deferred probes over `gbuffer` one by one, comparing after each draw when
-/// `report` is given; returns the final reflection buffer.
+/// Draws the deferred probes over `gbuffer` one by one with the Reflections variant of tier
+/// `brdf`, comparing after each draw when `report` is given; returns the final reflection
+/// buffer.
 fn run_reflections(
     ctx: &GpuContext,
     lib: &Library,
@@ -107,13 +109,16 @@ fn run_reflections(
     gbuffer: &GBufferImage,
     mut report: Option<&mut PassReport>,
     drawing: ProbeDrawing,
+    brdf: Brdf,
 ) -> Result<Reflections, GpuError> {
-    let (label, wgsl) = pass_wgsl(lib, "deferred_reflections", "Reflections", &[])?;
+    let tier: Vec<&str> = brdf.keyword().into_iter().collect();
+    let (label, wgsl) = pass_wgsl(lib, "deferred_reflections", "Reflections", &tier)?;
     let (w, h) = (scene.width, scene.height);
     let probes: Vec<_> = scene.deferred_probes.iter().map(|(p, _)| *p).collect();
     let order = draw_order(&probes);
     let input = format!(
-        "G-buffer of standard/Deferred {{{}}}",
+        "{{{}}} over the G-buffer of standard/Deferred {{{}}}",
+        tier.join(", "),
         gbuffer.keywords.join(", ")
     );
     let blend = wgpu::BlendComponent {
@@ -226,7 +231,7 @@ fn run_reflections(
                     None => Vec3::ZERO,
                 };
                 let sample =
-                    reflection_probe_pixel(&g, pos, scene.scene.camera_position, probe, cube);
+                    reflection_probe_pixel(brdf, &g, pos, scene.scene.camera_position, probe, cube);
                 let (src, a) = (sample.truncate(), sample.w);
                 let want = composite(prev, &[(src, a)]);
                 let (raw, got) = pixel(TargetFormat::Rgba16Float, &out, i);
@@ -392,7 +397,16 @@ pub fn render_chain(
     scene: &TestScene,
     gbuffer: &GBufferImage,
 ) -> Result<ChainImages, GpuError> {
-    let refl = run_reflections(ctx, lib, scene, gbuffer, None, ProbeDrawing::Boxes)?.last;
+    let refl = run_reflections(
+        ctx,
+        lib,
+        scene,
+        gbuffer,
+        None,
+        ProbeDrawing::Boxes,
+        Brdf::Brdf1,
+    )?
+    .last;
     let rt3 = run_add(ctx, lib, scene, gbuffer, &refl, None)?;
     let frame = if gbuffer.hdr {
         None
@@ -428,6 +442,8 @@ pub fn check_deferred_chain(
     let mut fin = PassReport::new("deferred_final", "Final");
     let (mut t_refl, mut t_add, mut t_final) = (0.0, 0.0, 0.0);
     let mut add_outputs: Vec<(bool, Vec<u8>)> = Vec::new();
+    // The reflection buffers of the first LDR input, one per tier (Brdf::ALL order).
+    let mut tier_outputs: Vec<Vec<u8>> = Vec::new();
 
     if wants("Reflections") || wants("Add") || wants("Final") {
         // LDR and HDR G-buffers of each chain input.
@@ -443,14 +459,30 @@ pub fn check_deferred_chain(
                 debug_assert!(Keywords::from_names(&kw).is_ok());
                 let gbuffer = render_gbuffer(ctx, lib, scene, &kw)?;
                 let start = Instant::now();
-                let refl = run_reflections(
-                    ctx,
-                    lib,
-                    scene,
-                    &gbuffer,
-                    wants("Reflections").then_some(&mut reflections),
-                    ProbeDrawing::Boxes,
-                )?;
+                // Every tier over every input (the G-buffer does not depend on the tier with
+                // reflection buffers); BRDF1's buffer goes on to Add.
+                let mut refl = None;
+                for brdf in Brdf::ALL {
+                    if brdf != Brdf::Brdf1 && !wants("Reflections") {
+                        continue;
+                    }
+                    let out = run_reflections(
+                        ctx,
+                        lib,
+                        scene,
+                        &gbuffer,
+                        wants("Reflections").then_some(&mut reflections),
+                        ProbeDrawing::Boxes,
+                        brdf,
+                    )?;
+                    if n == 0 && !hdr {
+                        tier_outputs.push(out.last.clone());
+                    }
+                    if brdf == Brdf::Brdf1 {
+                        refl = Some(out);
+                    }
+                }
+                let refl = refl.expect("BRDF1 always runs");
                 t_refl += start.elapsed().as_secs_f64();
                 let start = Instant::now();
                 let rt3 = run_add(
@@ -488,11 +520,28 @@ pub fn check_deferred_chain(
     if wants("Reflections") {
         let probes: Vec<_> = scene.deferred_probes.iter().map(|(p, _)| *p).collect();
         reflections.notes.push(format!(
-            "{} probes drawn in order {:?} over {} G-buffers; compared after every draw",
+            "{} probes drawn in order {:?} over {} G-buffers, in each BRDF tier; compared after every draw",
             probes.len(),
             draw_order(&probes),
             CHAIN_INPUTS.len() * 2
         ));
+        // Keyword coverage: the tiers' buffers over the same input differ.
+        let pass = lib
+            .pass("deferred_reflections", "Reflections")
+            .map_err(|e| CheckError::lookup("deferred_reflections/Reflections", e))?;
+        let choices: Vec<Choice> = Brdf::ALL
+            .iter()
+            .map(|b| {
+                let tier: Vec<&str> = b.keyword().into_iter().collect();
+                pass.resolve(&tier)
+                    .map_err(|e| CheckError::lookup("deferred_reflections/Reflections", e))
+            })
+            .collect::<Result<_, _>>()?;
+        reflections.variants_run = choices.len();
+        reflections.distinct_shaders = choices.len();
+        reflections.keywords =
+            keyword_coverage(pass, &choices, |a, b| tier_outputs[a] != tier_outputs[b]);
+        reflections.judge_keywords();
         reflections.seconds = t_refl;
         reports.push(reflections);
     }

@@ -19,7 +19,7 @@ use super::scene::TestScene;
 use super::standard::{StandardOutput, standard_job};
 use crate::{CheckError, ColorTarget, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::brdf::diffuse_and_specular_from_metallic;
+use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
 use wgsl_variants_shaders::reference::light::{Cookies, LightType};
 use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
 use wgsl_variants_shaders::reference::surface::{Keywords, surface};
@@ -83,12 +83,10 @@ pub fn forward_vs_deferred(
     // Deferred: the HDR G-buffer, then the lighting pass onto zeros.
     let gbuffer_names = Keywords { hdr: true, ..*kw }.names();
     let gbuffer = render_gbuffer(ctx, lib, scene, &gbuffer_names)?;
+    let mut lighting_names = vec![light.keyword(), "UNITY_HDR_ON"];
+    lighting_names.extend(kw.brdf.keyword());
     let variant = lib
-        .variant(
-            "deferred_shading",
-            "Lighting",
-            &[light.keyword(), "UNITY_HDR_ON"],
-        )
+        .variant("deferred_shading", "Lighting", &lighting_names)
         .map_err(|e| CheckError::lookup("deferred_shading/Lighting", e))?;
     // The scene's orthographic view with depth = 0.5 + z / 20, so it can be inverted.
     let view_proj = scene.view_proj
@@ -142,15 +140,12 @@ pub fn forward_vs_deferred(
             let p = geo.world_position;
             let (l, attenuation) = params.sample(light, p, Some(cookies));
             let v = (scene.scene.camera_position - p).normalize();
-            let h = (l + v).normalize_or_zero();
-            let nl = s.normal.dot(l).clamp(0.0, 1.0);
-            let nh = s.normal.dot(h).clamp(0.0, 1.0);
             let bound = gbuffer_light_bound(
+                kw.brdf,
                 diffuse,
                 spec,
                 s.smoothness,
-                nl,
-                nh,
+                &Dots::new(s.normal, v, l),
                 params.color * attenuation,
             );
             let (f, d) = (rgb(&forward, i), rgb(&deferred, i));

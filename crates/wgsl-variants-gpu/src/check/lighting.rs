@@ -71,5 +71,6 @@ pub(crate) fn lighting_resources(
     }
     resources.extend(depth_camera_resources((scene.width, scene.height), camera));
     resources.extend(rig.resources_for(light));
+    resources.push(super::scene::brdf_lut_resource());
     resources
 }

@@ -21,6 +21,7 @@ use super::scene::TestScene;
 use super::shadows::within;
 use crate::{CheckError, GpuContext, GpuError};
 use wgsl_variants::Library;
+use wgsl_variants_shaders::reference::brdf::Brdf;
 use wgsl_variants_shaders::reference::light::{Cookies, LightType, deferred_light};
 use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, baked_occlusion, mix_realtime_and_baked,
@@ -29,13 +30,14 @@ use wgsl_variants_shaders::reference::surface::{Keywords, reflections_add};
 
 pub use super::rig::{LightRig, MIN_COOKIE_MARGIN};
 
-/// The light type, shadow keywords and HDR mode of a `deferred_shading/Lighting` keyword set.
-fn lighting_keywords(names: &[&str]) -> Result<(LightType, ShadowKeywords, bool), String> {
+/// The light type, shadow keywords and the rest (HDR mode, BRDF tier) of a
+/// `deferred_shading/Lighting` keyword set.
+fn lighting_keywords(names: &[&str]) -> Result<(LightType, ShadowKeywords, Keywords), String> {
     let (light, rest) = LightType::split(names);
     let light = light.ok_or_else(|| format!("no light keyword in {names:?}"))?;
     let (shadow, rest) = ShadowKeywords::split(&rest);
     let kw = Keywords::from_names(&rest).map_err(|e| e.to_string())?;
-    Ok((light, shadow, kw.hdr))
+    Ok((light, shadow, kw))
 }
 
 /// Draws one `Lighting` variant over `gbuffer`, compares every pixel, returns RT3 decoded.
@@ -47,7 +49,7 @@ fn run_lighting(
     gbuffer: &GBufferImage,
     (label, keywords): (&str, &str),
     wgsl: &str,
-    (light, shadow): (LightType, ShadowKeywords),
+    (light, shadow, brdf): (LightType, ShadowKeywords, Brdf),
     report: &mut PassReport,
 ) -> Result<Vec<[f32; 4]>, GpuError> {
     let (w, h) = (scene.width, scene.height);
@@ -88,6 +90,7 @@ fn run_lighting(
         let [lo, hi] = [lo, hi].map(|f| mix_realtime_and_baked(shadow, f, baked));
         let [want_lo, want_hi] = [lo, hi].map(|f| {
             let c = deferred_light(
+                brdf,
                 &stored.to_gbuffer(),
                 p,
                 scene.scene.camera_position,
@@ -158,7 +161,7 @@ pub fn check_deferred_shading(
         };
         let label = variant.label();
         let names = variant.keywords();
-        let (light, shadow, hdr) = lighting_keywords(&names).map_err(|message| {
+        let (light, shadow, kw) = lighting_keywords(&names).map_err(|message| {
             GpuError::from(CheckError::UnknownToReference {
                 variant: label.clone(),
                 message,
@@ -168,7 +171,7 @@ pub fn check_deferred_shading(
         let keywords = choice.label(pass);
         let mut per_input = Vec::new();
         for n in 0..CHAIN_INPUTS.len() {
-            let gbuffer = &gbuffers[&(n, hdr, shadow.shadowmask)];
+            let gbuffer = &gbuffers[&(n, kw.hdr, shadow.shadowmask)];
             per_input.push(run_lighting(
                 ctx,
                 scene,
@@ -176,7 +179,7 @@ pub fn check_deferred_shading(
                 gbuffer,
                 (&label, &keywords),
                 &wgsl,
-                (light, shadow),
+                (light, shadow, kw.brdf),
                 &mut report,
             )?);
         }

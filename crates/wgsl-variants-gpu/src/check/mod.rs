@@ -23,8 +23,8 @@
 //!
 //! | part | what runs |
 //! |---|---|
-//! | passes | `standard/Deferred` (6144 variants; RT4 with `SHADOWS_SHADOWMASK`), `standard/ForwardBase` (3072; `SHADOWS_SCREEN` over the directional light's mask) and `standard/ForwardAdd` (6144, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps and the directional lights' masks) on [`scene::TestScene`] (one render job: [`standard_job`]) |
-//! | [`lights`] | `deferred_shading/Lighting` (all 128 variants) over LDR and HDR G-buffers (with RT4 for `SHADOWS_SHADOWMASK`), positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
+//! | passes | `standard/Deferred` (18432 variants; RT4 with `SHADOWS_SHADOWMASK`), `standard/ForwardBase` (9216; `SHADOWS_SCREEN` over the directional light's mask) and `standard/ForwardAdd` (18432, one light of each type from [`LightRig`], shadowed variants over its [`shadows::ShadowRig`] maps and the directional lights' masks) on [`scene::TestScene`] (one render job: [`standard_job`]); past 8192 variants each, so a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`] |
+//! | [`lights`] | `deferred_shading/Lighting` (all 384 variants: every BRDF tier) over LDR and HDR G-buffers (with RT4 for `SHADOWS_SHADOWMASK`), positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
 //! | [`screen_shadows`] | `screen_space_shadows/Collect` (both variants): the directional lights' maps (`standard/ShadowCaster`, orthographic) turned into masks of the camera view, every pixel against the reference over the read-back map |
 //! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
 //! | [`frame`] | a whole frame (five objects, a main light and four per-pixel lights with cookies and shadows) forward and deferred, HDR and LDR, every pixel against the reference and forward against deferred (the `gpu_frame` test; `render --frame`) |

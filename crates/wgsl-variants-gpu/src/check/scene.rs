@@ -772,8 +772,32 @@ impl StandardBindings<'_> {
             BoundResource::new(1, 9, maps.detail_normal.resource()),
             BoundResource::new(2, 0, Resource::Uniform(object)),
             BoundResource::new(2, 1, maps.shadowmask.resource()),
+            brdf_lut_resource(),
         ]
     }
+}
+
+/// The BRDF3 lookup table (`wgsl/lighting/brdf_lut.wgsl`, group 0 binding 17): the `R16Float`
+/// texels of [`wgsl_variants_shaders::brdf_lut::texels_f16`], generated once per process.
+pub fn brdf_lut_resource() -> BoundResource {
+    use wgsl_variants_shaders::brdf_lut::{HEIGHT, WIDTH, texels_f16};
+    static BYTES: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    let data = BYTES.get_or_init(|| {
+        texels_f16()
+            .into_iter()
+            .flat_map(u16::to_le_bytes)
+            .collect()
+    });
+    BoundResource::new(
+        0,
+        17,
+        Resource::Texture2d {
+            format: wgpu::TextureFormat::R16Float,
+            width: WIDTH,
+            height: HEIGHT,
+            data: data.clone(),
+        },
+    )
 }
 
 /// Appends a `vec4f`.

@@ -63,28 +63,79 @@ pub fn roughness(smoothness: f32) -> (f32, f32) {
     (pr, pr * pr)
 }
 
-/// The indirect specular light:
-/// `surface_reduction · env · fresnel` with `r` the roughness ([`roughness`]),
-/// `surface_reduction = 1 / (r² + 1)`, `grazing = saturate(smoothness + 1 − one_minus_reflectivity)`,
-/// `nv = saturate(dot(n, v))`, `fresnel = mix(spec_color, grazing, (1 − nv)^5)`.
+/// Unity's Standard BRDF tiers (`UNITY_BRDF_PBS`, docs/shading.md §5): which one a variant
+/// uses is its tier keyword — none for BRDF1 (what Unity's desktop graphics tiers select),
+/// `UNITY_PBS_USE_BRDF2` or `UNITY_PBS_USE_BRDF3`.
 ///
-/// `env` is the probe result already multiplied by occlusion; `n` and `v` (towards the camera)
-/// are unit vectors.
+/// ```
+/// use wgsl_variants_shaders::reference::brdf::Brdf;
+/// assert_eq!(Brdf::default(), Brdf::Brdf1);
+/// assert_eq!(Brdf::Brdf3.keyword(), Some("UNITY_PBS_USE_BRDF3"));
+/// assert_eq!(Brdf::Brdf1.keyword(), None);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Brdf {
+    /// GGX with Smith-joint visibility, Disney diffuse, Schlick Fresnel (the default).
+    #[default]
+    Brdf1,
+    /// `UNITY_PBS_USE_BRDF2`: a cheaper GGX-like lobe without Fresnel on the direct light.
+    Brdf2,
+    /// `UNITY_PBS_USE_BRDF3`: normalized Blinn-Phong read from a lookup table
+    /// ([`crate::brdf_lut`]).
+    Brdf3,
+}
+
+impl Brdf {
+    /// The three tiers, in keyword order.
+    pub const ALL: [Brdf; 3] = [Brdf::Brdf1, Brdf::Brdf2, Brdf::Brdf3];
+
+    /// The keyword that selects this tier (`None`: BRDF1, the set's "none").
+    pub fn keyword(self) -> Option<&'static str> {
+        match self {
+            Brdf::Brdf1 => None,
+            Brdf::Brdf2 => Some("UNITY_PBS_USE_BRDF2"),
+            Brdf::Brdf3 => Some("UNITY_PBS_USE_BRDF3"),
+        }
+    }
+}
+
+/// `x⁵` as Unity's `Pow5` writes it (`x·x · x·x · x`).
+fn pow5(x: f32) -> f32 {
+    x * x * (x * x) * x
+}
+
+/// `x⁴` as Unity's `Pow4`.
+fn pow4(x: f32) -> f32 {
+    x * x * (x * x)
+}
+
+/// The indirect specular light of each tier, with `env` the probe result already multiplied
+/// by occlusion, `grazing = saturate(smoothness + 1 − one_minus_reflectivity)`, `pr = 1 −
+/// smoothness`, `r = pr²`:
+///
+/// - BRDF1: `env / (r'² + 1) · mix(spec_color, grazing, (1 − |n·v|)⁵)`, `r' = max(r, 0.002)`;
+/// - BRDF2: `env · (1 − r·pr·(0.6 − 0.08·pr)) · mix(spec_color, grazing, (1 − nv)⁴)`;
+/// - BRDF3: `env · mix(spec_color, grazing, (1 − nv)⁴)`,
+///
+/// with `nv = saturate(n·v)`. `n` and `v` (towards the camera) are unit vectors.
 ///
 /// ```
 /// use glam::Vec3;
-/// use wgsl_variants_shaders::reference::brdf::indirect_specular;
+/// use wgsl_variants_shaders::reference::brdf::{indirect_specular, Brdf};
 /// // Looking straight at a mirror (smoothness 1, r = 0): fresnel = spec_color, no reduction.
-/// let s = indirect_specular(Vec3::splat(2.0), Vec3::splat(0.04), 1.0, 0.96, Vec3::Z, Vec3::Z);
-/// assert_eq!(s, Vec3::splat(0.08));
+/// let s = indirect_specular(Brdf::Brdf1, Vec3::splat(2.0), Vec3::splat(0.04), 1.0, 0.96, Vec3::Z, Vec3::Z);
+/// assert!((s - Vec3::splat(0.08)).abs().max_element() < 1e-6);
 /// // At grazing angle (nv = 0): fresnel = grazing = saturate(1 + 1 − 0.96) = 1.
-/// let g = indirect_specular(Vec3::ONE, Vec3::splat(0.04), 1.0, 0.96, Vec3::Z, Vec3::X);
+/// let g = indirect_specular(Brdf::Brdf3, Vec3::ONE, Vec3::splat(0.04), 1.0, 0.96, Vec3::Z, Vec3::X);
 /// assert_eq!(g, Vec3::ONE);
-/// // Fully rough (r = 1): halved.
-/// let h = indirect_specular(Vec3::ONE, Vec3::splat(0.5), 0.0, 0.0, Vec3::Z, Vec3::Z);
+/// // Fully rough (r = 1): BRDF1 halves, BRDF2 keeps 1 − 0.52.
+/// let h = indirect_specular(Brdf::Brdf1, Vec3::ONE, Vec3::splat(0.5), 0.0, 0.0, Vec3::Z, Vec3::Z);
 /// assert_eq!(h, Vec3::splat(0.25));
+/// let h2 = indirect_specular(Brdf::Brdf2, Vec3::ONE, Vec3::splat(0.5), 0.0, 0.0, Vec3::Z, Vec3::Z);
+/// assert!((h2 - Vec3::splat(0.5 * 0.48)).abs().max_element() < 1e-6);
 /// ```
 pub fn indirect_specular(
+    brdf: Brdf,
     env: Vec3,
     spec_color: Vec3,
     smoothness: f32,
@@ -92,46 +143,175 @@ pub fn indirect_specular(
     n: Vec3,
     v: Vec3,
 ) -> Vec3 {
-    let (_, r) = roughness(smoothness);
-    let surface_reduction = 1.0 / (r * r + 1.0);
-    let grazing = (smoothness + 1.0 - one_minus_reflectivity).clamp(0.0, 1.0);
+    let grazing = Vec3::splat((smoothness + 1.0 - one_minus_reflectivity).clamp(0.0, 1.0));
+    let (pr, r) = roughness(smoothness);
+    let mix = |t: f32| spec_color * (1.0 - t) + grazing * t;
     let nv = n.dot(v).clamp(0.0, 1.0);
-    let f = (1.0 - nv).powi(5);
-    let fresnel = spec_color * (1.0 - f) + Vec3::splat(grazing) * f;
-    surface_reduction * env * fresnel
+    match brdf {
+        Brdf::Brdf1 => {
+            let r = r.max(0.002);
+            let surface_reduction = 1.0 / (r * r + 1.0);
+            surface_reduction * env * mix(pow5(1.0 - n.dot(v).abs()))
+        }
+        Brdf::Brdf2 => {
+            let surface_reduction = 1.0 - r * pr * (0.6 - 0.08 * pr);
+            surface_reduction * env * mix(pow4(1.0 - nv))
+        }
+        Brdf::Brdf3 => env * mix(pow4(1.0 - nv)),
+    }
 }
 
-/// The specular exponent for a smoothness: `exp2(1 + 7 · smoothness)` (2 … 256).
-///
-/// ```
-/// use wgsl_variants_shaders::reference::brdf::specular_power;
-/// assert_eq!(specular_power(0.0), 2.0);
-/// assert_eq!(specular_power(1.0), 256.0);
-/// ```
-pub fn specular_power(smoothness: f32) -> f32 {
-    (1.0 + 7.0 * smoothness).exp2()
+/// The dot products the direct term depends on, unclamped (each tier clamps as Unity does):
+/// `h = l + v` normalized with Unity's `Unity_SafeNormalize` (`h · 1/√max(|h|², 0.001)`),
+/// `r = reflect(v, n)` (BRDF3's mirrored view direction).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dots {
+    /// `n·l`.
+    pub nl: f32,
+    /// `n·h`.
+    pub nh: f32,
+    /// `n·v`.
+    pub nv: f32,
+    /// `l·h`.
+    pub lh: f32,
+    /// `r·l`.
+    pub rl: f32,
 }
 
-/// The direct light of one directional light (forward only):
-/// `(diffuse + spec_color · spec) · light_color · nl` with `h = normalize(l + v)`,
-/// `nl = saturate(dot(n, l))`, `nh = saturate(dot(n, h))`, `p = exp2(1 + 7 · smoothness)`,
-/// `spec = (p + 8) / (8π) · nh^p`.
-///
-/// `n`, `v` (towards the camera) and `l` (towards the light) are unit vectors; `l == −v` has no
-/// half vector (NaN). `nh^p` is `f32::powf` (0 for `nh = 0`).
+impl Dots {
+    /// The dot products of unit vectors `n`, `v` (towards the camera) and `l` (towards the
+    /// light).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants_shaders::reference::brdf::Dots;
+    /// let d = Dots::new(Vec3::Z, Vec3::Z, Vec3::Z);
+    /// assert_eq!((d.nl, d.nh, d.nv, d.lh, d.rl), (1.0, 1.0, 1.0, 1.0, 1.0));
+    /// // l = −v: no half vector, h = 0.
+    /// assert_eq!(Dots::new(Vec3::Z, Vec3::X, Vec3::NEG_X).nh, 0.0);
+    /// ```
+    pub fn new(n: Vec3, v: Vec3, l: Vec3) -> Dots {
+        let hv = l + v;
+        let h = hv * hv.dot(hv).max(0.001).sqrt().recip();
+        let r = super::vector::reflect(v, n);
+        Dots {
+            nl: n.dot(l),
+            nh: n.dot(h),
+            nv: n.dot(v),
+            lh: l.dot(h),
+            rl: r.dot(l),
+        }
+    }
+}
+
+/// The direct term's factors: `direct = light · (diffuse · kd + ks · fresnel(spec_color))`
+/// with `fresnel(s) = s + (1 − s) · f` per channel ([`DirectFactors::apply`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectFactors {
+    /// The diffuse factor (`nl` times BRDF1's Disney diffuse).
+    pub kd: f32,
+    /// The specular factor, before the specular colour.
+    pub ks: f32,
+    /// The Schlick weight `f` ((1 − l·h)⁵ for BRDF1; 0 for BRDF2 and BRDF3, which have no
+    /// Fresnel on the direct light).
+    pub f: f32,
+}
+
+impl DirectFactors {
+    /// The factors of `brdf` at `smoothness` and `dots`; BRDF3 reads
+    /// [`crate::brdf_lut::shared_table`].
+    ///
+    /// - BRDF1: `nl, nh, lh` saturated, `nv = |n·v|`, `pr = 1 − smoothness`,
+    ///   `r = max(pr², 0.002)`; `fd90 = 0.5 + 2·lh²·pr`,
+    ///   `kd = (1 + (fd90 − 1)(1 − nl)⁵)(1 + (fd90 − 1)(1 − nv)⁵) · nl`;
+    ///   `V = 0.5 / (nl(nv(1 − r) + r) + nv(nl(1 − r) + r) + 10⁻⁵)`,
+    ///   `d = (nh·r² − nh)·nh + 1`, `ks = max(V · r² / (d² + 10⁻⁷) · nl, 0)` (Unity's
+    ///   `V · D · π · nl` with `D = r² / (π(d² + 10⁻⁷))`), `f = (1 − lh)⁵`.
+    /// - BRDF2: `kd = nl`, `a = pr²`, `d = nh²(a² − 1) + 1.00001`,
+    ///   `ks = a² / (max(0.1, lh²)·(a + 0.5)·d²·4) · nl`, `f = 0`.
+    /// - BRDF3: `kd = nl`, `ks = lut((r·l)⁴, pr) · 16 · nl`, `f = 0`.
+    pub fn new(brdf: Brdf, smoothness: f32, dots: &Dots) -> DirectFactors {
+        let sat = |x: f32| x.clamp(0.0, 1.0);
+        let nl = sat(dots.nl);
+        let pr = 1.0 - smoothness;
+        match brdf {
+            Brdf::Brdf1 => {
+                let (nh, lh, nv) = (sat(dots.nh), sat(dots.lh), dots.nv.abs());
+                let fd90 = 0.5 + 2.0 * lh * lh * pr;
+                let kd = (1.0 + (fd90 - 1.0) * pow5(1.0 - nl))
+                    * (1.0 + (fd90 - 1.0) * pow5(1.0 - nv))
+                    * nl;
+                let r = (pr * pr).max(0.002);
+                let lambda_v = nl * (nv * (1.0 - r) + r);
+                let lambda_l = nv * (nl * (1.0 - r) + r);
+                let vis = 0.5 / (lambda_v + lambda_l + 1e-5);
+                let a2 = r * r;
+                let d = (nh * a2 - nh) * nh + 1.0;
+                let ks = (vis * a2 / (d * d + 1e-7) * nl).max(0.0);
+                DirectFactors {
+                    kd,
+                    ks,
+                    f: pow5(1.0 - lh),
+                }
+            }
+            Brdf::Brdf2 => {
+                let (nh, lh) = (sat(dots.nh), sat(dots.lh));
+                let a = pr * pr;
+                let a2 = a * a;
+                let d = nh * nh * (a2 - 1.0) + 1.00001;
+                let ks = a2 / ((lh * lh).max(0.1) * (a + 0.5) * (d * d) * 4.0);
+                DirectFactors {
+                    kd: nl,
+                    ks: ks * nl,
+                    f: 0.0,
+                }
+            }
+            Brdf::Brdf3 => {
+                let x = pow4(dots.rl);
+                let lut = crate::brdf_lut::shared_table();
+                let ks = crate::brdf_lut::sample(lut, x, pr) * crate::brdf_lut::RANGE;
+                DirectFactors {
+                    kd: nl,
+                    ks: ks * nl,
+                    f: 0.0,
+                }
+            }
+        }
+    }
+
+    /// `light · (diffuse · kd + ks · (spec_color + (1 − spec_color) · f))`; the specular part is
+    /// 0 when `spec_color` is 0 (BRDF1's `any(specColor)`; the other tiers multiply by it).
+    pub fn apply(&self, diffuse: Vec3, spec_color: Vec3, light: Vec3) -> Vec3 {
+        let fresnel = spec_color + (Vec3::ONE - spec_color) * self.f;
+        let ks = if spec_color == Vec3::ZERO {
+            0.0
+        } else {
+            self.ks
+        };
+        light * (diffuse * self.kd + ks * fresnel)
+    }
+}
+
+/// The direct light of one light with colour (times attenuation) `light_color` from direction
+/// `l`, in tier `brdf` ([`DirectFactors`]). `n`, `v` (towards the camera) and `l` (towards the
+/// light) are unit vectors.
 ///
 /// ```
 /// use glam::Vec3;
-/// use wgsl_variants_shaders::reference::brdf::direct;
-/// // Light, view and normal aligned, smoothness 0 (p = 2): spec = 10 / (8π).
-/// let d = direct(Vec3::splat(0.5), Vec3::splat(0.04), 0.0, Vec3::Z, Vec3::Z, Vec3::Z, Vec3::ONE);
-/// let spec = 10.0 / (8.0 * std::f32::consts::PI);
-/// assert!((d - Vec3::splat(0.5 + 0.04 * spec)).abs().max_element() < 1e-6);
-/// // Light behind the surface: nothing.
-/// let back = direct(Vec3::ONE, Vec3::ONE, 0.5, Vec3::Z, Vec3::Z, Vec3::NEG_Z.lerp(Vec3::X, 0.1).normalize(), Vec3::ONE);
-/// assert_eq!(back, Vec3::ZERO);
+/// use wgsl_variants_shaders::reference::brdf::{direct, Brdf};
+/// // BRDF2, light and view along the normal, smoothness 0 (a = 1): the lobe is
+/// // 1 / (1 · 1.5 · 1.00001² · 4).
+/// let d = direct(Brdf::Brdf2, Vec3::splat(0.5), Vec3::splat(0.04), 0.0, Vec3::Z, Vec3::Z, Vec3::Z, Vec3::ONE);
+/// assert!((d - Vec3::splat(0.5 + 0.04 / 6.0)).abs().max_element() < 1e-5);
+/// // Light behind the surface: nothing, in every tier.
+/// for brdf in Brdf::ALL {
+///     let back = direct(brdf, Vec3::ONE, Vec3::ONE, 0.5, Vec3::Z, Vec3::Z, Vec3::NEG_Z, Vec3::ONE);
+///     assert_eq!(back, Vec3::ZERO);
+/// }
 /// ```
+#[allow(clippy::too_many_arguments)]
 pub fn direct(
+    brdf: Brdf,
     diffuse: Vec3,
     spec_color: Vec3,
     smoothness: f32,
@@ -140,12 +320,11 @@ pub fn direct(
     l: Vec3,
     light_color: Vec3,
 ) -> Vec3 {
-    let h = (l + v).normalize();
-    let nl = n.dot(l).clamp(0.0, 1.0);
-    let nh = n.dot(h).clamp(0.0, 1.0);
-    let p = specular_power(smoothness);
-    let spec = (p + 8.0) / (8.0 * std::f32::consts::PI) * nh.powf(p);
-    (diffuse + spec_color * spec) * light_color * nl
+    DirectFactors::new(brdf, smoothness, &Dots::new(n, v, l)).apply(
+        diffuse,
+        spec_color,
+        light_color,
+    )
 }
 
 #[cfg(test)]
@@ -174,53 +353,111 @@ mod tests {
 
     #[test]
     fn indirect_specular_hand_computed() {
-        // smoothness 0.5: pr = 0.5, r = 0.25, reduction = 1/(1 + 1/16) = 16/17.
+        // smoothness 0.5: pr = 0.5, r = 0.25, BRDF1's reduction = 1/(1 + 1/16) = 16/17.
         // omr = 0.48 → grazing = saturate(0.5 + 1 − 0.48) = 1.
         // nv = 0.5 → (1 − nv)^5 = 1/32. fresnel = spec·31/32 + 1/32.
         let n = Vec3::Z;
         let v = Vec3::new((0.75f32).sqrt(), 0.0, 0.5);
         let spec = Vec3::new(0.42, 0.22, 0.12);
         let env = Vec3::new(1.0, 2.0, 4.0);
-        let got = indirect_specular(env, spec, 0.5, 0.48, n, v);
+        let got = indirect_specular(Brdf::Brdf1, env, spec, 0.5, 0.48, n, v);
         let want = (16.0 / 17.0) * env * (spec * (31.0 / 32.0) + 1.0 / 32.0);
         assert!((got - want).abs().max_element() < 1e-6, "{got} vs {want}");
-        // Grazing below 1: smoothness 0, omr 0.96 → 0.04.
-        let g = indirect_specular(Vec3::ONE, Vec3::ZERO, 0.0, 0.96, n, Vec3::X);
-        assert!((g - Vec3::splat(0.04 * 0.5)).abs().max_element() < 1e-7);
-        // View below the surface: nv clamps to 0.
-        let below = indirect_specular(Vec3::ONE, Vec3::ZERO, 0.0, 0.96, n, Vec3::NEG_Z);
-        assert_eq!(below, g);
+        // BRDF2: reduction 1 − 0.25·0.5·(0.6 − 0.04) = 0.93, (1 − nv)^4 = 1/16.
+        let got = indirect_specular(Brdf::Brdf2, env, spec, 0.5, 0.48, n, v);
+        let want = 0.93 * env * (spec * (15.0 / 16.0) + 1.0 / 16.0);
+        assert!((got - want).abs().max_element() < 1e-6, "{got} vs {want}");
+        // BRDF3: no reduction.
+        let got = indirect_specular(Brdf::Brdf3, env, spec, 0.5, 0.48, n, v);
+        let want = env * (spec * (15.0 / 16.0) + 1.0 / 16.0);
+        assert!((got - want).abs().max_element() < 1e-6, "{got} vs {want}");
+        // BRDF1 takes |n·v|: a view below the surface mirrors the one above; the others clamp.
+        let below = Vec3::new(v.x, 0.0, -v.z);
+        assert_eq!(
+            indirect_specular(Brdf::Brdf1, env, spec, 0.5, 0.48, n, below),
+            indirect_specular(Brdf::Brdf1, env, spec, 0.5, 0.48, n, v)
+        );
+        let flat = indirect_specular(Brdf::Brdf3, env, spec, 0.5, 0.48, n, Vec3::X);
+        assert_eq!(
+            indirect_specular(Brdf::Brdf3, env, spec, 0.5, 0.48, n, below),
+            flat
+        );
     }
 
+    /// BRDF1 at a hand-computed configuration: n = Z, l at 60° from n, v = n, so h is at 30°.
     #[test]
-    fn direct_hand_computed() {
-        // n = Z, l at 60° from n in the XZ plane, v = n: h = normalize(l + v) is at 30°.
+    fn brdf1_direct_hand_computed() {
         let n = Vec3::Z;
         let l = Vec3::new((0.75f32).sqrt(), 0.0, 0.5);
         let v = Vec3::Z;
-        let smoothness = 3.0 / 7.0; // p = 2^4 = 16
-        let diffuse = Vec3::new(0.2, 0.3, 0.4);
-        let spec_color = Vec3::splat(0.5);
-        let lc = Vec3::new(1.0, 2.0, 0.5);
-        let got = direct(diffuse, spec_color, smoothness, n, v, l, lc);
+        let smoothness = 0.5f32; // pr = 0.5, r = 0.25
+        let (nl, nv) = (0.5f32, 1.0f32);
         let nh = (PI / 6.0).cos();
-        let spec = 24.0 / (8.0 * PI) * nh.powi(16);
-        let want = (diffuse + spec_color * spec) * lc * 0.5;
+        let lh = nh; // h bisects l and v
+        let pr = 0.5f32;
+        let fd90 = 0.5 + 2.0 * lh * lh * pr;
+        let kd = (1.0 + (fd90 - 1.0) * (1.0 - nl).powi(5)) * 1.0 * nl;
+        let r = 0.25f32;
+        let vis = 0.5 / (nl * (nv * (1.0 - r) + r) + nv * (nl * (1.0 - r) + r) + 1e-5);
+        let d = nh * nh * (r * r - 1.0) + 1.0;
+        let dist = r * r / (PI * (d * d + 1e-7));
+        let ks = vis * dist * PI * nl;
+        let spec = Vec3::new(0.04, 0.5, 1.0);
+        let diffuse = Vec3::new(0.2, 0.3, 0.4);
+        let lc = Vec3::new(1.0, 2.0, 0.5);
+        let fresnel = spec + (Vec3::ONE - spec) * (1.0 - lh).powi(5);
+        let want = diffuse * lc * kd + ks * lc * fresnel;
+        let got = direct(Brdf::Brdf1, diffuse, spec, smoothness, n, v, l, lc);
         assert!((got - want).abs().max_element() < 1e-5, "{got} vs {want}");
-        assert!((specular_power(smoothness) - 16.0).abs() < 1e-5);
+        // No specular colour, no specular at all (Unity's any(specColor)).
+        let matte = direct(Brdf::Brdf1, diffuse, Vec3::ZERO, smoothness, n, v, l, lc);
+        assert!((matte - diffuse * lc * kd).abs().max_element() < 1e-6);
     }
 
+    /// BRDF3 reads the table at ((r·l)⁴, pr) and scales by 16.
+    #[test]
+    fn brdf3_direct_reads_the_table() {
+        let n = Vec3::Z;
+        let v = Vec3::new(0.6, 0.0, 0.8);
+        let l = Vec3::new(-0.6, 0.0, 0.8); // the mirror direction: r·l = 1
+        let got = direct(Brdf::Brdf3, Vec3::ZERO, Vec3::ONE, 0.5, n, v, l, Vec3::ONE);
+        let want = crate::brdf_lut::sample(crate::brdf_lut::shared_table(), 1.0, 0.5) * 16.0 * 0.8;
+        assert!(
+            (got - Vec3::splat(want)).abs().max_element() < 1e-6,
+            "{got} {want}"
+        );
+        assert!(
+            want > 10.0,
+            "a bright highlight at the mirror direction: {want}"
+        );
+    }
+
+    /// Each tier vanishes with a grazing light and stays finite for l = −v.
     #[test]
     fn direct_vanishes_with_grazing_light() {
-        let d = direct(
-            Vec3::ONE,
-            Vec3::ONE,
-            0.8,
-            Vec3::Z,
-            Vec3::Z,
-            Vec3::X,
-            Vec3::ONE,
-        );
-        assert_eq!(d, Vec3::ZERO);
+        for brdf in Brdf::ALL {
+            let d = direct(
+                brdf,
+                Vec3::ONE,
+                Vec3::ONE,
+                0.8,
+                Vec3::Z,
+                Vec3::Z,
+                Vec3::X,
+                Vec3::ONE,
+            );
+            assert_eq!(d, Vec3::ZERO, "{brdf:?}");
+            let opposite = direct(
+                brdf,
+                Vec3::ONE,
+                Vec3::ONE,
+                0.8,
+                Vec3::Z,
+                Vec3::X,
+                Vec3::NEG_X,
+                Vec3::ONE,
+            );
+            assert!(opposite.is_finite(), "{brdf:?}");
+        }
     }
 }

@@ -16,7 +16,7 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::brdf::direct;
+use super::brdf::{Brdf, direct};
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
 use super::vector::view_and_reflection;
@@ -741,11 +741,12 @@ pub fn look_at_rh(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
     )
 }
 
-/// The direct light of one light at one pixel: the Standard BRDF's direct term
+/// The direct light of one light at one pixel: the Standard BRDF's direct term in tier `brdf`
 /// ([`direct`]) with `light_color = color · attenuation` and `l` from [`LightParams::sample`].
 /// `v = normalize(camera − p)`.
 #[allow(clippy::too_many_arguments)]
 pub fn light_direct(
+    brdf: Brdf,
     diffuse: Vec3,
     spec_color: Vec3,
     smoothness: f32,
@@ -759,6 +760,7 @@ pub fn light_direct(
     let (v, _) = view_and_reflection(camera_position, p, n);
     let (l, attenuation) = light.sample(light_type, p, cookies);
     direct(
+        brdf,
         diffuse,
         spec_color,
         smoothness,
@@ -777,6 +779,7 @@ pub fn light_direct(
 /// RT3 after the draw is [`super::surface::reflections_add`]`(rt3, light, hdr)`: `rt3 + light`
 /// (HDR, One/One) or `rt3 · exp2(−light)` (LDR, DstColor/Zero).
 pub fn deferred_light(
+    brdf: Brdf,
     gbuffer: &GBuffer,
     p: Vec3,
     camera_position: Vec3,
@@ -786,6 +789,7 @@ pub fn deferred_light(
 ) -> Vec3 {
     let n = decode_normal(gbuffer.rt2.truncate());
     light_direct(
+        brdf,
         gbuffer.rt0.truncate(),
         gbuffer.rt1.truncate(),
         gbuffer.rt1.w,
@@ -979,6 +983,7 @@ mod tests {
             true,
         );
         let c = deferred_light(
+            Brdf::Brdf2,
             &g,
             Vec3::ZERO,
             Vec3::new(0.0, 3.0, 0.0),
@@ -986,13 +991,15 @@ mod tests {
             LightType::Directional,
             None,
         );
-        let spec = 10.0 / (8.0 * std::f32::consts::PI) * 0.04;
+        // BRDF2 with n = v = l, smoothness 0 (a = 1): ks = 1 / (1.5 · 1.00001² · 4).
+        let spec = 0.04 / (1.5 * 1.00001f32 * 1.00001 * 4.0);
         assert!(close(c, Vec3::splat(0.5 + spec)), "{c}");
         // The same surface under a point light out of range: nothing.
         let far = Light::point(Vec3::new(0.0, 3.0, 0.0), 2.0, Vec3::ONE)
             .params()
             .unwrap();
         let none = deferred_light(
+            Brdf::Brdf1,
             &g,
             Vec3::ZERO,
             Vec3::new(0.0, 3.0, 0.0),

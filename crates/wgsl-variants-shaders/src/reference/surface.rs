@@ -18,7 +18,9 @@
 
 use glam::{Vec3, Vec4};
 
-use super::brdf::{diffuse_and_specular_from_metallic, direct, indirect_specular, sh_ambient};
+use super::brdf::{
+    Brdf, diffuse_and_specular_from_metallic, direct, indirect_specular, sh_ambient,
+};
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
 use super::ldr::{ldr_accumulate, ldr_decode};
@@ -84,6 +86,8 @@ pub struct Keywords {
     /// `UNITY_ENABLE_REFLECTION_BUFFERS`: the Deferred pass leaves indirect specular out of RT3;
     /// the DeferredReflections passes add it per probe.
     pub reflection_buffers: bool,
+    /// The Standard BRDF's tier: none (BRDF1), `UNITY_PBS_USE_BRDF2` or `UNITY_PBS_USE_BRDF3`.
+    pub brdf: Brdf,
 }
 
 /// A keyword set the reference cannot model.
@@ -104,7 +108,7 @@ pub enum KeywordsError {
 }
 
 /// Every keyword name [`Keywords::from_names`] knows, in the order [`Keywords::names`] lists them.
-pub const KEYWORD_NAMES: [&str; 14] = [
+pub const KEYWORD_NAMES: [&str; 16] = [
     "_RENDERING_CUTOUT",
     "_RENDERING_FADE",
     "_RENDERING_TRANSPARENT",
@@ -119,6 +123,8 @@ pub const KEYWORD_NAMES: [&str; 14] = [
     "_DETAIL_NORMAL_MAP",
     "UNITY_HDR_ON",
     "UNITY_ENABLE_REFLECTION_BUFFERS",
+    "UNITY_PBS_USE_BRDF2",
+    "UNITY_PBS_USE_BRDF3",
 ];
 
 impl Default for Keywords {
@@ -141,6 +147,7 @@ impl Keywords {
         detail_normal: false,
         hdr: false,
         reflection_buffers: false,
+        brdf: Brdf::Brdf1,
     };
 
     /// Every texture map on, smoothness from the metallic map's alpha; opaque, LDR, no
@@ -187,6 +194,7 @@ impl Keywords {
         let mut k = Keywords::default();
         let mut rendering: Option<&str> = None;
         let mut smoothness: Option<&str> = None;
+        let mut tier: Option<&str> = None;
         fn one_of_set<'a>(slot: &mut Option<&'a str>, name: &'a str) -> Result<(), KeywordsError> {
             match *slot {
                 Some(previous) if previous != name => Err(KeywordsError::SameSet {
@@ -231,6 +239,14 @@ impl Keywords {
                 "_DETAIL_NORMAL_MAP" => k.detail_normal = true,
                 "UNITY_HDR_ON" => k.hdr = true,
                 "UNITY_ENABLE_REFLECTION_BUFFERS" => k.reflection_buffers = true,
+                "UNITY_PBS_USE_BRDF2" => {
+                    one_of_set(&mut tier, name)?;
+                    k.brdf = Brdf::Brdf2;
+                }
+                "UNITY_PBS_USE_BRDF3" => {
+                    one_of_set(&mut tier, name)?;
+                    k.brdf = Brdf::Brdf3;
+                }
                 other => return Err(KeywordsError::Unknown(other.to_string())),
             }
         }
@@ -262,6 +278,8 @@ impl Keywords {
             self.detail_normal,
             self.hdr,
             self.reflection_buffers,
+            self.brdf == Brdf::Brdf2,
+            self.brdf == Brdf::Brdf3,
         ];
         KEYWORD_NAMES
             .iter()
@@ -604,8 +622,8 @@ pub fn forward_environment(scene: &Scene, world_position: Vec3, r: Vec3, smoothn
 }
 
 /// What the lighting shares between the passes: the view vector, the indirect diffuse light
-/// (`sh(n) · occlusion`) and, when `with_reflections`, the forward probes' indirect specular
-/// (else 0).
+/// (`sh(n) · occlusion`) and, when `with_reflections`, the forward probes' indirect specular in
+/// tier `brdf` (else 0).
 fn indirect(
     s: &Surface,
     spec: Vec3,
@@ -613,12 +631,13 @@ fn indirect(
     geo: &Geometry,
     scene: &Scene,
     with_reflections: bool,
+    brdf: Brdf,
 ) -> (Vec3, Vec3, Vec3) {
     let (v, r) = view_and_reflection(scene.camera_position, geo.world_position, s.normal);
     let indirect_diffuse = sh_ambient(scene.sh_r, scene.sh_g, scene.sh_b, s.normal) * s.occlusion;
     let specular = if with_reflections {
         let env = forward_environment(scene, geo.world_position, r, s.smoothness) * s.occlusion;
-        indirect_specular(env, spec, s.smoothness, omr, s.normal, v)
+        indirect_specular(brdf, env, spec, s.smoothness, omr, s.normal, v)
     } else {
         Vec3::ZERO
     };
@@ -660,7 +679,7 @@ pub fn shade_deferred(
     }
     let (diffuse, spec, omr) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
     let (_, indirect_diffuse, indirect_specular) =
-        indirect(&s, spec, omr, geo, scene, !kw.reflection_buffers);
+        indirect(&s, spec, omr, geo, scene, !kw.reflection_buffers, kw.brdf);
     let c = s.emission + diffuse * indirect_diffuse + indirect_specular;
     Some(GBuffer::pack(
         diffuse,
@@ -713,8 +732,10 @@ pub fn shade_forward(
         diffuse *= alpha;
         alpha = 1.0 - omr + alpha * omr;
     }
-    let (v, indirect_diffuse, indirect_specular) = indirect(&s, spec, omr, geo, scene, true);
+    let (v, indirect_diffuse, indirect_specular) =
+        indirect(&s, spec, omr, geo, scene, true, kw.brdf);
     let d = direct(
+        kw.brdf,
         diffuse,
         spec,
         s.smoothness,
@@ -776,6 +797,7 @@ pub fn shade_forward_add(
         alpha = 1.0 - omr + alpha * omr;
     }
     let rgb = light_direct(
+        kw.brdf,
         diffuse,
         spec,
         s.smoothness,
@@ -801,7 +823,7 @@ pub fn shade_forward_add(
 /// smoothness = RT1.a, `n = decode_normal(RT2.rgb)`. Then `v = normalize(camera − p)`,
 /// `r = reflect(−v, n)`, the probe's cube is sampled in `box_project_grown(r, p, probe)` and
 /// RGBM-decoded, `env = sample · occlusion`, and
-/// `rgb = indirect_specular(env, spec, smoothness, 1 − max(spec.r, spec.g, spec.b), n, v)`;
+/// `rgb = indirect_specular(brdf, env, spec, smoothness, 1 − max(spec.r, spec.g, spec.b), n, v)`;
 /// `a = falloff(p, probe)`.
 ///
 /// `one_minus_reflectivity` is not stored in the G-buffer; like Unity's
@@ -814,15 +836,17 @@ pub fn shade_forward_add(
 /// use wgsl_variants_shaders::reference::cube::CubeFaces;
 /// use wgsl_variants_shaders::reference::gbuffer::GBuffer;
 /// use wgsl_variants_shaders::reference::probe::Probe;
+/// use wgsl_variants_shaders::reference::brdf::Brdf;
 /// use wgsl_variants_shaders::reference::surface::reflection_probe_pixel;
 /// // A mirror (smoothness 1) with spec colour 1, seen head-on: rgb = the probe colour.
 /// let g = GBuffer::pack(Vec3::ZERO, 1.0, Vec3::ONE, 1.0, Vec3::Z, Vec3::ZERO, true);
 /// let probe = Probe::new(Vec3::ZERO, Vec3::splat(-1.0), Vec3::splat(1.0));
 /// let cube = CubeFaces::uniform(Vec4::new(0.25, 0.5, 0.75, 1.0));
-/// let out = reflection_probe_pixel(&g, Vec3::new(1.5, 0.0, 0.0), Vec3::new(1.5, 0.0, 5.0), &probe, &cube);
+/// let out = reflection_probe_pixel(Brdf::Brdf1, &g, Vec3::new(1.5, 0.0, 0.0), Vec3::new(1.5, 0.0, 5.0), &probe, &cube);
 /// assert_eq!(out, Vec4::new(0.25, 0.5, 0.75, 0.5));
 /// ```
 pub fn reflection_probe_pixel(
+    brdf: Brdf,
     gbuffer: &GBuffer,
     world_position: Vec3,
     camera_position: Vec3,
@@ -837,11 +861,11 @@ pub fn reflection_probe_pixel(
     let (v, r) = view_and_reflection(camera_position, world_position, n);
     let dir = box_project_grown(r, world_position, probe);
     let env = sample_probe(probe, cube, dir, mip_from_smoothness(smoothness)) * occlusion;
-    let rgb = indirect_specular(env, spec, smoothness, omr, n, v);
+    let rgb = indirect_specular(brdf, env, spec, smoothness, omr, n, v);
     rgb.extend(falloff(world_position, probe))
 }
 
-/// The reflection buffer at one pixel after the DeferredReflections passes: the buffer starts
+/// The reflection buffer at one pixel after the DeferredReflections passes (tier `brdf`): the buffer starts
 /// at 0, `probes` (each with its cube map) are drawn in [`draw_order`], and each blends its
 /// [`reflection_probe_pixel`] over the buffer with its falloff, the `Rgba16Float` buffer
 /// rounding to half float after each draw ([`composite_f16`]).
@@ -851,6 +875,7 @@ pub fn reflection_probe_pixel(
 /// use wgsl_variants_shaders::reference::cube::CubeFaces;
 /// use wgsl_variants_shaders::reference::gbuffer::GBuffer;
 /// use wgsl_variants_shaders::reference::probe::Probe;
+/// use wgsl_variants_shaders::reference::brdf::Brdf;
 /// use wgsl_variants_shaders::reference::surface::reflection_buffer;
 /// let g = GBuffer::pack(Vec3::ZERO, 1.0, Vec3::ONE, 1.0, Vec3::Z, Vec3::ZERO, true);
 /// let big = Probe::new(Vec3::ZERO, Vec3::splat(-4.0), Vec3::splat(4.0));
@@ -858,10 +883,11 @@ pub fn reflection_probe_pixel(
 /// let cubes = [CubeFaces::uniform(Vec4::new(1.0, 0.0, 0.0, 1.0)), CubeFaces::uniform(Vec4::new(0.0, 1.0, 0.0, 1.0))];
 /// // The small probe (drawn second) covers half: half of each.
 /// let p = Vec3::new(1.5, 0.0, 0.0);
-/// let refl = reflection_buffer(&g, p, p + Vec3::Z, &[(small, cubes[1]), (big, cubes[0])]);
+/// let refl = reflection_buffer(Brdf::Brdf1, &g, p, p + Vec3::Z, &[(small, cubes[1]), (big, cubes[0])]);
 /// assert_eq!(refl, Vec3::new(0.5, 0.5, 0.0));
 /// ```
 pub fn reflection_buffer(
+    brdf: Brdf,
     gbuffer: &GBuffer,
     world_position: Vec3,
     camera_position: Vec3,
@@ -872,7 +898,8 @@ pub fn reflection_buffer(
         .into_iter()
         .map(|i| {
             let (probe, cube) = &probes[i];
-            let out = reflection_probe_pixel(gbuffer, world_position, camera_position, probe, cube);
+            let out =
+                reflection_probe_pixel(brdf, gbuffer, world_position, camera_position, probe, cube);
             (out.truncate(), out.w)
         })
         .collect();

@@ -27,7 +27,7 @@
 
 use glam::{Vec3, Vec4};
 
-use super::brdf::specular_power;
+use super::brdf::{Brdf, DirectFactors, Dots};
 use super::quantize::{f32_to_f16_bits, unorm_max};
 
 /// Allowed difference, in integer steps, between a unorm channel read back from the GPU and
@@ -271,75 +271,110 @@ pub const GBUFFER_NORMAL_ANGLE: f32 = 1.732_050_8 * 3.0 / 1023.0;
 /// How far the deferred light of one pixel may be from the forward light of the same surface
 /// (docs/shading.md §10), per channel, before the targets round it.
 ///
-/// Both passes evaluate `light = (diffuse + spec · S) · k · nl` with
-/// `S = (p + 8)/(8π) · nh^p`, `p = exp2(1 + 7 · smoothness)`, `k = colour · attenuation`; the
-/// deferred one reads `diffuse`, `spec` and `smoothness` from 8-bit targets, which clamp to
-/// [0, 1] and round (each off by at most `δ_x = |x − saturate(x)| + `[`GBUFFER_8BIT_STEP`] per
-/// channel: a detail albedo can push the colours above 1, and then forward and deferred
-/// differ by design), and `n` from the 10-bit RT2 (off by at most [`GBUFFER_NORMAL_ANGLE`] = ε,
-/// so `nl` and `nh` move by at most ε). With `S⁺` the largest and `ΔS` the largest change of
-/// `S` over `nh ± ε` and `smoothness ±` one step (checked at the corners of that box and at the
-/// interior maximum of `S` in `p`, `p = −1/ln(nh) − 8`):
+/// Both passes evaluate the Standard BRDF's direct term in tier `brdf`,
+/// `light = k · (diffuse · kd + ks · (spec + (1 − spec) · f))` ([`DirectFactors`]), with
+/// `k = colour · attenuation`; the deferred one reads `diffuse`, `spec` and `smoothness` from
+/// 8-bit targets, which clamp to [0, 1] and round (each off by at most `δ_x = |x − saturate(x)|
+/// + `[`GBUFFER_8BIT_STEP`] per channel: a detail albedo can push the colours above 1, and then
+/// forward and deferred differ by design), and `n` from the 10-bit RT2 (off by at most
+/// [`GBUFFER_NORMAL_ANGLE`] = ε: the angle between `n` and `l`, `h` or `v` moves by at most ε,
+/// and the angle between `r = reflect(v, n)` and `l` by at most 2ε, a reflection doubling the
+/// normal's rotation; each dot product then lies between the cosines of its angle ± that).
+///
+/// The light is increasing in `diffuse` and in `spec` (`kd, ks ≥ 0`, `f ≤ 1`), so for given
+/// factors its range is reached at `diffuse ± δ`, `spec ± δ`. The factors are monotonic in each
+/// dot product over the box except where a range crosses 0 (BRDF3's `(r·l)⁴`), which is added
+/// as a point, and not in smoothness, whose interval is sampled at 9 points plus the lobe's
+/// peak in roughness (`r² = (1 − (n·h)²)/(n·h)²`, BRDF1 and BRDF2) and the table's row centres
+/// (BRDF3, linear between them). The bound is the largest distance from the forward value to
+/// the light over all those corners:
 ///
 /// ```text
-/// Δ ≤ k · [ (δ_diffuse + δ_spec · S⁺ + (spec + δ_spec) · ΔS) · min(nl + ε, 1) + (diffuse + spec · S) · ε ]
+/// Δ = max over corners of max(hi − light, light − lo)
 /// ```
 ///
-/// The arguments are the forward pass's exact values: `nl`, `nh` before saturation are taken
-/// as given in [0, 1]. Positions (interpolated vs. rebuilt from depth) differ by a few `f32`
-/// ULP, far below these terms.
+/// The arguments are the forward pass's exact values. Positions (interpolated vs. rebuilt from
+/// depth) differ by a few `f32` ULP, far below these terms.
 ///
 /// ```
 /// use glam::Vec3;
+/// use wgsl_variants_shaders::reference::brdf::{Brdf, Dots};
 /// use wgsl_variants_shaders::reference::tolerance::gbuffer_light_bound;
 /// // A matte surface (no specular) under a unit light, head-on: the diffuse step and the
 /// // normal angle.
-/// let b = gbuffer_light_bound(Vec3::splat(0.5), Vec3::ZERO, 0.0, 1.0, 1.0, Vec3::ONE);
+/// let dots = Dots::new(Vec3::Z, Vec3::Z, Vec3::Z);
+/// let b = gbuffer_light_bound(Brdf::Brdf2, Vec3::splat(0.5), Vec3::ZERO, 0.0, &dots, Vec3::ONE);
 /// assert!(b.x > 0.003 && b.x < 0.02, "{b}");
 /// ```
 pub fn gbuffer_light_bound(
+    brdf: Brdf,
     diffuse: Vec3,
     spec: Vec3,
     smoothness: f32,
-    nl: f32,
-    nh: f32,
+    dots: &Dots,
     k: Vec3,
 ) -> Vec3 {
     let delta = GBUFFER_8BIT_STEP;
     let eps = GBUFFER_NORMAL_ANGLE;
-    let lobe =
-        |nh: f32, p: f32| (p + 8.0) / (8.0 * std::f32::consts::PI) * nh.clamp(0.0, 1.0).powf(p);
-    let p = specular_power(smoothness);
-    let s0 = lobe(nh, p);
-    let mut s_max = s0;
-    let mut ds: f32 = 0.0;
-    let p_range = [
-        specular_power((smoothness - delta).max(0.0)),
-        specular_power((smoothness + delta).min(1.0)),
-    ];
-    let mut candidates = Vec::with_capacity(6);
-    for n in [(nh - eps).max(0.0), (nh + eps).min(1.0)] {
-        for q in p_range {
-            candidates.push((n, q));
-        }
-        // S is largest in p at p* = −1/ln(nh) − 8 when that lies inside the range.
-        if n > 0.0 && n < 1.0 {
-            let star = -1.0 / n.ln() - 8.0;
-            if star > p_range[0] && star < p_range[1] {
-                candidates.push((n, star));
+    let light = DirectFactors::new(brdf, smoothness, dots).apply(diffuse, spec, k);
+
+    // The smoothness candidates.
+    let (s_lo, s_hi) = ((smoothness - delta).max(0.0), (smoothness + delta).min(1.0));
+    let mut smooth: Vec<f32> = (0..9)
+        .map(|i| s_lo + (s_hi - s_lo) * i as f32 / 8.0)
+        .collect();
+    for nh in [dots.nh - eps, dots.nh + eps] {
+        let nh = nh.clamp(1e-3, 1.0);
+        // The lobe a² / (c + nh²a²)² peaks at a² = c / nh² with c = 1 − nh²: pr = a^(1/2).
+        let a = ((1.0 - nh * nh).max(0.0) / (nh * nh)).sqrt();
+        smooth.push(1.0 - a.sqrt());
+    }
+    if brdf == Brdf::Brdf3 {
+        let rows = crate::brdf_lut::HEIGHT as f32;
+        smooth.extend((0..crate::brdf_lut::HEIGHT).map(|j| 1.0 - (j as f32 + 0.5) / rows));
+    }
+    smooth.retain(|s| (s_lo..=s_hi).contains(s));
+
+    // cos(θ ± e), the angle θ = acos(x) kept in [0, π].
+    let range = |x: f32, e: f32| {
+        let theta = x.clamp(-1.0, 1.0).acos();
+        [
+            (theta + e).min(std::f32::consts::PI).cos(),
+            (theta - e).max(0.0).cos(),
+        ]
+    };
+    let mut rl = range(dots.rl, 2.0 * eps).to_vec();
+    if rl[0] < 0.0 && rl[1] > 0.0 {
+        rl.push(0.0);
+    }
+    let stored = |x: Vec3| (x - x.clamp(Vec3::ZERO, Vec3::ONE)).abs() + Vec3::splat(delta);
+    let (d_diffuse, d_spec) = (stored(diffuse), stored(spec));
+    let (diffuse_lo, diffuse_hi) = ((diffuse - d_diffuse).max(Vec3::ZERO), diffuse + d_diffuse);
+    let (spec_lo, spec_hi) = ((spec - d_spec).max(Vec3::ZERO), spec + d_spec);
+
+    let mut bound = Vec3::ZERO;
+    for &nl in &range(dots.nl, eps) {
+        for &nh in &range(dots.nh, eps) {
+            for &nv in &range(dots.nv, eps) {
+                for &rl in &rl {
+                    for &s in &smooth {
+                        let corner = Dots {
+                            nl,
+                            nh,
+                            nv,
+                            rl,
+                            ..*dots
+                        };
+                        let f = DirectFactors::new(brdf, s, &corner);
+                        let hi = f.apply(diffuse_hi, spec_hi, k);
+                        let lo = f.apply(diffuse_lo, spec_lo, k);
+                        bound = bound.max(hi - light).max(light - lo);
+                    }
+                }
             }
         }
     }
-    for (n, q) in candidates {
-        let s = lobe(n, q);
-        s_max = s_max.max(s);
-        ds = ds.max((s - s0).abs());
-    }
-    let nl_max = (nl + eps).min(1.0);
-    let lit = diffuse + spec * s0;
-    let stored = |x: Vec3| (x - x.clamp(Vec3::ZERO, Vec3::ONE)).abs() + Vec3::splat(delta);
-    let (d_diffuse, d_spec) = (stored(diffuse), stored(spec));
-    k * ((d_diffuse + d_spec * s_max + (spec + d_spec) * ds) * nl_max + lit * eps)
+    bound
 }
 
 /// Allowed difference, in steps of the channel's own format (units in the last place),

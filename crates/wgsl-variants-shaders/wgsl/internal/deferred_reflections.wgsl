@@ -16,6 +16,8 @@
 //   src = exp2(-max(refl, 0)), a = 1), which leaves RT3's alpha of 1 as it is.
 
 #pass Reflections
+// The Standard BRDF's tier of the indirect specular (docs/shading.md §5).
+#pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
 #import internal/fullscreen
 #import deferred/depth
 #import deferred/probe

@@ -6,7 +6,8 @@
 //            4 camera (DeferredCamera), 5 rt4 (the baked occlusion, SHADOWS_SHADOWMASK),
 //            6-15 the light and its shadow (lighting/light_bindings),
 //            16 occlusion_mask_selector (vec4f: the light's RT4 channel, one-hot;
-//               SHADOWS_SHADOWMASK; Unity's unity_OcclusionMaskSelector)
+//               SHADOWS_SHADOWMASK; Unity's unity_OcclusionMaskSelector),
+//            17 brdf_lut (UNITY_PBS_USE_BRDF3; lighting/brdf_lut)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn
@@ -43,11 +44,14 @@
 // the light's baked occlusion from RT4; LIGHTMAP_SHADOW_MIXING (the Shadowmask mode, without
 // it Distance Shadowmask) decides how it mixes with a realtime shadow (light_mix_shadows).
 // Without SHADOWS_SHADOWMASK, LIGHTMAP_SHADOW_MIXING changes nothing, as in Unity. 128
-// variants, 84 distinct: LIGHTMAP_SHADOW_MIXING leaves the text alone without a realtime
-// shadow keyword.
+// variants per tier, 84 distinct: LIGHTMAP_SHADOW_MIXING leaves the text alone without a
+// realtime shadow keyword.
 #pragma multi_compile _ SHADOWS_SHADOWMASK
 #pragma multi_compile _ LIGHTMAP_SHADOW_MIXING
 #pragma multi_compile _ UNITY_HDR_ON
+// The Standard BRDF's tier (docs/shading.md §5; UNITY_PBS_USE_BRDF3 binds the lookup table at
+// group 0 binding 17, lighting/brdf_lut).
+#pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
 #import internal/fullscreen
 #import deferred/gbuffer
 #import deferred/ldr

@@ -1,5 +1,7 @@
-// lighting/brdf: the metallic workflow and the lighting terms of Catlike Coding's "My Lighting"
-// (docs/shading.md §5). Pure functions, no bindings; callable from any stage.
+// lighting/brdf: the metallic workflow and the indirect terms of Unity's Standard BRDF
+// (docs/shading.md §5); the direct term is lighting/direct. Pure functions, no bindings;
+// callable from any stage. The tier keyword (none: BRDF1, UNITY_PBS_USE_BRDF2,
+// UNITY_PBS_USE_BRDF3) picks the formulas.
 //
 // Provides:
 //   struct BrdfMetallic { diffuse: vec3f, spec_color: vec3f, one_minus_reflectivity: f32 }
@@ -11,12 +13,11 @@
 //   fn brdf_sh_ambient(n: vec3f, sh_r: vec4f, sh_g: vec4f, sh_b: vec4f) -> vec3f
 //   fn brdf_view_dir(camera_position: vec3f, world_position: vec3f) -> vec3f
 //   fn brdf_reflect_dir(v: vec3f, n: vec3f) -> vec3f
+//   fn brdf_pow4(x: f32) -> f32, fn brdf_pow5(x: f32) -> f32
+//   fn brdf_safe_normalize(v: vec3f) -> vec3f
 //   fn brdf_indirect_specular(env: vec3f, spec_color: vec3f, smoothness: f32,
 //                             one_minus_reflectivity: f32, n: vec3f, v: vec3f) -> vec3f
-//   fn brdf_direct(diffuse: vec3f, spec_color: vec3f, smoothness: f32, n: vec3f, v: vec3f,
-//                  l: vec3f, light_color: vec3f) -> vec3f
 
-const BRDF_PI: f32 = 3.14159265358979323846;
 const BRDF_DIELECTRIC_SPEC: f32 = 0.04;
 
 struct BrdfMetallic {
@@ -74,10 +75,29 @@ fn brdf_reflect_dir(v: vec3f, n: vec3f) -> vec3f {
     return reflect(-v, n);
 }
 
-// Fresnel-weighted indirect specular; env is the probe result already times occlusion.
-//   grazing = saturate(smoothness + 1 - omr); nv = saturate(dot(n, v));
-//   fresnel = mix(spec_color, grazing, (1 - nv)^5); surface_reduction = 1 / (r² + 1);
-//   result = surface_reduction · env · fresnel.
+// x⁴ and x⁵ as Unity's Pow4 / Pow5.
+fn brdf_pow4(x: f32) -> f32 {
+    let x2 = x * x;
+    return x2 * x2;
+}
+
+fn brdf_pow5(x: f32) -> f32 {
+    let x2 = x * x;
+    return x2 * x2 * x;
+}
+
+// Unity's Unity_SafeNormalize: v / sqrt(max(|v|², 0.001)) (0 stays 0).
+fn brdf_safe_normalize(v: vec3f) -> vec3f {
+    return v * inverseSqrt(max(dot(v, v), 0.001));
+}
+
+// The indirect specular of the Standard BRDF's tier (docs/shading.md §5); env is the probe
+// result already times occlusion. grazing = saturate(smoothness + 1 - omr), pr = 1 - smoothness,
+// r = pr²:
+//   BRDF1 (no tier keyword): env / (r'² + 1) · mix(spec_color, grazing, (1 - |n·v|)⁵),
+//                            r' = max(r, 0.002)
+//   UNITY_PBS_USE_BRDF2:     env · (1 - r·pr·(0.6 - 0.08·pr)) · mix(spec, grazing, (1 - nv)⁴)
+//   UNITY_PBS_USE_BRDF3:     env · mix(spec_color, grazing, (1 - nv)⁴),   nv = saturate(n·v)
 fn brdf_indirect_specular(
     env: vec3f,
     spec_color: vec3f,
@@ -86,36 +106,20 @@ fn brdf_indirect_specular(
     n: vec3f,
     v: vec3f,
 ) -> vec3f {
-    let grazing = saturate(smoothness + 1.0 - one_minus_reflectivity);
+    let grazing = vec3f(saturate(smoothness + 1.0 - one_minus_reflectivity));
+#if defined(UNITY_PBS_USE_BRDF3)
     let nv = saturate(dot(n, v));
-    let x = 1.0 - nv;
-    let x2 = x * x;
-    let fresnel = mix(spec_color, vec3f(grazing), x2 * x2 * x);
-    let r = brdf_roughness(smoothness);
+    return env * mix(spec_color, grazing, brdf_pow4(1.0 - nv));
+#elif defined(UNITY_PBS_USE_BRDF2)
+    let nv = saturate(dot(n, v));
+    let pr = 1.0 - smoothness;
+    let r = pr * pr;
+    let surface_reduction = 1.0 - r * pr * (0.6 - 0.08 * pr);
+    return surface_reduction * env * mix(spec_color, grazing, brdf_pow4(1.0 - nv));
+#else
+    let nv = abs(dot(n, v));
+    let r = max(brdf_roughness(smoothness), 0.002);
     let surface_reduction = 1.0 / (r * r + 1.0);
-    return surface_reduction * env * fresnel;
-}
-
-// Normalized Blinn-Phong for one directional light (l = unit direction TO the light):
-//   h = normalize(l + v); nl = saturate(n·l); nh = saturate(n·h); p = exp2(1 + 7 · smoothness);
-//   spec = (p + 8) / (8π) · nh^p; direct = (diffuse + spec_color · spec) · light_color · nl.
-// l == -v has no half vector: nh is taken as 0 there (no highlight).
-fn brdf_direct(
-    diffuse: vec3f,
-    spec_color: vec3f,
-    smoothness: f32,
-    n: vec3f,
-    v: vec3f,
-    l: vec3f,
-    light_color: vec3f,
-) -> vec3f {
-    let hv = l + v;
-    let h = select(vec3f(0.0), normalize(hv), dot(hv, hv) > 0.0);
-    let nl = saturate(dot(n, l));
-    let nh = saturate(dot(n, h));
-    let p = exp2(1.0 + 7.0 * smoothness);
-    // pow(0, p) is undefined on GPUs; 0^p = 0 for the p >= 2 used here.
-    let nh_p = select(0.0, pow(nh, p), nh > 0.0);
-    let spec = (p + 8.0) / (8.0 * BRDF_PI) * nh_p;
-    return (diffuse + spec_color * spec) * light_color * nl;
+    return surface_reduction * env * mix(spec_color, grazing, brdf_pow5(1.0 - nv));
+#endif
 }

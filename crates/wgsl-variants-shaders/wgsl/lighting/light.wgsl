@@ -23,7 +23,7 @@
 //   fn light_direct(diffuse: vec3f, spec_color: vec3f, smoothness: f32, n: vec3f, v: vec3f,
 //                   light: Light, s: LightSample) -> vec3f
 
-#import lighting/brdf
+#import lighting/direct
 
 struct Light {
     color: vec4f,
@@ -82,7 +82,8 @@ fn light_spot(light: Light, p: vec3f) -> LightSample {
     return s;
 }
 
-// The Standard BRDF's direct term with the light's colour × attenuation (indirect terms are
+// The Standard BRDF's direct term (lighting/direct, in the variant's tier) with the light's
+// colour × attenuation (indirect terms are
 // the ForwardBase and G-buffer passes' business).
 fn light_direct(
     diffuse: vec3f,

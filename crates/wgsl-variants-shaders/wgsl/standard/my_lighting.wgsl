@@ -11,6 +11,9 @@
 #import standard/bindings
 #import standard/surface
 #import lighting/brdf
+#if defined(FORWARD_BASE_PASS)
+#import lighting/direct
+#endif
 #import deferred/probe
 #import deferred/gbuffer
 #if defined(FORWARD_ADD_PASS)

@@ -55,7 +55,7 @@ use crate::{
     Resource, TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::brdf::diffuse_and_specular_from_metallic;
+use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
 use wgsl_variants_shaders::reference::light::{Cookies, LightParams, LightType};
 use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, shade_deferred, shade_forward, shade_forward_add, surface,
@@ -354,6 +354,7 @@ fn lighting_draws(
         if hdr {
             names.push("UNITY_HDR_ON");
         }
+        names.extend(frame.brdf.keyword());
         let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
         let mut resources = frame.light_resources(&params);
         resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
@@ -561,13 +562,12 @@ fn terms(
     let (v, _) = view_and_reflection(camera, p, s.normal);
     let bound = |params: &LightParams, t: LightType| {
         let (l, attenuation) = params.sample(t, p, cookies);
-        let h = (l + v).normalize_or_zero();
         gbuffer_light_bound(
+            kw.brdf,
             diffuse,
             spec,
             s.smoothness,
-            s.normal.dot(l).clamp(0.0, 1.0),
-            s.normal.dot(h).clamp(0.0, 1.0),
+            &Dots::new(s.normal, v, l),
             params.color * attenuation,
         )
     };

@@ -14,10 +14,12 @@
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 
 use super::super::scene::{
-    MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe, push_mat4, push_vec4,
+    MapTexture, Maps, Rng, StandardBindings, brdf_lut_resource, cube, cube_resource, probe,
+    push_mat4, push_vec4,
 };
 use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
+use wgsl_variants_shaders::reference::brdf::Brdf;
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{
     Cookie2d, Light, LightError, LightParams, LightShape, LightType, look_at_rh, perspective_rh,
@@ -181,6 +183,9 @@ pub struct FrameScene {
     pub cookie: MapTexture,
     /// The cube cookie of `POINT_COOKIE` lights (one alpha per face).
     pub cube_cookie: CubeFaces,
+    /// The Standard BRDF's tier of every lit draw: one per frame, as Unity's graphics tier
+    /// ([`FrameScene::with_brdf`]; default BRDF1).
+    pub brdf: Brdf,
 }
 
 /// A unit normal's tangent-space texel (8-bit codes of `n · 0.5 + 0.5`).
@@ -581,7 +586,17 @@ impl FrameScene {
             objects,
             cookie,
             cube_cookie,
+            brdf: Brdf::Brdf1,
         }
+    }
+
+    /// The frame drawn in BRDF tier `brdf`: every object's variants and the lighting pass's.
+    pub fn with_brdf(mut self, brdf: Brdf) -> FrameScene {
+        self.brdf = brdf;
+        for object in &mut self.objects {
+            object.keywords.brdf = brdf;
+        }
+        self
     }
 
     /// The frame with `n` point lights instead of its four per-pixel lights (the main light
@@ -638,7 +653,7 @@ impl FrameScene {
     }
 
     /// The bindings of one per-pixel light (`lighting/light_bindings`): its uniform, the
-    /// frame's cookies and their sampler (nearest, repeating).
+    /// frame's cookies and their sampler (nearest, repeating), and BRDF3's lookup table.
     pub fn light_resources(&self, params: &LightParams) -> Vec<BoundResource> {
         let uniform = params
             .uniform()
@@ -657,6 +672,7 @@ impl FrameScene {
                     address_mode: wgpu::AddressMode::Repeat,
                 },
             ),
+            brdf_lut_resource(),
         ]
     }
 

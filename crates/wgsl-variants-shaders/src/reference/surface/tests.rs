@@ -3,7 +3,6 @@
 use super::*;
 use crate::reference::gbuffer::{GBufferTexel, encode_normal};
 use crate::reference::ldr::ldr_encode;
-use std::f32::consts::PI;
 
 fn geo() -> Geometry {
     Geometry {
@@ -81,7 +80,10 @@ fn keyword_names_round_trip() {
         .filter(|n| {
             !matches!(
                 *n,
-                "_RENDERING_FADE" | "_RENDERING_TRANSPARENT" | "_SMOOTHNESS_ALBEDO"
+                "_RENDERING_FADE"
+                    | "_RENDERING_TRANSPARENT"
+                    | "_SMOOTHNESS_ALBEDO"
+                    | "UNITY_PBS_USE_BRDF2"
             )
         })
         .collect();
@@ -97,6 +99,7 @@ fn keyword_names_round_trip() {
     );
     assert!(Keywords::from_names(&["_SMOOTHNESS_ALBEDO", "_SMOOTHNESS_METALLIC"]).is_err());
     assert!(Keywords::from_names(&["_RENDERING_CUTOUT", "_RENDERING_TRANSPARENT"]).is_err());
+    assert!(Keywords::from_names(&["UNITY_PBS_USE_BRDF2", "UNITY_PBS_USE_BRDF3"]).is_err());
     assert!(Keywords::from_names(&[""]).is_err());
     assert!(Keywords::from_names(&["unity_hdr_on"]).is_err());
     assert!(Keywords::from_names(&["DEFERRED_PASS"]).is_err());
@@ -369,18 +372,20 @@ fn forward_hand_computed() {
         sh_r: Vec4::new(0.0, 0.0, 0.0, 0.5),
         sh_g: Vec4::new(0.0, 0.0, 0.0, 0.5),
         sh_b: Vec4::new(0.0, 0.0, 0.0, 0.5),
-        light_dir: Vec3::Z, // h = n: nh = nl = 1
+        light_dir: Vec3::Z, // h = n: nh = nl = lh = 1
         light_color: Vec3::new(1.0, 0.5, 0.25),
         ..Scene::default()
     };
     let mat = Material {
         tint: Vec4::new(0.5, 0.5, 0.5, 0.5),
-        smoothness: 0.0, // p = 2, r = 1: reduction 1/2
+        smoothness: 0.0, // pr = r = 1: reduction 1/2
         ..Material::default()
     };
     let kw = Keywords::default();
     let c = shade_forward(&kw, &mat, &Texels::default(), &geo(), &scene).unwrap();
-    let spec = 10.0 / (8.0 * PI);
+    // BRDF1 with n = v = l: Disney diffuse 1, Fresnel = spec colour, V = 0.5 / (2 + 1e-5),
+    // d = 1 (so D·π = 1 / (1 + 1e-7)).
+    let spec = 0.5 / (2.0 + 1e-5) / (1.0 + 1e-7);
     let direct = (Vec3::splat(0.48) + Vec3::splat(0.04 * spec)) * scene.light_color;
     let want = Vec3::splat(0.48 * 0.5) + direct; // black probes
     assert!(
@@ -453,7 +458,7 @@ fn reflection_pass_hand_computed() {
     // p = (0, 0, 2) (outside by 1 in z: falloff 1 − 1/2), camera on +Z axis: v = n, r = +Z.
     // Grown box [−3, 3]: hits z = 3 → (0, 0, 3) → +Z face (5).
     let p = Vec3::new(0.0, 0.0, 2.0);
-    let out = reflection_probe_pixel(&g, p, Vec3::new(0.0, 0.0, 7.0), &probe, &cube);
+    let out = reflection_probe_pixel(Brdf::Brdf1, &g, p, Vec3::new(0.0, 0.0, 7.0), &probe, &cube);
     // env = 5 · 0.5; reduction 16/17; nv = 1 → fresnel = spec.
     let want = 2.5 * 16.0 / 17.0 * spec;
     assert!(
@@ -462,7 +467,14 @@ fn reflection_pass_hand_computed() {
     );
     assert_eq!(out.w, 0.5);
     // At grazing view the fresnel goes to grazing = saturate(0.5 + 1 − 0.8) = 0.7.
-    let out = reflection_probe_pixel(&g, p, p + Vec3::new(5.0, 0.0, 0.0), &probe, &cube);
+    let out = reflection_probe_pixel(
+        Brdf::Brdf1,
+        &g,
+        p,
+        p + Vec3::new(5.0, 0.0, 0.0),
+        &probe,
+        &cube,
+    );
     // v = +X, r = reflect(−X, Z) = −X… from (0,0,2) to x = −3 → (−3, 0, 2) → −X face (5).
     assert!(
         (out.truncate() - Vec3::splat(2.5 * 16.0 / 17.0 * 0.7))
@@ -494,6 +506,7 @@ fn deferred_reflections_match_forward_for_a_single_full_probe() {
     let mut probe = scene.probes[0];
     probe.blend_distance = 1.0;
     let refl = reflection_buffer(
+        Brdf::Brdf1,
         &g,
         geo.world_position,
         scene.camera_position,
@@ -504,7 +517,7 @@ fn deferred_reflections_match_forward_for_a_single_full_probe() {
     let (_, spec, omr) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
     let (v, r) = view_and_reflection(scene.camera_position, geo.world_position, s.normal);
     let env = forward_environment(&scene, geo.world_position, r, s.smoothness) * s.occlusion;
-    let want = indirect_specular(env, spec, s.smoothness, omr, s.normal, v);
+    let want = indirect_specular(Brdf::Brdf1, env, spec, s.smoothness, omr, s.normal, v);
     assert!((refl - want).abs().max_element() < 2e-3, "{refl} vs {want}"); // f16 buffer
     // Adding it to RT3 gives the no-reflection-buffer G-buffer's light.
     let plain = Keywords::from_names(&["UNITY_HDR_ON"]).unwrap();
@@ -524,11 +537,11 @@ fn reflection_buffer_orders_and_blends_probes() {
     let cam = Vec3::Z;
     // Inside both: the smaller draws last and wins, whatever the given order.
     assert_eq!(
-        reflection_buffer(&g, p, cam, &[(small, green), (big, red)]),
+        reflection_buffer(Brdf::Brdf1, &g, p, cam, &[(small, green), (big, red)]),
         Vec3::Y
     );
     assert_eq!(
-        reflection_buffer(&g, p, cam, &[(big, red), (small, green)]),
+        reflection_buffer(Brdf::Brdf1, &g, p, cam, &[(big, red), (small, green)]),
         Vec3::Y
     );
     // Importance overrides volume.
@@ -537,12 +550,19 @@ fn reflection_buffer_orders_and_blends_probes() {
         ..big
     };
     assert_eq!(
-        reflection_buffer(&g, p, cam, &[(small, green), (important_big, red)]),
+        reflection_buffer(
+            Brdf::Brdf1,
+            &g,
+            p,
+            cam,
+            &[(small, green), (important_big, red)]
+        ),
         Vec3::X
     );
     // Outside every probe's blend range: the cleared buffer.
     assert_eq!(
         reflection_buffer(
+            Brdf::Brdf1,
             &g,
             Vec3::new(9.0, 0.0, 0.0),
             Vec3::new(9.0, 0.0, 1.0),
@@ -550,7 +570,7 @@ fn reflection_buffer_orders_and_blends_probes() {
         ),
         Vec3::ZERO
     );
-    assert_eq!(reflection_buffer(&g, p, cam, &[]), Vec3::ZERO);
+    assert_eq!(reflection_buffer(Brdf::Brdf1, &g, p, cam, &[]), Vec3::ZERO);
 }
 
 #[test]
