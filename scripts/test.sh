@@ -32,7 +32,8 @@ export NODEVICE_SELECT=1
 cargo test --release --ignore-rust-version --workspace -- --nocapture
 
 # The examples (README "Using the shaders in your renderer"): a wgpu program that draws a
-# G-buffer through generated bindings (typed key, structs, layouts) and writes a PNG, and a crate
+# built-in and a URP G-buffer through generated bindings (typed keys, structs, layouts) and
+# writes PNGs (render_variant.png, render_variant-urp.png), and a crate
 # whose build.rs bakes the library. The crate has its own workspace; it shares this target
 # folder.
 # `cargo test` built the example with the workspace's features; running that binary avoids a

@@ -2,7 +2,8 @@
 //! the offsets it asserts against naga's layouter for structs that need padding, and one
 //! crate that compiles the module of every pass of the bundled library (so that every
 //! size, alignment and offset assertion is checked by rustc) and runs the typed keys; and that
-//! the module the compile-fail tests (`crates/bindings-compile-fail`) use is current.
+//! the modules the compile-fail tests (`crates/bindings-compile-fail`) and the `render_variant`
+//! example use are current.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -203,15 +204,7 @@ fn snapshot_standard_deferred() {
     let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
         .unwrap()
         .code;
-    let example = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs");
-    assert!(
-        std::fs::read_to_string(&example).unwrap() == wgpu,
-        "{} differs from the generator's output; regenerate with\n  cargo run --release \
-         --ignore-rust-version -p wgsl-variants-cli -- bindings standard Deferred --wgpu \
-         --out crates/wgsl-variants-gpu/examples/render_variant/standard_deferred.rs",
-        example.display()
-    );
+    assert_example_module_is_current(&wgpu, "standard", "Deferred", "standard_deferred.rs");
     // Deterministic: less its wgpu conversions (one block) and header line, the second run
     // wrote the same bytes.
     let start = wgpu.find("/// The interfaces as wgpu's types").unwrap();
@@ -224,6 +217,38 @@ fn snapshot_standard_deferred() {
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
         insta::assert_snapshot!("bindings.standard.Deferred", generated.code);
     });
+}
+
+/// The module of `universal_lit/UniversalGBuffer` with the wgpu option, that the
+/// `render_variant` example draws URP's G-buffer through, is current.
+#[test]
+fn example_universal_gbuffer_module_is_current() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let pass = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
+    let options = wgsl_variants::bindings::Options::default().wgpu(true);
+    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
+        .unwrap()
+        .code;
+    assert_example_module_is_current(
+        &wgpu,
+        "universal_lit",
+        "UniversalGBuffer",
+        "universal_gbuffer.rs",
+    );
+}
+
+/// `code` is the committed `file` of the `render_variant` example: the module of
+/// `shader/pass` generated with the wgpu option.
+fn assert_example_module_is_current(code: &str, shader: &str, pass: &str, file: &str) {
+    let dir = "crates/wgsl-variants-gpu/examples/render_variant";
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir).join(file);
+    assert!(
+        std::fs::read_to_string(&example).unwrap() == code,
+        "{} differs from the generator's output; regenerate with\n  cargo run --release \
+         --ignore-rust-version -p wgsl-variants-cli -- bindings {shader} {pass} --wgpu \
+         --out {dir}/{file}",
+        example.display()
+    );
 }
 
 /// The folder the check crate builds in: kept between runs, so `bytemuck` builds once.

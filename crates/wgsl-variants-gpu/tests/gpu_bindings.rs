@@ -9,9 +9,11 @@
 //! the GPU crate derives from reflection, and the render pass `Draw` gets a pipeline from its
 //! generated layouts, vertex buffer layout and colour targets alone.
 //!
-//! The `render_variant` example draws a `standard/Deferred` G-buffer through generated code
-//! alone (`examples/render_variant/deferred.rs`, compiled here too): its uniform buffers are
-//! byte for byte the scene's, and its texels are the GPU check's for the same variant.
+//! The `render_variant` example draws a `standard/Deferred` G-buffer and a URP
+//! `universal_lit/UniversalGBuffer` one through generated code alone
+//! (`examples/render_variant/deferred.rs` and `urp_gbuffer.rs`, compiled here too): their
+//! uniform buffers are byte for byte the scenes', and their texels are the GPU check's for the
+//! same variants.
 //!
 //! Without a wgpu adapter the GPU test prints a loud SKIPPED line and passes, unless `CI=true`
 //! or `WGSL_VARIANTS_REQUIRE_GPU=1`. `WGSL_VARIANTS_ADAPTER=<substring>` selects an adapter.
@@ -21,8 +23,11 @@ mod common;
 use wgsl_variants::Library;
 use wgsl_variants::bindings::Options;
 use wgsl_variants_gpu::check::scene::DEFAULT_SEED;
+use wgsl_variants_gpu::check::urp::{self, UrpScene};
 use wgsl_variants_gpu::check::{TestScene, render_gbuffer};
-use wgsl_variants_gpu::{GpuContext, Resource, compile_scoped, layout_entries, run_compute};
+use wgsl_variants_gpu::{
+    BoundResource, GpuContext, Resource, compile_scoped, layout_entries, render, run_compute,
+};
 
 #[allow(dead_code)]
 mod padding {
@@ -34,8 +39,15 @@ mod draw {
     include!("bindings_padding/padding_draw.rs");
 }
 
+#[macro_use]
+#[path = "../examples/render_variant/headless.rs"]
+mod headless;
+
 #[path = "../examples/render_variant/deferred.rs"]
 mod deferred;
+
+#[path = "../examples/render_variant/urp_gbuffer.rs"]
+mod urp_gbuffer;
 
 use padding::structs::{Data, Data2, Data2Element, DataElement, Inner, Vec3F32Stride16};
 
@@ -53,6 +65,14 @@ const GENERATED: [(&str, &str, &str); 2] = [
         include_str!("bindings_padding/padding_draw.rs"),
     ),
 ];
+
+/// The GPU context, or `None` (after the loud SKIPPED line) where no adapter is allowed to skip.
+fn gpu_context() -> Option<GpuContext> {
+    common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "the GPU context",
+    )
+}
 
 fn library() -> Library {
     Library::from_sources([("padding.wgsl", WGSL)]).unwrap()
@@ -267,12 +287,7 @@ fn round_trip(ctx: &GpuContext, lib: &Library, keywords: &[&str], input: &[u8], 
 /// checks them against the shader: bindings, vertex formats, colour target types).
 #[test]
 fn draw_pipeline_from_generated_layouts() {
-    let Some(ctx) = common::gpu::or_skip(
-        GpuContext::new(common::gpu::adapter_filter().as_deref()),
-        "the GPU context",
-    ) else {
-        return;
-    };
+    let Some(ctx) = gpu_context() else { return };
     let lib = library();
     let key = draw::Key::checked(draw::Keywords::DEFAULT);
     let interface = key.interface();
@@ -345,12 +360,7 @@ fn draw_pipeline_from_generated_layouts() {
 /// Both layouts of `Data`, written with the generated structs, read back bit for bit.
 #[test]
 fn padded_structs_round_trip_through_the_gpu() {
-    let Some(ctx) = common::gpu::or_skip(
-        GpuContext::new(common::gpu::adapter_filter().as_deref()),
-        "the GPU context",
-    ) else {
-        return;
-    };
+    let Some(ctx) = gpu_context() else { return };
     let lib = library();
     const LIGHTS: usize = 5;
 
@@ -380,26 +390,20 @@ fn padded_structs_round_trip_through_the_gpu() {
     round_trip(&ctx, &lib, &WIDE.keywords(), &input, &values.expected);
 }
 
-/// Same inputs: every uniform buffer the example fills through the generated structs holds the
-/// bytes the GPU check packs for the scene by hand.
-#[test]
-fn example_uniforms_are_the_scenes() {
-    let scene = TestScene::new(DEFAULT_SEED);
-    let packed = scene.standard_resources();
-    let ours = deferred::uniforms(&scene);
-    let interface = deferred::KEY.interface();
-    let buffers = interface
-        .bindings
+/// Every buffer in `ours` holds the bytes of the one at its slot in `packed` (the GPU check's,
+/// packed by hand), and `ours` has one per buffer binding of the variant (`entries`: its
+/// generated layout entries).
+fn assert_same_buffers(
+    ours: &[BoundResource],
+    packed: &[BoundResource],
+    entries: &[wgpu::BindGroupLayoutEntry],
+) {
+    let buffers = entries
         .iter()
-        .filter(|b| {
-            matches!(
-                b.kind,
-                deferred::standard_deferred::BindingKind::UniformBuffer { .. }
-            )
-        })
+        .filter(|e| matches!(e.ty, wgpu::BindingType::Buffer { .. }))
         .count();
-    assert_eq!(ours.len(), buffers, "every uniform buffer of the variant");
-    for u in &ours {
+    assert_eq!(ours.len(), buffers, "every buffer of the variant");
+    for u in ours {
         let theirs = packed
             .iter()
             .find(|r| (r.group, r.binding) == (u.group, u.binding))
@@ -411,32 +415,92 @@ fn example_uniforms_are_the_scenes() {
     }
 }
 
+/// The example's targets equal the GPU check's, texel for texel.
+fn assert_same_targets(what: &str, ours: &[Vec<u8>], check: &[Vec<u8>]) {
+    assert_eq!(ours.len(), check.len(), "{what}: targets");
+    for (i, (a, b)) in ours.iter().zip(check).enumerate() {
+        assert_eq!(a.len(), b.len(), "{what}: target {i}");
+        let differ = a.iter().zip(b).filter(|(x, y)| x != y).count();
+        assert_eq!(
+            differ,
+            0,
+            "{what}: target {i}: {differ} of {} bytes differ",
+            a.len()
+        );
+    }
+}
+
+/// Same inputs: every uniform buffer the example fills through the generated structs holds the
+/// bytes the GPU check packs for the scene by hand.
+#[test]
+fn example_uniforms_are_the_scenes() {
+    let scene = TestScene::new(DEFAULT_SEED);
+    let i = deferred::KEY.interface();
+    let entries: Vec<_> = (0..i.group_count())
+        .flat_map(|g| i.bind_group_layout_entries(g))
+        .collect();
+    assert_same_buffers(
+        &deferred::uniforms(&scene),
+        &scene.standard_resources(),
+        &entries,
+    );
+}
+
+/// The same for the URP variant: its buffers are the URP scene's.
+#[test]
+fn example_urp_uniforms_are_the_scenes() {
+    let urp = UrpScene::new(&TestScene::new(DEFAULT_SEED), urp::DEFAULT_SEED);
+    let i = urp_gbuffer::KEY.interface();
+    let entries: Vec<_> = (0..i.group_count())
+        .flat_map(|g| i.bind_group_layout_entries(g))
+        .collect();
+    assert_same_buffers(&urp_gbuffer::uniforms(&urp), &urp.resources(), &entries);
+}
+
 /// The example's G-buffer, drawn through generated code alone, is the GPU check's for the
 /// same variant and scene, texel for texel.
 #[test]
 fn example_gbuffer_is_the_gpu_checks() {
-    let Some(ctx) = common::gpu::or_skip(
-        GpuContext::new(common::gpu::adapter_filter().as_deref()),
-        "the GPU context",
-    ) else {
-        return;
-    };
+    let Some(ctx) = gpu_context() else { return };
     let lib = wgsl_variants_shaders::library().unwrap();
     let scene = TestScene::new(DEFAULT_SEED);
     let ours = deferred::render(&ctx, &lib, &scene).unwrap();
     let keywords = deferred::KEY.keywords();
     let check = render_gbuffer(&ctx, &lib, &scene, &keywords).unwrap();
-    assert_eq!(ours.len(), check.targets.len());
-    for (i, (a, b)) in ours.iter().zip(&check.targets).enumerate() {
-        assert_eq!(a.len(), b.len(), "RT{i}");
-        let differ = a.iter().zip(b).filter(|(x, y)| x != y).count();
-        assert_eq!(differ, 0, "RT{i}: {differ} of {} bytes differ", a.len());
-    }
+    assert_same_targets("standard/Deferred", &ours, &check.targets);
     eprintln!(
         "standard/Deferred {keywords:?} on {}: {} targets of {}x{} equal the GPU check's",
         ctx.adapter_name(),
         ours.len(),
         scene.width,
         scene.height
+    );
+}
+
+/// The example's URP G-buffer (seven targets), drawn through generated code alone, is what the
+/// GPU check renders for the same variant over the URP scene, texel for texel. (The check
+/// clears its targets to values the scene never writes, the example to black: the variant
+/// discards no pixel, so no cleared texel is left to differ.)
+#[test]
+fn example_urp_gbuffer_is_the_gpu_checks() {
+    let Some(ctx) = gpu_context() else { return };
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let urp = UrpScene::new(&TestScene::new(DEFAULT_SEED), urp::DEFAULT_SEED);
+    let ours = urp_gbuffer::render(&ctx, &lib, &urp).unwrap();
+    let keywords = urp_gbuffer::KEY.keywords();
+    let variant = lib
+        .variant("universal_lit", "UniversalGBuffer", &keywords)
+        .unwrap();
+    let mut job = urp.job(&variant.label(), &lib.wgsl(&variant), &keywords);
+    job.resources = urp.resources();
+    let check = render(&ctx, &job).unwrap();
+    assert_same_targets("universal_lit/UniversalGBuffer", &ours, &check);
+    eprintln!(
+        "universal_lit/UniversalGBuffer {keywords:?} on {}: {} targets of {}x{} equal the GPU \
+         check's",
+        ctx.adapter_name(),
+        ours.len(),
+        urp.scene.width,
+        urp.scene.height
     );
 }
