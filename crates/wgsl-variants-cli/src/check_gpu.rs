@@ -36,8 +36,8 @@ pub struct CheckGpuArgs {
     #[arg(long, value_name = "K/N")]
     shard: Option<wgsl_variants::variants::Shard>,
     /// Check a T-wise covering set (T from 1 to 4) of each pass instead of every variant.
-    /// Without it, passes past 8192 variants (URP's UniversalGBuffer and UniversalForward) get
-    /// a 3-wise covering set.
+    /// Without it, passes past 8192 variants (the standard shader's ForwardBase, ForwardAdd and
+    /// Deferred; URP's UniversalGBuffer and UniversalForward) get a 3-wise covering set.
     #[arg(long, value_name = "T", conflicts_with = "full")]
     cover: Option<usize>,
     /// Cover only passes whose space holds more than N variants (with --cover, as validate's;

@@ -177,10 +177,10 @@ fn materials_restrict_the_build_set() {
     let path = dir.path().join("materials.toml");
     std::fs::write(&path, "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAP\", \"_METALLIC_MAP\"]\n").unwrap();
     let report = json(&["validate", "--json", "--materials", path.to_str().unwrap()]);
-    // One shader_feature combination × the 8 multi_compile combinations of Deferred, × the 2
-    // (SHADOWS_SCREEN) of ForwardBase.
-    assert_eq!(pass(&report, "standard", "Deferred")["built"], 8);
-    assert_eq!(pass(&report, "standard", "ForwardBase")["built"], 2);
+    // One shader_feature combination × the 8 · 3 multi_compile combinations of Deferred (the
+    // last 3: the BRDF tier), × the 2 · 3 (SHADOWS_SCREEN, tier) of ForwardBase.
+    assert_eq!(pass(&report, "standard", "Deferred")["built"], 24);
+    assert_eq!(pass(&report, "standard", "ForwardBase")["built"], 6);
     std::fs::write(
         &path,
         "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAPP\"]\n",

@@ -274,8 +274,8 @@ pub const GBUFFER_NORMAL_ANGLE: f32 = 1.732_050_8 * 3.0 / 1023.0;
 /// Both passes evaluate the Standard BRDF's direct term in tier `brdf`,
 /// `light = k · (diffuse · kd + ks · (spec + (1 − spec) · f))` ([`DirectFactors`]), with
 /// `k = colour · attenuation`; the deferred one reads `diffuse`, `spec` and `smoothness` from
-/// 8-bit targets, which clamp to [0, 1] and round (each off by at most `δ_x = |x − saturate(x)|
-/// + `[`GBUFFER_8BIT_STEP`] per channel: a detail albedo can push the colours above 1, and then
+/// 8-bit targets, which clamp to [0, 1] and round (each off by at most
+/// `δ_x = |x − saturate(x)| + `[`GBUFFER_8BIT_STEP`] per channel: a detail albedo can push the colours above 1, and then
 /// forward and deferred differ by design), and `n` from the 10-bit RT2 (off by at most
 /// [`GBUFFER_NORMAL_ANGLE`] = ε: the angle between `n` and `l`, `h` or `v` moves by at most ε,
 /// and the angle between `r = reflect(v, n)` and `l` by at most 2ε, a reflection doubling the

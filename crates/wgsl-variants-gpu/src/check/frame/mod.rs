@@ -47,7 +47,7 @@ use super::compare::pixel;
 use super::deferred::final_pass;
 use super::gbuffer::rt3_blend;
 use super::rig::shadowed;
-use super::scene::texture;
+use super::scene::{brdf_lut_resource, texture};
 use super::volume_draw::{depth_fill_draw, over_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -357,6 +357,7 @@ fn lighting_draws(
         names.extend(frame.brdf.keyword());
         let (label, wgsl) = drawer.text("deferred_shading", "Lighting", names)?;
         let mut resources = frame.light_resources(&params);
+        resources.push(brdf_lut_resource());
         resources.extend(shadow.map(|s| s.resources.clone()).unwrap_or_default());
         let volume = match light.map(|l| light_draw(l, frame.view_proj)) {
             Some(Ok(LightDraw::Volume(v))) => Some(v),

@@ -14,8 +14,7 @@
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 
 use super::super::scene::{
-    MapTexture, Maps, Rng, StandardBindings, brdf_lut_resource, cube, cube_resource, probe,
-    push_mat4, push_vec4,
+    MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe, push_mat4, push_vec4,
 };
 use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
@@ -653,7 +652,9 @@ impl FrameScene {
     }
 
     /// The bindings of one per-pixel light (`lighting/light_bindings`): its uniform, the
-    /// frame's cookies and their sampler (nearest, repeating), and BRDF3's lookup table.
+    /// frame's cookies and their sampler (nearest, repeating). (BRDF3's lookup table comes
+    /// with the objects' bindings in the forward path, with the lighting pass's in the
+    /// deferred one.)
     pub fn light_resources(&self, params: &LightParams) -> Vec<BoundResource> {
         let uniform = params
             .uniform()
@@ -672,7 +673,6 @@ impl FrameScene {
                     address_mode: wgpu::AddressMode::Repeat,
                 },
             ),
-            brdf_lut_resource(),
         ]
     }
 
