@@ -186,7 +186,8 @@ impl Dots {
     /// use glam::Vec3;
     /// use wgsl_variants_shaders::reference::brdf::Dots;
     /// let d = Dots::new(Vec3::Z, Vec3::Z, Vec3::Z);
-    /// assert_eq!((d.nl, d.nh, d.nv, d.lh, d.rl), (1.0, 1.0, 1.0, 1.0, 1.0));
+    /// // r = reflect(v, n) = −n here: BRDF3 takes (r·l)⁴, so the sign does not matter.
+    /// assert_eq!((d.nl, d.nh, d.nv, d.lh, d.rl), (1.0, 1.0, 1.0, 1.0, -1.0));
     /// // l = −v: no half vector, h = 0.
     /// assert_eq!(Dots::new(Vec3::Z, Vec3::X, Vec3::NEG_X).nh, 0.0);
     /// ```
