@@ -31,14 +31,15 @@ export NODEVICE_SELECT=1
 # tests). --nocapture: the GPU tests print how much they compared.
 cargo test --release --ignore-rust-version --workspace -- --nocapture
 
-# The examples (README "Using the shaders in your renderer"): a wgpu program that draws a
-# built-in and a URP G-buffer through generated bindings (typed keys, structs, layouts) and
-# writes PNGs (render_variant.png, render_variant-urp.png), and a crate
-# whose build.rs bakes the library. The crate has its own workspace; it shares this target
-# folder.
-# `cargo test` built the example with the workspace's features; running that binary avoids a
-# second build of the library with the GPU crate's features alone (about 3 minutes cold).
+# The examples (README "Using the shaders in your renderer"), both built by `cargo test` above
+# with the workspace's features (running the binaries avoids a second build of the library):
+# - render_variant: a wgpu program that draws a built-in and a URP G-buffer through generated
+#   bindings (typed keys, structs, layouts) and writes PNGs (render_variant.png,
+#   render_variant-urp.png);
+# - examples/baked: a renderer crate whose build.rs bakes the library with typed bindings; it
+#   looks baked variants up and draws two with wgpu (baked-deferred.png, baked-urp-gbuffer.png).
+#   Its tests (tests/gpu_check.rs, run above) hold those draws to the GPU check's.
 echo "== example: render_variant"
 target/release/examples/render_variant target/render_variant.png
 echo "== example crate: examples/baked"
-CARGO_TARGET_DIR="$PWD/target" cargo run --release --ignore-rust-version --manifest-path examples/baked/Cargo.toml
+target/release/wgsl-variants-baked-example target

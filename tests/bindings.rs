@@ -447,15 +447,50 @@ fn bake_writes_the_bindings_of_each_pass() {
     assert_eq!(structs(&module), structs(&plain));
 }
 
-/// A pass with two `shader_feature` sets and a `multi_compile`; the one material uses
-/// `NORMAL_MAP`, so the bake strips every variant with `DETAIL` or without `NORMAL_MAP`.
-const FEATURES: &str = "#shader lit\n#pass P\n\
-#pragma shader_feature _ NORMAL_MAP\n\
-#pragma shader_feature _ DETAIL\n\
-#pragma multi_compile _ FOG\n\
-@fragment fn fs() -> @location(0) vec4<f32> {\n\
-#if NORMAL_MAP\n    return vec4<f32>(0.5);\n#else\n    return vec4<f32>(1.0);\n#endif\n}\n\
-#endpass\n";
+/// The bake fixture of the compile-fail tests: a pass with two `shader_feature` sets and a
+/// `multi_compile`, and one material that uses `NORMAL_MAP`, so a bake strips every variant
+/// with `DETAIL` or without `NORMAL_MAP`.
+fn baked_fixture() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/bindings-compile-fail/baked")
+}
+
+/// Bakes the fixture with bindings into `out`.
+fn bake_fixture(out: &Path) -> wgsl_variants::bake::Baked {
+    let tree = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        baked_fixture().join("lit.wgsl"),
+        tree.path().join("lit.wgsl"),
+    )
+    .unwrap();
+    wgsl_variants::bake::Bake::new(tree.path())
+        .materials(baked_fixture().join("materials.toml"))
+        .file_name("shaders.rs")
+        .bindings(true)
+        .write_to(out)
+        .unwrap()
+}
+
+/// The baked module the `NotBaked` compile-fail case compiles against
+/// (`crates/bindings-compile-fail/src/baked_keys.rs`) is what a bake of its fixture writes
+/// today. `WGSL_VARIANTS_UPDATE=1` rewrites it.
+#[test]
+fn compile_fail_baked_module_is_current() {
+    let out = tempfile::tempdir().unwrap();
+    bake_fixture(out.path());
+    let code = std::fs::read_to_string(out.path().join("wgsl_variants_bindings/lit_p.rs")).unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("crates/bindings-compile-fail/src/baked_keys.rs");
+    if std::env::var("WGSL_VARIANTS_UPDATE").is_ok_and(|v| v == "1") {
+        std::fs::write(&path, &code).unwrap();
+    }
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        code == committed,
+        "crates/bindings-compile-fail/src/baked_keys.rs differs from what the bake writes; \
+         regenerate with\n  WGSL_VARIANTS_UPDATE=1 cargo test --release --ignore-rust-version \
+         --test bindings compile_fail_baked_module_is_current"
+    );
+}
 
 /// What the bake crate's `main` runs: a typed key finds the variant the string lookup finds,
 /// and a combination the materials strip is refused with a typed error.
@@ -531,23 +566,11 @@ fn main() {
 /// rustfmt-clean, and a small crate including both generated files builds and runs.
 #[test]
 fn bake_bindings_key_finds_its_baked_variant() {
-    let tree = tempfile::tempdir().unwrap();
-    std::fs::write(tree.path().join("lit.wgsl"), FEATURES).unwrap();
-    std::fs::write(
-        tree.path().join("materials.toml"),
-        "[[material]]\nname = \"Bumpy\"\nshader = \"lit\"\nkeywords = [\"NORMAL_MAP\"]\n",
-    )
-    .unwrap();
     let crate_dir = check_target().join("bake-crate");
     let _ = std::fs::remove_dir_all(&crate_dir);
     let out = crate_dir.join("out");
     std::fs::create_dir_all(crate_dir.join("src")).unwrap();
-    let baked = wgsl_variants::bake::Bake::new(tree.path())
-        .materials(tree.path().join("materials.toml"))
-        .file_name("shaders.rs")
-        .bindings(true)
-        .write_to(&out)
-        .unwrap();
+    let baked = bake_fixture(&out);
     // NORMAL_MAP on, DETAIL off (the material) × FOG off and on.
     assert_eq!(baked.variants, 2);
     let module = out.join("wgsl_variants_bindings/lit_p.rs");

@@ -1,13 +1,16 @@
-//! Bakes the bundled library's build set for `materials.toml`: WGSL and SPIR-V. A shader that
-//! does not validate fails this build with naga's diagnostics, pointing at the `.wgsl` file.
+//! Bakes the bundled library's build set for `materials.toml`: WGSL, SPIR-V and the typed Rust
+//! of every baked pass (keys, structs, layouts, with wgpu's types). A shader that does not
+//! validate fails this build with naga's diagnostics, pointing at the `.wgsl` file.
 
 use wgsl_variants::bake::BakeTarget;
+use wgsl_variants::bindings::Options;
 
 fn main() {
     let baked = wgsl_variants_shaders::bake()
         .materials("materials.toml")
         .target(BakeTarget::Wgsl)
         .target(BakeTarget::SpirV)
+        .bindings_with(Options::default().wgpu(true))
         .run();
     println!(
         "cargo:warning=baked {} variants ({} distinct outputs) into {}",

@@ -380,11 +380,7 @@ fn write_bindings(
             .filter(|&n| n <= crate::bindings::MAX_COMBINATIONS as usize);
         let mut slots = vec![u32::MAX; combinations.unwrap_or(0)];
         for (n, choice) in choices.iter().enumerate() {
-            let at = choice
-                .0
-                .iter()
-                .zip(&pass.sets)
-                .fold(0, |at, (&o, s)| at * s.len() + usize::from(o));
+            let at = crate::bindings::combination_index(pass, choice);
             if let Some(slot) = slots.get_mut(at) {
                 *slot = (start + n) as u32;
             }

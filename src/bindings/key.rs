@@ -66,6 +66,16 @@ fn snake_words(words: &[&str]) -> String {
     }
 }
 
+/// A combination's [`Key::index`](self) in the generated tables: its options in set order,
+/// the last set fastest.
+pub(crate) fn combination_index(pass: &Pass, choice: &crate::variants::Choice) -> usize {
+    choice
+        .0
+        .iter()
+        .zip(&pass.sets)
+        .fold(0, |at, (&o, set)| at * set.len() + usize::from(o))
+}
+
 /// The field of each keyword set of `pass`, in set order, with unique names.
 pub(crate) fn fields(pass: &Pass) -> Vec<Field> {
     let mut used_fields = BTreeSet::new();

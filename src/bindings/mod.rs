@@ -51,6 +51,7 @@ use crate::reflect::{Binding, BindingKind};
 use crate::shader::Pass;
 use crate::variants::{BudgetError, Choice, Space};
 
+pub(crate) use key::combination_index;
 pub use structs::{Member, Scalar, StructDef, Ty};
 
 /// Why a pass's bindings could not be generated.
@@ -311,7 +312,15 @@ pub(crate) fn generate_baked(
             limit: MAX_COMBINATIONS,
         });
     }
-    let choices = Space::after_skip(pass).enumerate(budget)?;
+    let mut choices = Space::after_skip(pass).enumerate(budget)?;
+    // A bake's module describes what the bake holds: `Key::new` refuses the rest, so their
+    // interfaces would never be read (and building them cost minutes in a build script).
+    if let Some(baked) = baked {
+        choices.retain(|c| {
+            let at = key::combination_index(pass, c);
+            baked.index.get(at).is_some_and(|&n| n != u32::MAX)
+        });
+    }
     let variant = |choice: &Choice| Variant {
         pass,
         choice: choice.clone(),
@@ -448,11 +457,7 @@ pub(crate) fn generate_baked(
     }
     let mut table = vec![u32::MAX; combinations as usize];
     for (i, choice) in choices.iter().enumerate() {
-        let index = choice
-            .0
-            .iter()
-            .zip(&pass.sets)
-            .fold(0usize, |acc, (&o, set)| acc * set.len() + o as usize);
+        let index = key::combination_index(pass, choice);
         table[index] = interface_of_text[text_of[i]] as u32;
     }
 
@@ -467,8 +472,9 @@ pub(crate) fn generate_baked(
     );
     let _ = writeln!(
         code,
-        "// from its {} variants ({} distinct texts). Do not edit. Include it in a module:",
+        "// from its {} {}variants ({} distinct texts). Do not edit. Include it in a module:",
         choices.len(),
+        if baked.is_some() { "baked " } else { "" },
         shapes.len()
     );
     let _ = writeln!(
@@ -565,7 +571,9 @@ pub(crate) fn generate_baked(
             code,
             "    /// The position in the bake's `variants()` of each [`Key::index`] (`u32::MAX`: not baked)."
         );
-        // A `const`, not a `static`: `Key::new` is a `const fn` and reads it.
+        // A `const`, not a `static`: `Key::new` is a `const fn` and reads it (so clippy's
+        // advice to make a large array a `static` cannot be followed).
+        let _ = writeln!(code, "    #[allow(clippy::large_const_arrays)]");
         let _ = writeln!(
             code,
             "    pub const BAKED: [u32; {}] = [",

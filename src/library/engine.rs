@@ -19,6 +19,7 @@ pub(crate) struct How {
     /// Leave out the items the entry points do not reach ([`crate::reach`]).
     pub prune: bool,
     /// The device the engines that validate while composing (naga_oil, WESL) validate for.
+    #[cfg_attr(not(any(feature = "naga-oil", feature = "wesl")), allow(dead_code))]
     pub profile: crate::validator::Profile,
 }
 

@@ -415,21 +415,6 @@ fn assert_same_buffers(
     }
 }
 
-/// The example's targets equal the GPU check's, texel for texel.
-fn assert_same_targets(what: &str, ours: &[Vec<u8>], check: &[Vec<u8>]) {
-    assert_eq!(ours.len(), check.len(), "{what}: targets");
-    for (i, (a, b)) in ours.iter().zip(check).enumerate() {
-        assert_eq!(a.len(), b.len(), "{what}: target {i}");
-        let differ = a.iter().zip(b).filter(|(x, y)| x != y).count();
-        assert_eq!(
-            differ,
-            0,
-            "{what}: target {i}: {differ} of {} bytes differ",
-            a.len()
-        );
-    }
-}
-
 /// Same inputs: every uniform buffer the example fills through the generated structs holds the
 /// bytes the GPU check packs for the scene by hand.
 #[test]
@@ -467,7 +452,7 @@ fn example_gbuffer_is_the_gpu_checks() {
     let ours = deferred::render(&ctx, &lib, &scene).unwrap();
     let keywords = deferred::KEY.keywords();
     let check = render_gbuffer(&ctx, &lib, &scene, &keywords).unwrap();
-    assert_same_targets("standard/Deferred", &ours, &check.targets);
+    common::assert_same_targets("standard/Deferred", &ours, &check.targets);
     eprintln!(
         "standard/Deferred {keywords:?} on {}: {} targets of {}x{} equal the GPU check's",
         ctx.adapter_name(),
@@ -494,7 +479,7 @@ fn example_urp_gbuffer_is_the_gpu_checks() {
     let mut job = urp.job(&variant.label(), &lib.wgsl(&variant), &keywords);
     job.resources = urp.resources();
     let check = render(&ctx, &job).unwrap();
-    assert_same_targets("universal_lit/UniversalGBuffer", &ours, &check);
+    common::assert_same_targets("universal_lit/UniversalGBuffer", &ours, &check);
     eprintln!(
         "universal_lit/UniversalGBuffer {keywords:?} on {}: {} targets of {}x{} equal the GPU \
          check's",
