@@ -31,9 +31,12 @@ fn check_caster(lib: &Library) -> Option<CheckReport> {
     check_pass(lib, "standard", "ShadowCaster")
 }
 
-/// `SHADOWS_SCREEN`: both `screen_space_shadows/Collect` variants' masks of both directional
-/// lights match the reference over the read-back maps, with shadowed pixels and SHADOWS_SOFT
-/// changing some; and a mask that mixes with half the strength is caught.
+/// `SHADOWS_SCREEN`: all 8 `screen_space_shadows/Collect` variants' masks of both directional
+/// lights with 1, 2 and 4 cascades match the reference over the read-back atlases, with
+/// shadowed pixels, pixels in every cascade and in none, and every keyword changing some; and
+/// planted faults are caught: a mask that mixes with half the strength, cascades selected from
+/// their far splits, overlapping split spheres not made exclusive, and cascade 1 read through
+/// cascade 0's view.
 #[test]
 fn screen_space_shadows_match_the_reference() {
     let Some(report) = check_pass(
@@ -46,28 +49,69 @@ fn screen_space_shadows_match_the_reference() {
     eprintln!("{report}");
     assert!(report.passed(), "{report}");
     let p = &report.passes[0];
-    assert_eq!((p.variants_run, p.draws), (2, 4));
-    assert!(p.notes[0].contains("shadowed"), "{:?}", p.notes);
-    let shadowed: usize = p.notes[0]
-        .split(" shadowed")
-        .next()
-        .and_then(|s| s.rsplit(' ').next())
-        .and_then(|n| n.parse().ok())
-        .unwrap();
+    assert_eq!((p.variants_run, p.draws), (8, 8 * 2 * 3 * 2));
+    assert_eq!(p.keywords.len(), 3, "{:?}", p.keywords);
+    let note = &p.notes[0];
+    let count_before = |word: &str| -> usize {
+        note.split(word)
+            .next()
+            .and_then(|s| s.rsplit(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap()
+    };
+    let shadowed = count_before(" shadowed");
     assert!(
-        shadowed > 20,
+        shadowed > 100,
         "the occluders shadow part of the view: {shadowed}"
     );
-
-    let lib = common::mutate::bundled_with(
-        "internal/screen_space_shadows.wgsl",
-        "shadow_mix(shadow.params.x, visibility)",
-        "shadow_mix(shadow.params.x * 0.5, visibility)",
-    );
-    let Some(report) = check_pass(&lib, "screen_space_shadows", "Collect") else {
-        return;
+    // Pixels per cascade 0-3, none and several of the 4 cascades, as the check counted them
+    // (the list after `label` in `text`).
+    let counts = |text: &str, label: &str| -> Vec<usize> {
+        let list = text.split(label).nth(1).unwrap();
+        list[1..list.find(']').unwrap()]
+            .split(", ")
+            .map(|n| n.parse().unwrap())
+            .collect()
     };
-    assert!(report.passes[0].mismatches > 0 && !report.passed());
+    // The camera's view: every cascade holds pixels by view depth, some lie beyond, none in
+    // two. The deep view along the floor: so do the split spheres.
+    let deep = note.split("deep view by view depth ").nth(1).unwrap();
+    let by_depth = counts(note, "camera view by view depth ");
+    assert!(
+        by_depth[..5].iter().all(|&n| n > 0) && by_depth[5] == 0,
+        "{note}"
+    );
+    let spheres = counts(deep, "by split spheres ");
+    assert!(
+        spheres[..4].iter().all(|&n| n > 0) && spheres[5] == 0,
+        "{note}"
+    );
+
+    for (from, to) in [
+        (
+            "shadow_mix(cascades.params.x, visibility)",
+            "shadow_mix(cascades.params.x * 0.5, visibility)",
+        ),
+        ("vec4f(z) >= c.splits_near", "vec4f(z) >= c.splits_far"),
+        ("saturate(inside.yzw - inside.xyz)", "inside.yzw"),
+        (
+            "shadow_coords(c.world_to_shadow[1], p) * w.y",
+            "shadow_coords(c.world_to_shadow[0], p) * w.y",
+        ),
+    ] {
+        let file = if from.starts_with("shadow_mix") {
+            "internal/screen_space_shadows.wgsl"
+        } else {
+            "lighting/cascades.wgsl"
+        };
+        let lib = common::mutate::bundled_with(file, from, to);
+        let Some(report) = check_pass(&lib, "screen_space_shadows", "Collect") else {
+            return;
+        };
+        let p = &report.passes[0];
+        eprintln!("planted {to:?}: {} mismatches", p.mismatches);
+        assert!(p.mismatches > 0 && !report.passed(), "{to:?} not caught");
+    }
 }
 
 /// `check-gpu`'s ShadowCaster part: all 8 variants, every texel of the spot map and of the

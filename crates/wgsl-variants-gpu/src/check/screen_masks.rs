@@ -1,8 +1,13 @@
 //! The screen-space shadows the light rig carries (`SHADOWS_SCREEN`, docs/shading.md §11):
-//! each directional light's map, rendered by `standard/ShadowCaster` through the light's
-//! orthographic view, and the masks `screen_space_shadows/Collect` made of it over the
-//! camera's depth buffer. The `Collect` check compares these masks; the lighting and forward
-//! checks read them.
+//! each directional light's cascaded maps — 1, 2 and 4 cascades fitted to slices of the
+//! camera's view ([`CASCADE_COUNTS`]), each cascade rendered by `standard/ShadowCaster` through
+//! its orthographic view and laid into its tile of an atlas — and the masks every
+//! `screen_space_shadows/Collect` variant made of each atlas over the camera's depth buffer.
+//! The `Collect` check compares these masks; the lighting and forward checks read the
+//! 4-cascade mask. Each light also keeps one map over the region around the scene (URP's main
+//! light reads it).
+
+use glam::{Mat4, Vec3, Vec4};
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::scene::{TestScene, texture};
@@ -12,7 +17,10 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::light::{Light, LightType};
+use wgsl_variants_shaders::reference::cascades::{CascadeCamera, Cascades};
+use wgsl_variants_shaders::reference::light::{
+    Light, LightType, look_at_rh, perspective_rh, world_from_depth,
+};
 use wgsl_variants_shaders::reference::shadow::{ShadowMap2d, ShadowParams};
 
 /// The directional shadows' strength.
@@ -21,20 +29,124 @@ pub const DIRECTIONAL_STRENGTH: f32 = 0.85;
 /// The radius of the region the directional maps cover, around the test floor's centre.
 pub const REGION_RADIUS: f32 = 2.0;
 
-/// One directional light's shadow: its map and the masks `Collect` made of it.
+/// The cascade counts the masks are rendered with (Unity's choices): 1, 2 and 4.
+pub const CASCADE_COUNTS: [usize; 3] = [1, 2, 4];
+
+/// The camera's near plane, where the first cascade starts (as Unity starts it).
+pub const CASCADE_NEAR: f32 = 0.5;
+
+/// The deep view's camera: low over the floor, looking along it towards the occluders, so its
+/// pixels' view depths run from a few units to the horizon. (The rig's camera looks down at
+/// the floor: its pixels' depths lie in a band a tenth of the view's width, so the first
+/// slice's bounding sphere holds nearly all of them and the split spheres go untested there.)
+pub const DEEP_EYE: Vec3 = Vec3::new(0.3, -7.0, 1.6);
+
+/// Where the deep view looks.
+pub const DEEP_TARGET: Vec3 = Vec3::new(0.25, -0.25, 0.0);
+
+/// The deep view's far plane (its sky pixels lie there, beyond every cascade).
+pub const DEEP_FAR: f32 = 30.0;
+
+/// Where the cascades end and the next starts, as fractions of the pixels' view depths sorted
+/// (the depths half-way between two neighbours there): the last cascade ends before the
+/// farthest pixels, so some pixels lie in no cascade.
+pub fn split_fractions(count: usize) -> &'static [f32] {
+    match count {
+        1 => &[0.9],
+        2 => &[0.45, 0.9],
+        _ => &[0.2, 0.45, 0.7, 0.9],
+    }
+}
+
+/// A directional light's cascades of one count, their atlas, and a mask per `Collect`
+/// variant.
+#[derive(Clone, Debug)]
+pub struct CascadeSet {
+    /// The cascades, fitted to the camera's view.
+    pub cascades: Cascades,
+    /// The atlas, read back (each tile a cascade's map, [`Cascades::grid`]).
+    pub atlas: ShadowMap2d,
+    /// The atlas as rendered (`Depth16Unorm`).
+    pub atlas_texels: Vec<u16>,
+    /// The atlas's width and height in texels.
+    pub atlas_size: (u32, u32),
+    /// The mask of each `Collect` variant (in [`ScreenShadows::variants`] order),
+    /// `Rgba8Unorm` bytes of the rig's camera view.
+    pub masks: Vec<Vec<u8>>,
+}
+
+/// One directional light's shadow: its cascades with the masks `Collect` made of them, and one
+/// map over the region around the scene.
 #[derive(Clone, Debug)]
 pub struct ScreenShadow {
     /// `DIRECTIONAL` or `DIRECTIONAL_COOKIE`.
     pub light: LightType,
-    /// The map's parameters.
+    /// The region map's parameters (an orthographic box of [`REGION_RADIUS`]).
     pub params: ShadowParams,
-    /// The map, read back.
+    /// The region map, read back.
     pub map: ShadowMap2d,
-    /// The map as rendered (`Depth16Unorm`).
+    /// The region map as rendered (`Depth16Unorm`).
     pub map_texels: Vec<u16>,
-    /// The mask of each `Collect` variant (in [`ScreenShadows::variants`] order), `Rgba8Unorm`
-    /// bytes of the rig's camera view.
-    pub masks: Vec<Vec<u8>>,
+    /// One per [`CASCADE_COUNTS`], in order, over the rig's camera view.
+    pub sets: Vec<CascadeSet>,
+    /// The same over the deep view ([`ScreenShadows::deep`]).
+    pub deep_sets: Vec<CascadeSet>,
+}
+
+/// A second camera view for the `Collect` check: the floor `z = 0` seen from [`DEEP_EYE`]
+/// (each pixel's depth where its ray meets the floor, the far plane where it does not).
+#[derive(Clone, Debug)]
+pub struct DeepView {
+    /// World to clip.
+    pub view_proj: Mat4,
+    /// The camera's position.
+    pub position: Vec3,
+    /// One depth per pixel, row by row.
+    pub depth: Vec<f32>,
+}
+
+impl DeepView {
+    /// The view at `width × height`.
+    pub fn new(width: u32, height: u32) -> DeepView {
+        let view_proj = perspective_rh(0.6, width as f32 / height as f32, CASCADE_NEAR, DEEP_FAR)
+            * look_at_rh(DEEP_EYE, DEEP_TARGET, Vec3::Z);
+        let inv = view_proj.inverse();
+        let mut depth = Vec::with_capacity((width * height) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let near = world_from_depth(inv, x, y, width, height, 0.0);
+                let far = world_from_depth(inv, x, y, width, height, 1.0);
+                let d = if near.z > 0.0 && far.z < 0.0 {
+                    let hit = near + (far - near) * (near.z / (near.z - far.z));
+                    let clip = view_proj * hit.extend(1.0);
+                    clip.z / clip.w
+                } else {
+                    1.0
+                };
+                depth.push(d);
+            }
+        }
+        DeepView {
+            view_proj,
+            position: DEEP_EYE,
+            depth,
+        }
+    }
+
+    /// The camera as the full-screen passes see it.
+    pub(crate) fn camera(&self) -> LightingCamera<'_> {
+        LightingCamera {
+            view_proj: self.view_proj,
+            position: self.position,
+            depth: &self.depth,
+        }
+    }
+
+    /// The world position `Collect` rebuilds at pixel `(x, y)` of a `width`-wide view.
+    pub fn position(&self, x: u32, y: u32, width: u32, height: u32) -> Vec3 {
+        let d = self.depth[(y * width + x) as usize];
+        world_from_depth(self.view_proj.inverse(), x, y, width, height, d)
+    }
 }
 
 /// The screen-space shadows of the rig's two directional lights.
@@ -44,6 +156,8 @@ pub struct ScreenShadows {
     pub variants: Vec<Vec<String>>,
     /// One per directional light type.
     pub lights: Vec<ScreenShadow>,
+    /// The deep view the `Collect` check also renders its masks over.
+    pub deep: DeepView,
     /// The masks' size in pixels.
     pub width: u32,
     /// The masks' height in pixels.
@@ -74,6 +188,7 @@ impl ScreenShadows {
             .collect();
         let refused = refused("screen_space_shadows/Collect");
         let center = scene.centre.extend(0.5);
+        let deep = DeepView::new(scene.width, scene.height);
         let mut lights = Vec::new();
         for (light, kind) in directional {
             let params = ShadowParams::for_directional(
@@ -94,31 +209,26 @@ impl ScreenShadows {
             )?;
             let map =
                 ShadowMap2d::from_depth16(MAP_SIZE, MAP_SIZE, &image.depth).map_err(&refused)?;
-            let mut masks = Vec::new();
-            for choice in &choices {
-                let variant = wgsl_variants::Variant {
-                    pass,
-                    choice: choice.clone(),
-                };
-                let mut job =
-                    RenderJob::new(&variant.label(), &lib.wgsl(&variant), "vs_main", "fs_main");
-                job.width = scene.width;
-                job.height = scene.height;
-                job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
-                job.resources = collect_resources(scene, camera, &params, &image.depth);
-                masks.push(render(ctx, &job)?.remove(0));
-            }
+            let collect = Collect {
+                pass,
+                choices: &choices,
+                size: (scene.width, scene.height),
+            };
+            let sets = collect.sets(ctx, lib, light, camera)?;
+            let deep_sets = collect.sets(ctx, lib, light, &deep.camera())?;
             lights.push(ScreenShadow {
                 light: kind,
                 params,
                 map,
                 map_texels: image.depth,
-                masks,
+                sets,
+                deep_sets,
             });
         }
         Ok(ScreenShadows {
             variants,
             lights,
+            deep,
             width: scene.width,
             height: scene.height,
         })
@@ -129,60 +239,183 @@ impl ScreenShadows {
         self.lights.iter().find(|l| l.light == t)
     }
 
-    /// The mask the `Lighting` variants read for light `t`: the hard one (the lighting pass
-    /// leaves `SHADOWS_SOFT` to `Collect`), as a texture resource.
+    /// The 4-cascade set of light `t` (directional types only), whose masks the lighting and
+    /// forward checks read.
+    fn four(&self, t: LightType) -> Option<&CascadeSet> {
+        self.light(t)?.sets.last()
+    }
+
+    /// The mask the `Lighting` variants read for light `t`: the hard one of 4 cascades split
+    /// by view depth (the lighting pass leaves `SHADOWS_SOFT` and the cascades to
+    /// `Collect`), as a texture resource.
     pub fn lighting_mask(&self, t: LightType) -> Option<Resource> {
         let hard = self.variants.iter().position(|v| v.is_empty())?;
-        let light = self.light(t)?;
         Some(texture(
             TargetFormat::Rgba8Unorm,
             self.width,
             self.height,
-            &light.masks[hard],
+            &self.four(t)?.masks[hard],
         ))
     }
 
     /// The factor the hard mask holds at pixel `i` for light `t` (1 for other lights).
     pub fn lighting_factor(&self, t: LightType, i: usize) -> f32 {
         let hard = self.variants.iter().position(|v| v.is_empty());
-        match (hard, self.light(t)) {
-            (Some(hard), Some(light)) => f32::from(light.masks[hard][i * 4]) / 255.0,
+        match (hard, self.four(t)) {
+            (Some(hard), Some(set)) => f32::from(set.masks[hard][i * 4]) / 255.0,
             _ => 1.0,
         }
     }
 }
 
-/// The bindings of a `Collect` draw: the depth (`R32Float`), the lighting pass's camera
-/// uniform, the light's `Shadow` uniform, its map and the comparison sampler.
-fn collect_resources(
-    scene: &TestScene,
-    camera: &LightingCamera<'_>,
-    params: &ShadowParams,
-    map: &[u16],
-) -> Vec<BoundResource> {
-    let mut out = depth_camera_resources((scene.width, scene.height), camera);
-    out.extend(shadow_map_resources(params, map));
-    out
+/// What every cascade set's masks are rendered with: the `Collect` pass, its variants, the
+/// masks' size.
+struct Collect<'a> {
+    pass: &'a wgsl_variants::Pass,
+    choices: &'a [wgsl_variants::Choice],
+    size: (u32, u32),
+}
+
+impl Collect<'_> {
+    /// `light`'s cascades over `camera`'s view, one set per [`CASCADE_COUNTS`]: fitted to
+    /// splits at [`split_fractions`] of the pixels' view depths from [`CASCADE_NEAR`], the
+    /// atlas rendered, and a mask per variant.
+    fn sets(
+        &self,
+        ctx: &GpuContext,
+        lib: &Library,
+        light: &Light,
+        camera: &LightingCamera<'_>,
+    ) -> Result<Vec<CascadeSet>, GpuError> {
+        let refused = refused("screen_space_shadows/Collect");
+        let view = cascade_camera(camera);
+        let depths = view_depths(self.size, camera, &view);
+        let mut sets = Vec::new();
+        for count in CASCADE_COUNTS {
+            let mut splits = vec![CASCADE_NEAR];
+            splits.extend(split_fractions(count).iter().map(|&f| quantile(&depths, f)));
+            let cascades = Cascades::fit(light, DIRECTIONAL_STRENGTH, SPOT_BIAS, &view, &splits)
+                .map_err(&refused)?;
+            let (atlas_texels, atlas_size) = render_atlas(ctx, lib, &cascades)?;
+            let atlas = ShadowMap2d::from_depth16(atlas_size.0, atlas_size.1, &atlas_texels)
+                .map_err(&refused)?;
+            let mut masks = Vec::new();
+            for choice in self.choices {
+                let variant = wgsl_variants::Variant {
+                    pass: self.pass,
+                    choice: choice.clone(),
+                };
+                let mut job =
+                    RenderJob::new(&variant.label(), &lib.wgsl(&variant), "vs_main", "fs_main");
+                (job.width, job.height) = self.size;
+                job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
+                job.resources = depth_camera_resources(self.size, camera);
+                job.resources.extend(map_resources(
+                    &cascades.uniform(),
+                    &atlas_texels,
+                    atlas_size,
+                ));
+                masks.push(render(ctx, &job)?.remove(0));
+            }
+            sets.push(CascadeSet {
+                cascades,
+                atlas,
+                atlas_texels,
+                atlas_size,
+                masks,
+            });
+        }
+        Ok(sets)
+    }
+}
+
+/// The cascades' view of `camera`: its position, and its forward axis from its inverse
+/// view-projection (the centre of the screen at mid depth).
+fn cascade_camera(camera: &LightingCamera<'_>) -> CascadeCamera {
+    let inv_view_proj = camera.view_proj.inverse();
+    let q = inv_view_proj * Vec4::new(0.0, 0.0, 0.5, 1.0);
+    let forward = (q.truncate() / q.w - camera.position).normalize();
+    CascadeCamera {
+        position: camera.position,
+        forward,
+        inv_view_proj,
+    }
+}
+
+/// The view depth of every pixel's position rebuilt from `camera`'s depth buffer, sorted.
+fn view_depths((w, h): (u32, u32), camera: &LightingCamera<'_>, view: &CascadeCamera) -> Vec<f32> {
+    let mut depths: Vec<f32> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let d = camera.depth[(y * w + x) as usize];
+            let p: Vec3 = world_from_depth(view.inv_view_proj, x, y, w, h, d);
+            (p - view.position).dot(view.forward)
+        })
+        .collect();
+    depths.sort_by(f32::total_cmp);
+    depths
+}
+
+/// The depth half-way between the sorted `depths` at fraction `f` and the next one.
+fn quantile(depths: &[f32], f: f32) -> f32 {
+    let k = ((depths.len() as f32 * f) as usize).min(depths.len() - 2);
+    0.5 * (depths[k] + depths[k + 1])
+}
+
+/// Renders each cascade's map with the cut-out caster through its own view and lays it into
+/// its tile of the atlas ([`Cascades::grid`] of [`MAP_SIZE`] tiles): the texels and the
+/// atlas's size.
+fn render_atlas(
+    ctx: &GpuContext,
+    lib: &Library,
+    cascades: &Cascades,
+) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
+    let count = cascades.cascades.len();
+    let (cols, rows) = Cascades::grid(count);
+    let (w, h) = (cols * MAP_SIZE, rows * MAP_SIZE);
+    let mut atlas = vec![u16::MAX; (w * h) as usize];
+    for (i, c) in cascades.cascades.iter().enumerate() {
+        let tile = render_caster(
+            ctx,
+            lib,
+            &["_RENDERING_CUTOUT", "SHADOWS_DEPTH"],
+            c.view_proj,
+            c.params.light_position.extend(c.params.inv_range),
+            MAP_SIZE,
+        )?;
+        let (x0, y0) = ((i as u32 % 2) * MAP_SIZE, (i as u32 / 2) * MAP_SIZE);
+        for (row, texels) in tile.depth.chunks(MAP_SIZE as usize).enumerate() {
+            let at = ((y0 + row as u32) * w + x0) as usize;
+            atlas[at..at + MAP_SIZE as usize].copy_from_slice(texels);
+        }
+    }
+    Ok((atlas, (w, h)))
 }
 
 /// Bindings 10-12 of a directional light's shadow (`lighting/shadow`): the `Shadow` uniform of
 /// `params`, the `Depth16Unorm` map's texels and the LessEqual comparison sampler. Shared by
-/// `Collect` and URP's main light (`stencil_deferred`, `_MAIN_LIGHT_SHADOWS`).
+/// URP's main light (`stencil_deferred`, `_MAIN_LIGHT_SHADOWS`) and its forward pass.
 pub(crate) fn shadow_map_resources(params: &ShadowParams, map: &[u16]) -> Vec<BoundResource> {
-    let shadow: Vec<u8> = params
-        .uniform()
-        .into_iter()
-        .flat_map(f32::to_le_bytes)
-        .collect();
+    map_resources(&params.uniform(), map, (MAP_SIZE, MAP_SIZE))
+}
+
+/// Bindings 10-12 of a shadow map: `uniform` (the `Shadow` or `CascadedShadow` record), the
+/// `Depth16Unorm` map of `size` and the LessEqual comparison sampler (nearest).
+pub(crate) fn map_resources(
+    uniform: &[f32],
+    map: &[u16],
+    (width, height): (u32, u32),
+) -> Vec<BoundResource> {
+    let uniform: Vec<u8> = uniform.iter().flat_map(|v| v.to_le_bytes()).collect();
     vec![
-        BoundResource::new(0, 10, Resource::Uniform(shadow)),
+        BoundResource::new(0, 10, Resource::Uniform(uniform)),
         BoundResource::new(
             0,
             11,
             Resource::Texture2d {
                 format: wgpu::TextureFormat::Depth16Unorm,
-                width: MAP_SIZE,
-                height: MAP_SIZE,
+                width,
+                height,
                 data: map.iter().flat_map(|d| d.to_le_bytes()).collect(),
             },
         ),

@@ -1,17 +1,21 @@
 //! `SHADOWS_SCREEN` for the GPU check (docs/shading.md §11): each directional light of the
-//! [`LightRig`] gets a shadow map — the occluder scene of [`super::shadows`] rendered by
-//! `standard/ShadowCaster` (`SHADOWS_DEPTH`) through the light's orthographic view
-//! ([`ShadowParams::for_directional`]) — and `screen_space_shadows/Collect` turns that map into
-//! a mask of the rig's camera view, over the same depth buffer the `Lighting` check rebuilds its
-//! positions from. The maps are read back: the reference compares every mask texel with
-//! [`shadow_factor`] over the read-back map at the rebuilt position (an interval where a tap is
-//! within a hair of flipping), and the `Lighting` variants with `SHADOWS_SCREEN` read the
-//! rendered mask, as the reference does, so the lighting's use of it is tested exactly.
+//! [`LightRig`] gets cascaded shadow maps — 1, 2 and 4 cascades fitted to slices of the rig's
+//! camera view, each the occluder scene of [`super::shadows`] rendered by
+//! `standard/ShadowCaster` (`SHADOWS_DEPTH`) through the cascade's orthographic view into its
+//! tile of an atlas ([`Cascades::fit`]) — and every `screen_space_shadows/Collect` variant
+//! turns each atlas into a mask of the rig's camera view, over the same depth buffer the
+//! `Lighting` check rebuilds its positions from. The atlases are read back: the reference
+//! compares every mask texel with [`Cascades::factor`] over the read-back atlas at the rebuilt
+//! position (an interval where a tap is within a hair of flipping, or the position within a
+//! hair of a split, where both cascades count), and the `Lighting` variants with
+//! `SHADOWS_SCREEN` read the rendered 4-cascade mask, as the reference does, so the lighting's
+//! use of it is tested exactly.
 //!
 //! The maps and masks themselves ([`ScreenShadows`]) are rendered with the rig, which carries
 //! them; this module checks the masks and keeps their public path.
 //!
-//! [`ShadowParams::for_directional`]: wgsl_variants_shaders::reference::shadow::ShadowParams::for_directional
+//! [`Cascades::fit`]: wgsl_variants_shaders::reference::cascades::Cascades::fit
+//! [`Cascades::factor`]: wgsl_variants_shaders::reference::cascades::Cascades::factor
 
 use std::time::Instant;
 
@@ -22,11 +26,14 @@ use super::rig::LightRig;
 use super::scene::TestScene;
 use super::shadows::MAP_SIZE;
 use crate::{CheckError, GpuContext, GpuError};
+use glam::Vec3;
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
+use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades};
 use wgsl_variants_shaders::reference::tolerance::unorm_within;
 
-pub use super::screen_masks::{DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow, ScreenShadows};
+pub use super::screen_masks::{
+    CASCADE_COUNTS, CascadeSet, DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow, ScreenShadows,
+};
 
 impl ScreenShadows {
     /// Renders each directional light's map of `rig` with the cut-out caster, then every
@@ -51,9 +58,12 @@ impl ScreenShadows {
     }
 }
 
-/// Checks every `Collect` variant's mask of each directional light: every pixel against
-/// [`shadow_factor`] over the read-back map at the position rebuilt from depth (1 LSB of
-/// `Rgba8Unorm`, within the interval of an uncertain tap), and each keyword changing a pixel.
+/// Checks every `Collect` variant's mask of each directional light and cascade count: every
+/// pixel against [`Cascades::factor`] over the read-back atlas at the position rebuilt from
+/// depth (1 LSB of `Rgba8Unorm`, within the interval of an uncertain tap or cascade), and each
+/// keyword changing a pixel.
+///
+/// [`Cascades::factor`]: wgsl_variants_shaders::reference::cascades::Cascades::factor
 pub fn check_collect(
     lib: &Library,
     scene: &TestScene,
@@ -68,60 +78,84 @@ pub fn check_collect(
     let mut report = PassReport::new("screen_space_shadows", "Collect");
     let mut uncertain = 0usize;
     let mut shadowed = 0usize;
+    // Per view, pixels per cascade (then none, several) of the 4-cascade sets split by view
+    // depth and by spheres.
+    let mut picked = [[[0usize; 6]; 2]; 2];
+    let (w, h) = (scene.width, scene.height);
+    let rig_positions: Vec<Vec3> = scene
+        .pixels()
+        .map(|(x, y)| rig.deferred_position(scene, x, y))
+        .collect();
+    let deep_positions: Vec<Vec3> = scene
+        .pixels()
+        .map(|(x, y)| shadows.deep.position(x, y, w, h))
+        .collect();
     for (v, names) in shadows.variants.iter().enumerate() {
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let (keywords, _) = ShadowKeywords::split(&names);
-        let keywords = ShadowKeywords {
-            depth: true,
-            ..keywords
-        };
+        let keywords = CascadeKeywords::of(&names);
         for light in &shadows.lights {
-            let mask = &light.masks[v];
-            for (i, (x, y)) in scene.pixels().enumerate() {
-                let p = rig.deferred_position(scene, x, y);
-                let (lo, hi) = shadow_factor(
-                    &light.params,
-                    keywords,
-                    ShadowMaps {
-                        map: Some(&light.map),
-                        cube: None,
-                    },
-                    p,
-                );
-                uncertain += usize::from(lo != hi);
-                shadowed += usize::from(hi < 1.0);
-                let got = mask[i * 4];
-                let want = (f32::from(got) / 255.0).clamp(lo.min(hi), lo.max(hi));
-                let rest = [mask[i * 4 + 1], mask[i * 4 + 2], mask[i * 4 + 3]];
-                report.record(
-                    unorm_within(u32::from(got), want, 8) && rest == [255; 3],
-                    || Mismatch {
-                        shader: "screen_space_shadows".to_owned(),
-                        pass: "Collect".to_owned(),
-                        keywords: format!("{{{}}} for {:?}", names.join(", "), light.light),
-                        target: "mask Rgba8Unorm".to_owned(),
-                        pixel: [x, y],
-                        expected: vec![lo, hi],
-                        got: vec![f32::from(got) / 255.0],
-                        got_raw: mask[i * 4..i * 4 + 4]
-                            .iter()
-                            .map(|&b| u32::from(b))
-                            .collect(),
-                    },
-                );
+            let views = [
+                ("camera", &light.sets, &rig_positions),
+                ("deep", &light.deep_sets, &deep_positions),
+            ];
+            for (view, (name, sets, positions)) in views.into_iter().enumerate() {
+                for (set, count) in sets.iter().zip(CASCADE_COUNTS) {
+                    let mask = &set.masks[v];
+                    for (i, (x, y)) in scene.pixels().enumerate() {
+                        let p = positions[i];
+                        let (lo, hi) = set.cascades.factor(keywords, &set.atlas, p);
+                        if count == 4
+                            && !keywords.single
+                            && !keywords.soft
+                            && let Some(w) = set.cascades.candidates(keywords, p)[0]
+                        {
+                            picked[view][usize::from(keywords.split_spheres)]
+                                [Cascades::picked(w)] += 1;
+                        }
+                        uncertain += usize::from(lo != hi);
+                        shadowed += usize::from(hi < 1.0);
+                        let got = mask[i * 4];
+                        let want = (f32::from(got) / 255.0).clamp(lo.min(hi), lo.max(hi));
+                        let rest = [mask[i * 4 + 1], mask[i * 4 + 2], mask[i * 4 + 3]];
+                        report.record(
+                            unorm_within(u32::from(got), want, 8) && rest == [255; 3],
+                            || Mismatch {
+                                shader: "screen_space_shadows".to_owned(),
+                                pass: "Collect".to_owned(),
+                                keywords: format!(
+                                    "{{{}}} for {:?}, {count} cascade(s), {name} view",
+                                    names.join(", "),
+                                    light.light
+                                ),
+                                target: "mask Rgba8Unorm".to_owned(),
+                                pixel: [x, y],
+                                expected: vec![lo, hi],
+                                got: vec![f32::from(got) / 255.0],
+                                got_raw: mask[i * 4..i * 4 + 4]
+                                    .iter()
+                                    .map(|&b| u32::from(b))
+                                    .collect(),
+                            },
+                        );
+                    }
+                    report.draws += 1;
+                }
             }
-            report.draws += 1;
         }
         report.variants_run += 1;
         report.distinct_shaders += 1;
     }
     report.keywords = keyword_coverage(pass, &choices, |a, b| {
-        shadows.lights.iter().any(|l| l.masks[a] != l.masks[b])
+        shadows
+            .lights
+            .iter()
+            .flat_map(|l| l.sets.iter().chain(&l.deep_sets))
+            .any(|s| s.masks[a] != s.masks[b])
     });
     report.judge_keywords();
     report.notes.push(format!(
-        "the {}x{} masks of 2 directional lights (one {MAP_SIZE}x{MAP_SIZE} Depth16Unorm map each, an orthographic box of radius {REGION_RADIUS}); {shadowed} shadowed and {uncertain} uncertain-tap pixel comparisons",
-        scene.width, scene.height
+        "the {}x{} masks of 2 directional lights with 1, 2 and 4 cascades, over the camera's view and a deep view along the floor (atlases of {MAP_SIZE}x{MAP_SIZE} Depth16Unorm tiles, one orthographic view per slice of the view); {shadowed} shadowed and {uncertain} uncertain pixel comparisons; pixels per cascade 0-3, none and several of the 4 cascades: camera view by view depth {:?}, by split spheres {:?}; deep view by view depth {:?}, by split spheres {:?}",
+        scene.width, scene.height, picked[0][0], picked[0][1], picked[1][0], picked[1][1]
     ));
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)

@@ -22,6 +22,7 @@
 //! | [`brdf`] | metallic workflow, ambient SH, indirect specular, direct light |
 //! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
 //! | [`shadow`] | shadows: the host API with its errors, spot and cube-face matrices, depth comparison, PCF footprints and weights, strength |
+//! | [`cascades`] | a directional light's 1, 2 or 4 shadow cascades: fitting, the atlas, cascade selection by split depths or spheres |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
 //! | [`vector`] | `reflect` and the view and reflection directions |
 //! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
@@ -44,6 +45,7 @@
 //! ```
 
 pub mod brdf;
+pub mod cascades;
 pub mod cube;
 pub mod gbuffer;
 pub mod ldr;

@@ -139,6 +139,10 @@ pub enum ShadowError {
         /// Texels given.
         got: usize,
     },
+    /// Cascade split depths that are not 2, 3 or 5 increasing view depths above 0 (1, 2 or 4
+    /// cascades; [`crate::reference::cascades::Cascades::fit`]).
+    #[error("cascade splits {0:?} must be 2, 3 or 5 increasing view depths above 0")]
+    Cascades(Vec<f32>),
     /// A map texel that is NaN or infinite.
     #[error("shadow map texel {index} is not finite: {value}")]
     NonFiniteTexel {

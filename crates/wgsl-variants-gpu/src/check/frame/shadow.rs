@@ -22,6 +22,7 @@ use crate::{
     TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
+use wgsl_variants_shaders::reference::cascades::Cascades;
 use wgsl_variants_shaders::reference::light::{Light, LightShape};
 use wgsl_variants_shaders::reference::shadow::{
     ShadowCube, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, cube_face_view_proj,
@@ -166,12 +167,24 @@ impl FrameShadows {
             if !shadow.keywords.screen {
                 return Ok(Some(shadow.clone()));
             }
-            let names = if shadow.keywords.soft {
-                vec!["SHADOWS_SOFT"]
-            } else {
-                Vec::new()
-            };
+            // The frame's directional light has one cascade (Unity's SHADOWS_SINGLE_CASCADE):
+            // `Collect` binds its map as cascade 0 of a `CascadedShadow`.
+            let mut names = vec!["SHADOWS_SINGLE_CASCADE"];
+            if shadow.keywords.soft {
+                names.push("SHADOWS_SOFT");
+            }
             let (label, wgsl) = drawer.text("screen_space_shadows", "Collect", names)?;
+            let cascade: Vec<u8> = Cascades::single(&shadow.params)
+                .uniform()
+                .into_iter()
+                .flat_map(f32::to_le_bytes)
+                .collect();
+            let mut resources = shadow.resources.clone();
+            for r in &mut resources {
+                if (r.group, r.binding) == (0, 10) {
+                    r.resource = Resource::Uniform(cascade.clone());
+                }
+            }
             let mut pass = DrawPass::new(
                 "frame: screen-space shadow",
                 w,
@@ -181,7 +194,7 @@ impl FrameShadows {
             pass.draws.push(
                 Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
                     .with_shared(&camera)
-                    .with_resources(shadow.resources.clone()),
+                    .with_resources(resources),
             );
             draws += 1;
             let mask = render_pass(ctx, &pass)?.targets.remove(0);
