@@ -62,13 +62,10 @@ fn deferred_shading_every_variant_matches_the_reference() {
             // Only with a shadow keyword: without one it changes nothing (those 24 variants
             // per BRDF tier are duplicates, as in Unity); with one, every pair changes.
             assert_eq!((k.pairs, k.pairs_changed), (144, 72), "{report}");
-        } else if k.keyword == "SHADOWS_SHADOWMASK" {
-            // Distance Shadowmask with a realtime shadow keeps the realtime factor (no fade):
-            // those 16 pairs per tier are alike; every other pair reads the baked occlusion.
-            assert_eq!((k.pairs, k.pairs_changed), (192, 144), "{report}");
         } else if k.keyword == "LIGHTMAP_SHADOW_MIXING" {
-            // Only with SHADOWS_SHADOWMASK and a realtime shadow: min(realtime, baked).
-            assert_eq!((k.pairs, k.pairs_changed), (192, 48), "{report}");
+            // Only with a realtime shadow: min(saturate(realtime + fade), baked) against
+            // lerp(realtime, baked, fade), which differ wherever the shadow fades part way.
+            assert_eq!((k.pairs, k.pairs_changed), (192, 96), "{report}");
         } else {
             assert!(k.pairs_changed == k.pairs && k.pairs > 0, "{report}");
         }
@@ -210,9 +207,9 @@ fn a_wrong_brdf_term_fails_the_check_in_its_tier() {
 #[test]
 fn a_wrong_shadowmask_mix_fails_the_check() {
     let lib = common::mutate::bundled_with(
-        "lighting/light_bindings.wgsl",
-        "return min(realtime, baked);",
-        "return max(realtime, baked);",
+        "lighting/shadow_fade.wgsl",
+        "return min(saturate(realtime + fade), baked);",
+        "return max(saturate(realtime + fade), baked);",
     );
     let caught = lighting_check_fails(&lib, |m| {
         m.keywords.contains("LIGHTMAP_SHADOW_MIXING")
@@ -222,6 +219,26 @@ fn a_wrong_shadowmask_mix_fails_the_check() {
     });
     if let Some(n) = caught {
         eprintln!("a wrong shadowmask mix is caught: {n} mismatches");
+    }
+}
+
+/// The shadow distance fade is checked: a fade whose `lerp(view depth, distance to the centre,
+/// type)` has its ends swapped fails, in variants with a realtime shadow only (the rig's
+/// directional lights fade by a sphere, its spot and point lights by view depth).
+#[test]
+fn a_swapped_fade_distance_fails_the_check() {
+    let lib = common::mutate::bundled_with(
+        "lighting/shadow_fade.wgsl",
+        "mix(z, sphere, shadow_fade.center_and_type.w)",
+        "mix(sphere, z, shadow_fade.center_and_type.w)",
+    );
+    let caught = lighting_check_fails(&lib, |m| {
+        ["SHADOWS_DEPTH", "SHADOWS_CUBE", "SHADOWS_SCREEN"]
+            .iter()
+            .any(|k| m.keywords.contains(k))
+    });
+    if let Some(n) = caught {
+        eprintln!("a swapped fade distance is caught: {n} mismatches");
     }
 }
 

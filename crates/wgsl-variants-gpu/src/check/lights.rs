@@ -23,9 +23,7 @@ use crate::{CheckError, GpuContext, GpuError};
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::Brdf;
 use wgsl_variants_shaders::reference::light::{Cookies, LightType, deferred_light};
-use wgsl_variants_shaders::reference::shadow::{
-    ShadowKeywords, baked_occlusion, mix_realtime_and_baked,
-};
+use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, baked_occlusion};
 use wgsl_variants_shaders::reference::surface::{Keywords, reflections_add};
 
 pub use super::rig::{LightRig, MIN_COOKIE_MARGIN};
@@ -83,11 +81,10 @@ fn run_lighting(
         let stored = gbuffer.texel(i);
         let rt3 = stored.rt3.to_vec4();
         let p = rig.deferred_position(scene, x, y);
-        let (lo, hi) = rig.lighting_shadow_factor(light, shadow, p, i);
-        // The baked occlusion as stored in RT4 (1 without it), mixed with each end of the
-        // realtime interval (the mix is monotonic in the realtime factor).
+        // The realtime shadow faded and mixed with the baked occlusion as stored in RT4 (1
+        // without it).
         let baked = stored_baked(gbuffer, shadow, light, i);
-        let [lo, hi] = [lo, hi].map(|f| mix_realtime_and_baked(shadow, f, baked));
+        let (lo, hi) = rig.received_factor(light, shadow, (p, i), baked);
         let [want_lo, want_hi] = [lo, hi].map(|f| {
             let c = deferred_light(
                 brdf,

@@ -130,7 +130,7 @@ impl<'a> Setup<'a> {
             return Ok(workers);
         }
         let mut resources = self.scene.standard_resources();
-        resources.extend(self.rig.main_light_mask());
+        resources.extend(self.rig.main_light_shadow());
         let workers = self.workers(&resources, "test scene")?;
         Ok(self.standard.get_or_init(|| workers))
     }

@@ -145,18 +145,14 @@ fn reference_pixel(
     match v.light {
         Some(light) => {
             let p = scene.world_position(x, y);
-            let (lo, hi) = rig.lighting_shadow_factor(light, v.shadow, p, i);
+            let (lo, hi) = rig.received_factor(light, v.shadow, (p, i), 1.0);
             let a = forward_add_output(scene, rig, &v.kw, light, lo, x, y)?;
             let b = forward_add_output(scene, rig, &v.kw, light, hi, x, y)?;
             Some(vec![a, b])
         }
         None => {
-            // ForwardBase's main light reads the directional light's mask.
-            let main_shadow = if v.shadow.screen {
-                rig.screen_factor(LightType::Directional, i)
-            } else {
-                1.0
-            };
+            // ForwardBase's main light reads the directional light's mask, faded.
+            let main_shadow = rig.main_light_factor(v.shadow, scene.world_position(x, y), i);
             reference_outputs(scene, v.output(deferred), &v.kw, main_shadow, x, y)
         }
     }

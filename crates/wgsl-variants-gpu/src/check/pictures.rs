@@ -305,7 +305,7 @@ pub fn render_pictures(
                 // The main light's screen-space shadow: the check's directional mask.
                 let mut rig = LightRig::new(scene);
                 rig.render_screen_shadows(ctx, lib, scene)?;
-                job.resources.extend(rig.main_light_mask());
+                job.resources.extend(rig.main_light_shadow());
             }
             let out = render(ctx, &job)?.remove(0);
             let rgba8 = TargetFormat::Rgba8Unorm;

@@ -21,7 +21,8 @@ use wgsl_variants_shaders::reference::light::{
     world_from_depth,
 };
 use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
-use wgsl_variants_shaders::reference::shadow::ShadowKeywords;
+use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, mix_realtime_and_baked};
+use wgsl_variants_shaders::reference::shadow_fade::{FadeDistance, ShadowFade};
 
 /// The smallest distance, in texels (2D cookie) or [`face_margin`] units (cube cookie), between
 /// a cookie lookup of the check and an edge.
@@ -76,7 +77,20 @@ pub struct LightRig {
     /// The directional lights' maps and screen-space masks (`SHADOWS_SCREEN`,
     /// [`ScreenShadows::render`]); `None` until a GPU has rendered them.
     pub screen_shadows: Option<ScreenShadows>,
+    /// The shadow distance fade of the spot and point lights: by view depth (Unity's Close
+    /// Fit), see [`LightRig::fade`].
+    pub depth_fade: ShadowFade,
+    /// The shadow distance fade of the directional lights (and ForwardBase's main light): by
+    /// the distance to the camera (Unity's Stable Fit), see [`LightRig::fade`].
+    pub sphere_fade: ShadowFade,
 }
+
+/// Where the rig's fades start and end, as fractions of the range of fade distances over the
+/// positions the checks light: the nearest keeps its whole realtime shadow, the farthest tenth
+/// loses it, every other position fades part of it — so every shadowed light has shadowed
+/// pixels inside the ramp (with a later start, one directional light's shadow fell where
+/// the fade is 0 and the Shadowmask mode's `saturate(realtime + fade)` went unchecked there).
+const FADE_RAMP: (f32, f32) = (0.0, 0.9);
 
 impl LightRig {
     /// The rig over `scene`.
@@ -138,12 +152,28 @@ impl LightRig {
             depth: Vec::new(),
             shadows: None,
             screen_shadows: None,
+            depth_fade: ShadowFade::NONE,
+            sphere_fade: ShadowFade::NONE,
         };
         rig.depth = scene
             .pixels()
             .map(|(x, y)| rig.clear_depth(scene, x, y))
             .collect();
+        let positions = rig.lookup_positions(scene);
+        rig.depth_fade = fade_over(scene, &positions, FadeDistance::ViewDepth);
+        rig.sphere_fade = fade_over(scene, &positions, FadeDistance::Sphere(eye));
         rig
+    }
+
+    /// The shadow distance fade light `t`'s receivers bind (group 0, binding 18). Unity has
+    /// one per camera; the rig gives the two kinds to different lights so that both are
+    /// checked.
+    pub fn fade(&self, t: LightType) -> &ShadowFade {
+        if t.is_directional() {
+            &self.sphere_fade
+        } else {
+            &self.depth_fade
+        }
     }
 
     /// The depth at pixel `(x, y)` whose rebuilt point lies on the camera ray at the first
@@ -292,6 +322,35 @@ impl LightRig {
         }
     }
 
+    /// The reference light factor interval of light `t` at pixel `i` (position `p`): the
+    /// realtime shadow ([`LightRig::lighting_shadow_factor`]) faded at `p` and mixed with the
+    /// baked occlusion `baked` (1 without one), as Unity's `UnityMixRealtimeAndBakedShadows`
+    /// (monotonic in the realtime factor, so the ends map to the ends).
+    pub fn received_factor(
+        &self,
+        t: LightType,
+        keywords: ShadowKeywords,
+        (p, i): (Vec3, usize),
+        baked: f32,
+    ) -> (f32, f32) {
+        let (lo, hi) = self.lighting_shadow_factor(t, keywords, p, i);
+        let fade = self.fade(t).fade(p);
+        let mix = |f| mix_realtime_and_baked(keywords, f, baked, fade);
+        (mix(lo), mix(hi))
+    }
+
+    /// ForwardBase's main light factor at pixel `i` (position `p`): with `SHADOWS_SCREEN` the
+    /// `Directional` light's mask, faded at `p` (no baked occlusion in the forward passes);
+    /// else 1.
+    pub fn main_light_factor(&self, keywords: ShadowKeywords, p: Vec3, i: usize) -> f32 {
+        if keywords.screen {
+            self.received_factor(LightType::Directional, keywords, (p, i), 1.0)
+                .0
+        } else {
+            1.0
+        }
+    }
+
     /// The factor the hard screen-space mask of directional light `t` holds at pixel `i` (1
     /// for other lights, or before [`LightRig::render_screen_shadows`]). ForwardBase's main
     /// light reads the `Directional` one.
@@ -301,14 +360,20 @@ impl LightRig {
             .map_or(1.0, |s| s.lighting_factor(t, i))
     }
 
-    /// ForwardBase's `SHADOWS_SCREEN` binding: the `Directional` light's hard mask at group 0,
-    /// binding 15 (`None` before [`LightRig::render_screen_shadows`]).
-    pub fn main_light_mask(&self) -> Option<BoundResource> {
-        let mask = self
+    /// ForwardBase's `SHADOWS_SCREEN` bindings: the `Directional` light's hard mask at group
+    /// 0, binding 15, and its fade at 18 (none before [`LightRig::render_screen_shadows`]).
+    pub fn main_light_shadow(&self) -> Vec<BoundResource> {
+        let Some(mask) = self
             .screen_shadows
-            .as_ref()?
-            .lighting_mask(LightType::Directional)?;
-        Some(BoundResource::new(0, 15, mask))
+            .as_ref()
+            .and_then(|s| s.lighting_mask(LightType::Directional))
+        else {
+            return Vec::new();
+        };
+        vec![
+            BoundResource::new(0, 15, mask),
+            fade_resource(self.fade(LightType::Directional)),
+        ]
     }
 
     /// The reference shadow factor interval at `p` for light `t` under `keywords` (`(1, 1)`
@@ -388,9 +453,38 @@ impl LightRig {
             let mut selector = Vec::new();
             push_vec4(&mut selector, LightRig::occlusion_mask(t));
             out.push(BoundResource::new(0, 16, Resource::Uniform(selector)));
+            out.push(fade_resource(self.fade(t)));
         }
         out
     }
+}
+
+/// A shadow fade's `ShadowFade` uniform at group 0, binding 18 (`lighting/shadow_fade`).
+pub(crate) fn fade_resource(fade: &ShadowFade) -> BoundResource {
+    let bytes = fade
+        .uniform()
+        .into_iter()
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    BoundResource::new(0, 18, Resource::Uniform(bytes))
+}
+
+/// A fade of the kind `distance` for the scene's camera (looking at the scene's centre) whose
+/// ramp spans [`FADE_RAMP`] of the fade distances of `positions`.
+fn fade_over(scene: &TestScene, positions: &[Vec3], distance: FadeDistance) -> ShadowFade {
+    let eye = scene.scene.camera_position;
+    let forward = scene.centre.extend(0.0) - eye;
+    let probe = ShadowFade::new(eye, forward, distance, 0.0, 1.0)
+        .expect("the test camera has a forward axis");
+    let (lo, hi) = positions
+        .iter()
+        .map(|&p| probe.fade_distance(p))
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    let at = |t: f32| lo + (hi - lo) * t;
+    ShadowFade::new(eye, forward, distance, at(FADE_RAMP.0), at(FADE_RAMP.1))
+        .expect("the test positions span a range of fade distances")
 }
 
 /// `params` with its colour scaled by a shadow factor (the light is linear in its colour).

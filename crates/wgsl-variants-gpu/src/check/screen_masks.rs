@@ -7,7 +7,7 @@
 //! 4-cascade mask. Each light also keeps one map over the region around the scene (URP's main
 //! light reads it).
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec3};
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::scene::{TestScene, texture};
@@ -17,7 +17,7 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::cascades::{CascadeCamera, Cascades};
+use wgsl_variants_shaders::reference::cascades::{Cascade, CascadeCamera, Cascades};
 use wgsl_variants_shaders::reference::light::{
     Light, LightType, look_at_rh, perspective_rh, world_from_depth,
 };
@@ -329,17 +329,9 @@ impl Collect<'_> {
     }
 }
 
-/// The cascades' view of `camera`: its position, and its forward axis from its inverse
-/// view-projection (the centre of the screen at mid depth).
+/// The cascades' view of `camera`.
 fn cascade_camera(camera: &LightingCamera<'_>) -> CascadeCamera {
-    let inv_view_proj = camera.view_proj.inverse();
-    let q = inv_view_proj * Vec4::new(0.0, 0.0, 0.5, 1.0);
-    let forward = (q.truncate() / q.w - camera.position).normalize();
-    CascadeCamera {
-        position: camera.position,
-        forward,
-        inv_view_proj,
-    }
+    CascadeCamera::from_view_proj(camera.position, camera.view_proj)
 }
 
 /// The view depth of every pixel's position rebuilt from `camera`'s depth buffer, sorted.
@@ -370,23 +362,35 @@ fn render_atlas(
     lib: &Library,
     cascades: &Cascades,
 ) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
-    let count = cascades.cascades.len();
-    let (cols, rows) = Cascades::grid(count);
-    let (w, h) = (cols * MAP_SIZE, rows * MAP_SIZE);
-    let mut atlas = vec![u16::MAX; (w * h) as usize];
-    for (i, c) in cascades.cascades.iter().enumerate() {
-        let tile = render_caster(
+    lay_atlas(cascades, MAP_SIZE, |c| {
+        Ok(render_caster(
             ctx,
             lib,
             &["_RENDERING_CUTOUT", "SHADOWS_DEPTH"],
             c.view_proj,
             c.params.light_position.extend(c.params.inv_range),
             MAP_SIZE,
-        )?;
-        let (x0, y0) = ((i as u32 % 2) * MAP_SIZE, (i as u32 / 2) * MAP_SIZE);
-        for (row, texels) in tile.depth.chunks(MAP_SIZE as usize).enumerate() {
+        )?
+        .depth)
+    })
+}
+
+/// Lays each cascade's `tile × tile` map (row by row, as `render` returns it for the cascade's
+/// own view) into its tile of the atlas ([`Cascades::grid`]): the texels and the atlas's size.
+pub(crate) fn lay_atlas(
+    cascades: &Cascades,
+    tile: u32,
+    mut render: impl FnMut(&Cascade) -> Result<Vec<u16>, GpuError>,
+) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
+    let (cols, rows) = Cascades::grid(cascades.cascades.len());
+    let (w, h) = (cols * tile, rows * tile);
+    let mut atlas = vec![u16::MAX; (w * h) as usize];
+    for (i, c) in cascades.cascades.iter().enumerate() {
+        let texels = render(c)?;
+        let (x0, y0) = ((i as u32 % 2) * tile, (i as u32 / 2) * tile);
+        for (row, texels) in texels.chunks(tile as usize).enumerate() {
             let at = ((y0 + row as u32) * w + x0) as usize;
-            atlas[at..at + MAP_SIZE as usize].copy_from_slice(texels);
+            atlas[at..at + tile as usize].copy_from_slice(texels);
         }
     }
     Ok((atlas, (w, h)))

@@ -62,6 +62,30 @@ pub struct CascadeCamera {
     pub inv_view_proj: Mat4,
 }
 
+impl CascadeCamera {
+    /// The camera at `position` whose world-to-clip transform is `view_proj` (depth 0 to 1):
+    /// its forward axis points from `position` to the centre of the screen at mid depth.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants_shaders::reference::cascades::CascadeCamera;
+    /// use wgsl_variants_shaders::reference::light::{look_at_rh, perspective_rh};
+    /// let eye = Vec3::new(0.0, 2.0, 5.0);
+    /// let view_proj = perspective_rh(0.8, 1.5, 0.5, 20.0) * look_at_rh(eye, Vec3::ZERO, Vec3::Y);
+    /// let camera = CascadeCamera::from_view_proj(eye, view_proj);
+    /// assert!((camera.forward - (-eye).normalize()).length() < 1e-5);
+    /// ```
+    pub fn from_view_proj(position: Vec3, view_proj: Mat4) -> CascadeCamera {
+        let inv_view_proj = view_proj.inverse();
+        let q = inv_view_proj * Vec4::new(0.0, 0.0, 0.5, 1.0);
+        CascadeCamera {
+            position,
+            forward: (q.truncate() / q.w - position).normalize(),
+            inv_view_proj,
+        }
+    }
+}
+
 /// One cascade: its slice of the view and its view into the atlas.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cascade {

@@ -143,6 +143,15 @@ pub enum ShadowError {
     /// cascades; [`crate::reference::cascades::Cascades::fit`]).
     #[error("cascade splits {0:?} must be 2, 3 or 5 increasing view depths above 0")]
     Cascades(Vec<f32>),
+    /// A shadow fade whose ramp is not finite or not increasing, or whose camera has no
+    /// forward axis ([`crate::reference::shadow_fade::ShadowFade::new`]).
+    #[error("shadow fade from {start} to {end} needs finite values, start < end and a camera axis")]
+    Fade {
+        /// Fade distance where the fade starts.
+        start: f32,
+        /// Fade distance where the realtime shadow is gone.
+        end: f32,
+    },
     /// A map texel that is NaN or infinite.
     #[error("shadow map texel {index} is not finite: {value}")]
     NonFiniteTexel {
@@ -688,32 +697,38 @@ pub fn baked_occlusion(rt4: Vec4, selector: Vec4) -> f32 {
     rt4.dot(selector).clamp(0.0, 1.0)
 }
 
-/// Unity's `UnityMixRealtimeAndBakedShadows` with no shadow fade (docs/shading.md §13): the
-/// factor a light's colour is scaled by, from its realtime shadow factor and its baked
-/// occlusion (1 without `SHADOWS_SHADOWMASK`).
+/// Unity's `UnityMixRealtimeAndBakedShadows` (docs/shading.md §13): the factor a light's
+/// colour is scaled by, from its realtime shadow factor, its baked occlusion (1 without
+/// `SHADOWS_SHADOWMASK`) and the shadow distance fade at the receiver
+/// ([`crate::reference::shadow_fade::ShadowFade::fade`]; 0 well inside the shadow distance).
 ///
 /// - no realtime shadow keyword (`SHADOWS_DEPTH`, `SHADOWS_CUBE`, `SHADOWS_SCREEN`): `baked`;
-/// - `LIGHTMAP_SHADOW_MIXING` (the Shadowmask mode): `min(saturate(realtime + fade), baked)`,
-///   fade 0: `min(realtime, baked)`;
-/// - else (Distance Shadowmask, or no shadowmask): `lerp(realtime, baked, fade)`, fade 0:
-///   `realtime`.
+/// - `LIGHTMAP_SHADOW_MIXING` (the Shadowmask mode): `min(saturate(realtime + fade), baked)`;
+/// - else (Distance Shadowmask, or no shadowmask): `lerp(realtime, baked, fade)`.
 ///
 /// ```
 /// use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, mix_realtime_and_baked};
 /// let mut kw = ShadowKeywords { screen: true, shadowmask: true, ..Default::default() };
-/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5), 0.75);
+/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5, 0.0), 0.75);
+/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5, 0.5), 0.625);
 /// kw.mixing = true;
-/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5), 0.5);
+/// assert_eq!(mix_realtime_and_baked(kw, 0.75, 0.5, 0.0), 0.5);
+/// assert_eq!(mix_realtime_and_baked(kw, 0.25, 1.0, 0.5), 0.75);
 /// kw.screen = false;
-/// assert_eq!(mix_realtime_and_baked(kw, 1.0, 0.25), 0.25);
+/// assert_eq!(mix_realtime_and_baked(kw, 1.0, 0.25, 0.5), 0.25);
 /// ```
-pub fn mix_realtime_and_baked(keywords: ShadowKeywords, realtime: f32, baked: f32) -> f32 {
+pub fn mix_realtime_and_baked(
+    keywords: ShadowKeywords,
+    realtime: f32,
+    baked: f32,
+    fade: f32,
+) -> f32 {
     if !keywords.any() {
         baked
     } else if keywords.mixing {
-        realtime.min(baked)
+        (realtime + fade).clamp(0.0, 1.0).min(baked)
     } else {
-        realtime
+        realtime + (baked - realtime) * fade
     }
 }
 

@@ -7,7 +7,8 @@
 //            6-15 the light and its shadow (lighting/light_bindings),
 //            16 occlusion_mask_selector (vec4f: the light's RT4 channel, one-hot;
 //               SHADOWS_SHADOWMASK; Unity's unity_OcclusionMaskSelector),
-//            17 brdf_lut (UNITY_PBS_USE_BRDF3; lighting/brdf_lut)
+//            17 brdf_lut (UNITY_PBS_USE_BRDF3; lighting/brdf_lut),
+//            18 shadow_fade (ShadowFade; with a realtime shadow keyword; lighting/shadow_fade)
 // The host blends DstColor / Zero onto the Rgb10a2Unorm exp2(-c) RT3 (LDR: src = exp2(-light),
 // a = 1) or One / One onto the Rgba16Float RT3 (UNITY_HDR_ON: src = light, a = 0); both leave
 // RT3's alpha of 1 as it is. The result at a pixel does not depend on how the light was drawn

@@ -11,7 +11,8 @@
 //               nearest, LessEqual, clamp to edge) (SHADOWS_DEPTH),
 //            13 shadow_cube (texture_cube<f32>, r = |p - light| / range) + 14 shadow_cube_sampler
 //               (nearest) (SHADOWS_CUBE),
-//            15 screen_shadow (SHADOWS_SCREEN; lighting/screen_shadow)
+//            15 screen_shadow (SHADOWS_SCREEN; lighting/screen_shadow),
+//            18 shadow_fade (any realtime shadow keyword; lighting/shadow_fade)
 //
 // Shadow keywords (Unity's multi_compile_lightpass / multi_compile_fwdadd_fullshadows pairs):
 // SHADOWS_DEPTH with SPOT only (a 2D map through the light's view-projection), SHADOWS_CUBE with
@@ -25,13 +26,13 @@
 //       one of DIRECTIONAL, DIRECTIONAL_COOKIE, POINT, POINT_COOKIE, SPOT is on (none: no light)
 //   fn light_shadow(p: vec3f) -> f32       the shadow factor in [1 - strength, 1] (1 without one)
 //   fn light_at_pixel(p: vec3f, pixel: vec2i, baked: f32) -> LightSample   the light at p
-//       shadowed by light_mix_shadows(realtime, baked): realtime is light_shadow(p), or the
-//       SHADOWS_SCREEN mask at the pixel (the factor, strength included); baked is the light's
-//       baked occlusion (1 where there is none)
-//   fn light_mix_shadows(realtime: f32, baked: f32) -> f32   Unity's
-//       UnityMixRealtimeAndBakedShadows with no shadow fade (docs/shading.md §13)
+//       shadowed by light_mix_shadows(realtime, baked, fade) (lighting/shadow_fade): realtime
+//       is light_shadow(p), or the SHADOWS_SCREEN mask at the pixel (the factor, strength
+//       included); baked is the light's baked occlusion (1 where there is none); fade is the
+//       shadow distance fade at p
 
 #import lighting/light
+#import lighting/shadow_fade
 #if defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
 #import lighting/shadow
 #endif
@@ -62,31 +63,17 @@
 #endif
 
 // The light at p (at the pixel `pixel`), its realtime shadow (the maps, or with SHADOWS_SCREEN
-// the screen-space mask there) mixed with the baked occlusion `baked`.
+// the screen-space mask there) faded by distance and mixed with the baked occlusion `baked`.
 fn light_at_pixel(p: vec3f, pixel: vec2i, baked: f32) -> LightSample {
     var s = light_unshadowed(p);
 #if defined(SHADOWS_SCREEN)
-    let realtime = light_screen_shadow(pixel);
+    s.attenuation *= light_mix_shadows(light_screen_shadow(pixel), baked, shadow_fade_at(p));
+#elif defined(SHADOWS_DEPTH) || defined(SHADOWS_CUBE)
+    s.attenuation *= light_mix_shadows(light_shadow(p), baked, shadow_fade_at(p));
 #else
-    let realtime = light_shadow(p);
+    s.attenuation *= light_mix_shadows(1.0, baked, 0.0);
 #endif
-    s.attenuation *= light_mix_shadows(realtime, baked);
     return s;
-}
-
-// Unity's UnityMixRealtimeAndBakedShadows with the shadow fade at 0 (we do not fade shadows):
-// without a realtime shadow keyword the baked value alone; the Shadowmask mode
-// (LIGHTMAP_SHADOW_MIXING) takes the darker, min(saturate(realtime + fade), baked); Distance
-// Shadowmask lerps from realtime to baked by the fade, so realtime here. Without
-// SHADOWS_SHADOWMASK baked is 1 and every branch gives the realtime factor.
-fn light_mix_shadows(realtime: f32, baked: f32) -> f32 {
-#if !defined(SHADOWS_DEPTH) && !defined(SHADOWS_CUBE) && !defined(SHADOWS_SCREEN)
-    return baked;
-#elif defined(LIGHTMAP_SHADOW_MIXING)
-    return min(realtime, baked);
-#else
-    return realtime;
-#endif
 }
 
 fn light_shadow(p: vec3f) -> f32 {

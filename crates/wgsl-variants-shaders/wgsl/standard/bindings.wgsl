@@ -7,7 +7,10 @@
 //
 //   group 0: 0 camera, 1 lighting, 2 probes, 3 probe_cube0, 4 probe_cube1, 5 probe_sampler,
 //            6-15 the per-pixel light and its shadow (ForwardAdd; lighting/light_bindings),
-//            17 brdf_lut (ForwardBase and ForwardAdd with UNITY_PBS_USE_BRDF3; lighting/brdf_lut)
+//            15 screen_shadow (ForwardBase's main light with SHADOWS_SCREEN; lighting/screen_shadow),
+//            17 brdf_lut (ForwardBase and ForwardAdd with UNITY_PBS_USE_BRDF3; lighting/brdf_lut),
+//            18 shadow_fade (ForwardAdd with a realtime shadow keyword, ForwardBase with
+//               SHADOWS_SCREEN; lighting/shadow_fade)
 //   group 1: 0 material, 1 material_sampler, 2 main_tex, 3 metallic_map (_METALLIC_MAP),
 //            4 normal_map (_NORMAL_MAP), 5 occlusion_map (_OCCLUSION_MAP),
 //            6 emission_map (_EMISSION_MAP), 7 detail_mask (_DETAIL_MASK),

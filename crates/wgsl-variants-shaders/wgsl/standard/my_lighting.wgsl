@@ -20,6 +20,7 @@
 #import lighting/light_bindings
 #elif defined(FORWARD_BASE_PASS) && defined(SHADOWS_SCREEN)
 #import lighting/screen_shadow
+#import lighting/shadow_fade
 #endif
 
 struct VertexInput {
@@ -130,8 +131,10 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
 #else
     var main_color = lighting.light_color.rgb;
 #if defined(SHADOWS_SCREEN)
-    // The main light's shadow: the screen-space mask at this pixel (lighting/screen_shadow).
-    main_color *= light_screen_shadow(vec2i(in.clip_position.xy));
+    // The main light's shadow: the screen-space mask at this pixel (lighting/screen_shadow),
+    // faded by distance (lighting/shadow_fade; no baked occlusion in the forward passes).
+    let realtime = light_screen_shadow(vec2i(in.clip_position.xy));
+    main_color *= light_mix_shadows(realtime, 1.0, shadow_fade_at(in.world_position));
 #endif
     let direct = brdf_direct(
         diffuse,

@@ -19,12 +19,14 @@ use super::super::scene::{
 use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
 use wgsl_variants_shaders::reference::brdf::Brdf;
+use wgsl_variants_shaders::reference::cascades::CascadeCamera;
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{
     Cookie2d, Light, LightError, LightParams, LightShape, LightType, look_at_rh, perspective_rh,
 };
 use wgsl_variants_shaders::reference::probe::Probe;
 use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
+use wgsl_variants_shaders::reference::shadow_fade::{FadeDistance, ShadowFade};
 use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Texels,
 };
@@ -170,9 +172,12 @@ pub struct FrameScene {
     /// The main light's shadow (`SHADOWS_SCREEN`: ForwardBase and the deferred path's first
     /// Lighting draw read its screen-space mask).
     pub main_shadow: Option<ShadowSpec>,
-    /// The sphere (centre, radius) a directional light's one cascade covers: every surface
-    /// the camera sees.
-    pub shadow_region: (Vec3, f32),
+    /// The view depths that cut the camera's view into the directional shadows' four
+    /// cascades ([`FRAME_SPLITS`]; the last is the shadow distance, where the fade ends).
+    pub cascade_splits: Vec<f32>,
+    /// The shadow distance fade every shadowed light's receivers read (Unity's one per
+    /// camera): by view depth, from [`FRAME_FADE`]'s start to its end.
+    pub shadow_fade: ShadowFade,
     /// The per-pixel lights.
     pub lights: Vec<FrameLight>,
     /// The objects, drawn in this order.
@@ -186,6 +191,16 @@ pub struct FrameScene {
     /// ([`FrameScene::with_brdf`]; default BRDF1).
     pub brdf: Brdf,
 }
+
+/// The view depths where the frame's shadows start to fade and where they are gone (the
+/// shadow distance, [`FRAME_SPLITS`]'s last): the view's centre lies at depth 7.5, so the
+/// nearer half of the frame keeps its realtime shadows and the farther half fades part of them.
+pub const FRAME_FADE: (f32, f32) = (7.0, 12.0);
+
+/// The cascade splits of the frame's directional shadows: the near plane, three splits, and
+/// the shadow distance. Each cascade holds part of the visible surfaces (a unit test counts
+/// them), so the frame crosses every seam.
+pub const FRAME_SPLITS: [f32; 5] = [1.0, 5.5, 6.8, 8.3, 12.0];
 
 /// A unit normal's tangent-space texel (8-bit codes of `n · 0.5 + 0.5`).
 fn normal_texel(tx: f32, ty: f32) -> [u8; 4] {
@@ -322,8 +337,9 @@ impl FrameScene {
     /// The frame at `width × height` pixels (the same view, the aspect ratio adjusted).
     pub fn sized(width: u32, height: u32) -> FrameScene {
         let eye = Vec3::new(0.5, 5.0, 5.6);
+        let target = Vec3::new(0.4, 0.3, -0.2);
         let view_proj = perspective_rh(0.9, width as f32 / height as f32, 1.0, 24.0)
-            * look_at_rh(eye, Vec3::new(0.4, 0.3, -0.2), Vec3::Y);
+            * look_at_rh(eye, target, Vec3::Y);
         let to_main = Vec3::new(0.35, 0.8, 0.45).normalize();
         let main_color = Vec3::new(0.5, 0.47, 0.44);
         let scene = Scene {
@@ -392,6 +408,7 @@ impl FrameScene {
                 strength: 1.0,
                 bias: 0.0,
                 soft: false,
+                split_spheres: false,
             }),
             light(
                 "cookie sun",
@@ -409,6 +426,7 @@ impl FrameScene {
                 strength: 0.8,
                 bias: 0.004,
                 soft: true,
+                split_spheres: true,
             }),
             light(
                 "cool point (cube cookie)",
@@ -430,6 +448,7 @@ impl FrameScene {
                 strength: 0.85,
                 bias: 0.002,
                 soft: true,
+                split_spheres: false,
             }),
         ];
         let lift = 0.02;
@@ -579,8 +598,17 @@ impl FrameScene {
                 strength: 1.0,
                 bias: 0.004,
                 soft: false,
+                split_spheres: false,
             }),
-            shadow_region: (Vec3::new(0.3, 0.5, -0.3), 7.5),
+            cascade_splits: FRAME_SPLITS.to_vec(),
+            shadow_fade: ShadowFade::new(
+                eye,
+                target - eye,
+                FadeDistance::ViewDepth,
+                FRAME_FADE.0,
+                FRAME_FADE.1,
+            )
+            .expect("the frame's fade is a valid ramp"),
             lights,
             objects,
             cookie,
@@ -674,6 +702,11 @@ impl FrameScene {
                 },
             ),
         ]
+    }
+
+    /// The camera the directional shadows' cascades are fitted to.
+    pub fn cascade_camera(&self) -> CascadeCamera {
+        CascadeCamera::from_view_proj(self.scene.camera_position, self.view_proj)
     }
 
     /// The `DeferredCamera` uniform of the full-screen passes: inverse view-projection,
@@ -818,5 +851,43 @@ mod tests {
             }
         }
         assert!(seen > 50, "{seen} pixels of the metal sphere");
+    }
+
+    /// The frame is deep enough for its directional shadows' four cascades: picked by view
+    /// depth and by split spheres, every cascade holds over 5 % of the visible pixels, so both
+    /// paths' masks cross every seam.
+    #[test]
+    fn every_cascade_holds_part_of_the_frame() {
+        use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades, MAX_CASCADES};
+        let f = FrameScene::new();
+        let sun = Light::directional(-f.scene.light_dir, f.scene.light_color);
+        let cascades = Cascades::fit(&sun, 1.0, 0.004, &f.cascade_camera(), &f.cascade_splits)
+            .expect("the frame's splits fit");
+        for split_spheres in [false, true] {
+            let keywords = CascadeKeywords {
+                split_spheres,
+                ..CascadeKeywords::default()
+            };
+            let mut counts = [0usize; MAX_CASCADES + 2];
+            for (x, y) in f.pixels() {
+                if let Some(hit) = f.cast(f64::from(x) + 0.5, f64::from(y) + 0.5) {
+                    let p = hit.geometry.world_position;
+                    if let [Some(w)] = cascades.candidates(keywords, p).as_slice() {
+                        counts[Cascades::picked(*w)] += 1;
+                    }
+                }
+            }
+            eprintln!(
+                "split spheres {split_spheres}: pixels per cascade 0-3 / none / several {counts:?}"
+            );
+            let hits: usize = counts.iter().sum();
+            for (i, &n) in counts[..MAX_CASCADES].iter().enumerate() {
+                assert!(
+                    n * 20 > hits,
+                    "cascade {i} holds {n} of {hits} pixels: {counts:?}"
+                );
+            }
+            assert_eq!(counts[MAX_CASCADES + 1], 0, "{counts:?}");
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The frame's shadow maps: every object drawn by its `standard/ShadowCaster` variant into a
 //! spot light's `Depth16Unorm` map (`SHADOWS_DEPTH`), a point light's six faces of distances
-//! (`SHADOWS_CUBE`) or a directional light's one cascade (`SHADOWS_SCREEN`), read back; the
+//! (`SHADOWS_CUBE`) or a directional light's four cascades (`SHADOWS_SCREEN`), read back; the
 //! receivers bind what was rendered, and the reference reads the same maps
 //! ([`wgsl_variants_shaders::reference::shadow`]). A directional light's receivers read a screen-space
 //! mask instead, which each path renders with `screen_space_shadows/Collect` over its own depth
@@ -14,7 +14,9 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3, Vec4};
 
+use super::super::rig::fade_resource;
 use super::super::scene::{push_mat4, push_vec4, texture};
+use super::super::screen_masks::{lay_atlas, map_resources};
 use super::super::shadows::{CUBE_FORMAT, DEPTH, red_f16, refused, shadow_bindings};
 use super::{Drawer, FrameScene};
 use crate::{
@@ -22,12 +24,13 @@ use crate::{
     TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::cascades::Cascades;
+use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades};
 use wgsl_variants_shaders::reference::light::{Light, LightShape};
 use wgsl_variants_shaders::reference::shadow::{
     ShadowCube, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, cube_face_view_proj,
-    shadow_factor,
+    mix_realtime_and_baked, shadow_factor,
 };
+use wgsl_variants_shaders::reference::shadow_fade::ShadowFade;
 use wgsl_variants_shaders::reference::surface::SmoothnessSource;
 use wgsl_variants_shaders::reference::tolerance::unorm_store_error;
 
@@ -37,8 +40,8 @@ pub const SHADOW_MAP_SIZE: u32 = 128;
 /// Edge length of each face of a point light's cube in texels.
 pub const SHADOW_CUBE_SIZE: u32 = 32;
 
-/// Edge length of a directional light's map (one cascade over [`FrameScene::shadow_region`])
-/// in texels.
+/// Edge length of each cascade's tile of a directional light's atlas in texels (four
+/// cascades: a 512 × 512 atlas).
 pub const DIRECTIONAL_MAP_SIZE: u32 = 256;
 
 /// How a light of the frame casts shadows.
@@ -52,6 +55,10 @@ pub struct ShadowSpec {
     /// `SHADOWS_SOFT`: the filtered footprint (a directional light's is its mask's: the
     /// `Collect` variant with `SHADOWS_SOFT`).
     pub soft: bool,
+    /// A directional light's cascades are picked by the slices' bounding spheres
+    /// (`SHADOWS_SPLIT_SPHERES`, Unity's Stable Fit) rather than by view depth; unused for
+    /// other lights.
+    pub split_spheres: bool,
 }
 
 /// One light's rendered shadow: what the receivers bind and the reference reads.
@@ -60,14 +67,19 @@ pub struct FrameShadow {
     /// `SHADOWS_DEPTH` (spot), `SHADOWS_CUBE` (point) or `SHADOWS_SCREEN` (directional), with
     /// `SHADOWS_SOFT` as specified.
     pub keywords: ShadowKeywords,
-    /// The `Shadow` uniform's values.
+    /// The `Shadow` uniform's values (a directional light's: its first cascade's).
     pub params: ShadowParams,
-    /// The spot's or directional light's map.
+    /// A directional light's cascades over [`FrameScene::cascade_splits`] and the `Collect`
+    /// keywords that read them.
+    pub cascades: Option<(Cascades, CascadeKeywords)>,
+    /// The spot's map, or the directional light's atlas of cascades.
     pub map: Option<ShadowMap2d>,
     /// The point's cube.
     pub cube: Option<ShadowCube>,
-    /// Bindings 10–14 (the map; for a directional light, what `Collect` binds), and after
-    /// [`FrameShadows::with_masks`] a directional light's mask at 15.
+    /// The distance fade the receivers apply ([`FrameScene::shadow_fade`]).
+    pub fade: ShadowFade,
+    /// Bindings 10–14 (the map; for a directional light, what `Collect` binds) and the fade
+    /// at 18, and after [`FrameShadows::with_masks`] a directional light's mask at 15.
     pub resources: Vec<BoundResource>,
 }
 
@@ -87,9 +99,12 @@ impl FrameShadow {
         .collect()
     }
 
-    /// The reference shadow factor interval at `p` (an uncertain tap may go either way). A
-    /// directional light's is its map's, compared as `Collect` compares it (as a spot's).
+    /// The reference shadow factor interval at `p` (an uncertain tap or cascade may go
+    /// either way). A directional light's is its cascades' ([`Cascades::factor`]).
     pub fn factor(&self, p: Vec3) -> (f32, f32) {
+        if let (Some((cascades, keywords)), Some(atlas)) = (&self.cascades, &self.map) {
+            return cascades.factor(*keywords, atlas, p);
+        }
         let maps = ShadowMaps {
             map: self.map.as_ref(),
             cube: self.cube.as_ref(),
@@ -102,16 +117,20 @@ impl FrameShadow {
         shadow_factor(&self.params, keywords, maps, p)
     }
 
-    /// What a receiver may read at `p`: [`FrameShadow::factor`], for a directional light
-    /// widened by the 8-bit store of the `Rgba8Unorm` mask it reads.
+    /// What a receiver's light is scaled by at `p`: [`FrameShadow::factor`] (for a
+    /// directional light widened by the 8-bit store of the `Rgba8Unorm` mask it reads) faded
+    /// by distance (no baked occlusion in the frame).
     pub fn received(&self, p: Vec3) -> (f32, f32) {
         let (lo, hi) = self.factor(p);
-        if self.keywords.screen {
+        let (lo, hi) = if self.keywords.screen {
             let e = unorm_store_error(8);
             ((lo - e).max(0.0), (hi + e).min(1.0))
         } else {
             (lo, hi)
-        }
+        };
+        let fade = self.fade.fade(p);
+        let mix = |f| mix_realtime_and_baked(self.keywords, f, 1.0, fade);
+        (mix(lo), mix(hi))
     }
 }
 
@@ -167,24 +186,14 @@ impl FrameShadows {
             if !shadow.keywords.screen {
                 return Ok(Some(shadow.clone()));
             }
-            // The frame's directional light has one cascade (Unity's SHADOWS_SINGLE_CASCADE):
-            // `Collect` binds its map as cascade 0 of a `CascadedShadow`.
-            let mut names = vec!["SHADOWS_SINGLE_CASCADE"];
-            if shadow.keywords.soft {
-                names.push("SHADOWS_SOFT");
+            // The light's cascades (its resources bind their atlas and `CascadedShadow`).
+            let mut names = Vec::new();
+            if let Some((_, k)) = &shadow.cascades {
+                names.extend(k.split_spheres.then_some("SHADOWS_SPLIT_SPHERES"));
+                names.extend(k.soft.then_some("SHADOWS_SOFT"));
             }
             let (label, wgsl) = drawer.text("screen_space_shadows", "Collect", names)?;
-            let cascade: Vec<u8> = Cascades::single(&shadow.params)
-                .uniform()
-                .into_iter()
-                .flat_map(f32::to_le_bytes)
-                .collect();
-            let mut resources = shadow.resources.clone();
-            for r in &mut resources {
-                if (r.group, r.binding) == (0, 10) {
-                    r.resource = Resource::Uniform(cascade.clone());
-                }
-            }
+            let resources = shadow.resources.clone();
             let mut pass = DrawPass::new(
                 "frame: screen-space shadow",
                 w,
@@ -296,7 +305,7 @@ pub fn render_shadows(
 }
 
 /// Renders one light's shadow: a point light's cube, a spot's map, or a directional light's
-/// map over the frame's [`FrameScene::shadow_region`].
+/// atlas of cascades over the frame's [`FrameScene::cascade_splits`].
 fn render_shadow(
     ctx: &GpuContext,
     drawer: &mut Drawer<'_>,
@@ -305,26 +314,16 @@ fn render_shadow(
 ) -> Result<FrameShadow, GpuError> {
     let refused = refused("standard/ShadowCaster");
     let frame = drawer.frame;
-    let (params, size) = match light.shape {
-        LightShape::Directional { .. } => {
-            let (center, radius) = frame.shadow_region;
-            let params =
-                ShadowParams::for_directional(light, spec.strength, spec.bias, center, radius)
-                    .map_err(&refused)?;
-            (params, DIRECTIONAL_MAP_SIZE)
-        }
-        _ => (
-            ShadowParams::for_light(light, spec.strength, spec.bias).map_err(&refused)?,
-            SHADOW_MAP_SIZE,
-        ),
-    };
+    if matches!(light.shape, LightShape::Directional { .. }) {
+        return render_cascades(drawer, ctx, light, spec);
+    }
+    let params = ShadowParams::for_light(light, spec.strength, spec.bias).map_err(&refused)?;
+    let size = SHADOW_MAP_SIZE;
     let position = params.light_position.extend(params.inv_range);
-    let directional = matches!(light.shape, LightShape::Directional { .. });
     let cube = matches!(light.shape, LightShape::Point { .. });
     let keywords = ShadowKeywords {
-        depth: !cube && !directional,
+        depth: !cube,
         cube,
-        screen: directional,
         soft: spec.soft,
         ..ShadowKeywords::default()
     };
@@ -351,12 +350,16 @@ fn render_shadow(
         debug_assert_eq!(CUBE_FORMAT, TargetFormat::Rgba16Float.wgpu_format());
         let texels = faces.iter().flat_map(|f| red_f16(f)).collect();
         let cube = ShadowCube::new(size, texels).map_err(&refused)?;
+        let mut resources = shadow_bindings(&params, None, Some((&faces, size)));
+        resources.push(fade_resource(&frame.shadow_fade));
         return Ok(FrameShadow {
             keywords,
-            resources: shadow_bindings(&params, None, Some((&faces, size))),
+            resources,
             params,
+            cascades: None,
             map: None,
             cube: Some(cube),
+            fade: frame.shadow_fade,
         });
     }
     let mut pass = DrawPass::new("frame: shadow map", size, size, Vec::new());
@@ -366,11 +369,67 @@ fn render_shadow(
     let depth = render_pass(ctx, &pass)?.depth.unwrap_or_default();
     let codes: Vec<u16> = depth.iter().map(|d| (d * 65535.0).round() as u16).collect();
     let map = ShadowMap2d::from_depth16(size, size, &codes).map_err(&refused)?;
+    let mut resources = shadow_bindings(&params, Some((&codes, size)), None);
+    resources.push(fade_resource(&frame.shadow_fade));
     Ok(FrameShadow {
         keywords,
-        resources: shadow_bindings(&params, Some((&codes, size)), None),
+        resources,
         params,
+        cascades: None,
         map: Some(map),
         cube: None,
+        fade: frame.shadow_fade,
+    })
+}
+
+/// A directional light's shadow: its cascades fitted to the frame's camera and
+/// [`FrameScene::cascade_splits`], each rendered by the casters into its tile of the atlas
+/// (`SHADOWS_SCREEN`: the receivers read the mask `Collect` makes of it).
+fn render_cascades(
+    drawer: &mut Drawer<'_>,
+    ctx: &GpuContext,
+    light: &Light,
+    spec: ShadowSpec,
+) -> Result<FrameShadow, GpuError> {
+    let refused = refused("screen_space_shadows/Collect");
+    let frame = drawer.frame;
+    let cascades = Cascades::fit(
+        light,
+        spec.strength,
+        spec.bias,
+        &frame.cascade_camera(),
+        &frame.cascade_splits,
+    )
+    .map_err(&refused)?;
+    let size = DIRECTIONAL_MAP_SIZE;
+    let (atlas, atlas_size) = lay_atlas(&cascades, size, |c| {
+        let mut pass = DrawPass::new("frame: shadow cascade", size, size, Vec::new());
+        pass.depth = true;
+        pass.depth_format = DEPTH;
+        let position = c.params.light_position.extend(c.params.inv_range);
+        pass.draws = caster_draws(drawer, "SHADOWS_DEPTH", c.view_proj, position)?;
+        let depth = render_pass(ctx, &pass)?.depth.unwrap_or_default();
+        Ok(depth.iter().map(|d| (d * 65535.0).round() as u16).collect())
+    })?;
+    let map = ShadowMap2d::from_depth16(atlas_size.0, atlas_size.1, &atlas).map_err(&refused)?;
+    let mut resources = map_resources(&cascades.uniform(), &atlas, atlas_size);
+    resources.push(fade_resource(&frame.shadow_fade));
+    let collect = CascadeKeywords {
+        single: false,
+        split_spheres: spec.split_spheres,
+        soft: spec.soft,
+    };
+    Ok(FrameShadow {
+        keywords: ShadowKeywords {
+            screen: true,
+            soft: spec.soft,
+            ..ShadowKeywords::default()
+        },
+        params: cascades.cascades[0].params,
+        cascades: Some((cascades, collect)),
+        map: Some(map),
+        cube: None,
+        resources,
+        fade: frame.shadow_fade,
     })
 }
