@@ -13,7 +13,7 @@
 //! options.pass = Some("Deferred".into());
 //! let planned = plan(&lib, &options).unwrap();
 //! assert_eq!(planned.len(), 1);
-//! assert_eq!(planned[0].1.len(), 18432);
+//! assert_eq!(planned[0].1.len(), 110_592);
 //! ```
 
 use crate::covering::CoverError;

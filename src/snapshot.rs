@@ -172,7 +172,7 @@ pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
 /// ```
 /// let lib = wgsl_variants_shaders::library().unwrap();
 /// let summary = wgsl_variants::snapshot::manifest_summary(&lib, 1_000_000).unwrap();
-/// assert!(summary.contains("standard/Deferred: 18432 variants, 10752 distinct"));
+/// assert!(summary.contains("standard/Deferred: 110592 variants, 64512 distinct"));
 /// ```
 pub fn manifest_summary(lib: &Library, budget: u64) -> Result<String, ManifestError> {
     let mut out = String::from(

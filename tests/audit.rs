@@ -31,14 +31,15 @@ fn bundled_library_counts_match_the_hand_computed_ones() {
     let o = AuditOptions::default();
     // Deferred: _RENDERING_CUTOUT 2 · _METALLIC_MAP 2 · smoothness 3 · six maps 2^6 ·
     // UNITY_HDR_ON 2 · UNITY_ENABLE_REFLECTION_BUFFERS 2 · SHADOWS_SHADOWMASK 2 · the BRDF
-    // tier 3 = 18432, and every keyword guards code of its own (bindings, surface functions,
-    // G-buffer packing, reflection probes, RT4, the tier's indirect specular), so every
+    // tier 3 · the lightmap keywords 6 (8 less DIRLIGHTMAP_COMBINED without LIGHTMAP_ON) =
+    // 110592, and every keyword guards code of its own (bindings, surface functions, G-buffer
+    // packing, reflection probes, RT4, the tier's indirect specular, the lightmaps), so every
     // variant's composed text is distinct.
     let d = audit_of(&lib, "standard", "Deferred", &o);
-    assert_eq!(d.full_space, big(18432));
-    assert_eq!(d.after_filtering, big(18432));
-    assert_eq!(d.build_set, big(18432));
-    assert_eq!(d.distinct.count, big(18432));
+    assert_eq!(d.full_space, big(110_592));
+    assert_eq!(d.after_filtering, big(110_592));
+    assert_eq!(d.build_set, big(110_592));
+    assert_eq!(d.distinct.count, big(110_592));
     assert!(d.distinct.exact);
     assert_eq!(d.distinct.method, Method::Components);
     assert!(d.dead_keywords.is_empty(), "{:?}", d.dead_keywords);
@@ -62,12 +63,13 @@ fn bundled_library_counts_match_the_hand_computed_ones() {
     ] {
         assert_eq!(row(independent).distinct_factor, Some(2), "{independent}");
     }
-    // ForwardBase: rendering mode 4 · 2 · 3 · 2^6 · 2 (SHADOWS_SCREEN) · 3 (tier) = 9216, all
+    // ForwardBase: rendering mode 4 · 2 · 3 · 2^6 · 2 (SHADOWS_SCREEN) · 3 (tier) · 6
+    // (lightmaps) = 55296, all
     // distinct (_RENDERING_CUTOUT clips, _RENDERING_FADE and _RENDERING_TRANSPARENT change the
     // output alpha, TRANSPARENT also premultiplies, SHADOWS_SCREEN reads the mask).
     let f = audit_of(&lib, "standard", "ForwardBase", &o);
-    assert_eq!(f.full_space, big(9216));
-    assert_eq!(f.distinct.count, big(9216));
+    assert_eq!(f.full_space, big(55_296));
+    assert_eq!(f.distinct.count, big(55_296));
     assert!(f.distinct.exact && f.dead_keywords.is_empty());
     // The internal shaders: Final and Reflections have no keywords; Add has UNITY_HDR_ON.
     assert_eq!(
@@ -110,11 +112,11 @@ keywords = []
     let mut o = AuditOptions::default();
     o.materials = Some(m);
     let d = audit_of(&lib, "standard", "Deferred", &o);
-    // Two shader_feature combinations × the multi_compile sets (2 · 2 · 2 · 3).
-    assert_eq!(d.build_set, big(48));
-    assert_eq!(d.after_stripping, big(48));
-    assert_eq!(d.distinct.count, big(48));
-    assert_eq!(d.distinct_full_space.count, big(18432));
+    // Two shader_feature combinations × the multi_compile sets (2 · 2 · 2 · 3 · 6).
+    assert_eq!(d.build_set, big(288));
+    assert_eq!(d.after_stripping, big(288));
+    assert_eq!(d.distinct.count, big(288));
+    assert_eq!(d.distinct_full_space.count, big(110_592));
     // No material uses the internal shaders: they build nothing.
     assert_eq!(
         audit_of(&lib, "deferred_reflections", "Add", &o).build_set,

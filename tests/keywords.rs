@@ -80,11 +80,11 @@ fn local_forms_are_the_same_sets() {
 fn bundled_standard_shader_counts() {
     let lib = wgsl_variants_shaders::library().unwrap();
     let deferred = lib.pass("standard", "Deferred").unwrap();
-    assert_eq!(Space::full(deferred).count(), BigUint::from(18432u32));
+    assert_eq!(Space::full(deferred).count(), BigUint::from(110_592u32));
     assert_eq!(deferred.tag("LightMode"), Some("Deferred"));
     assert_eq!(deferred.exclude_renderers, ["nomrt"]);
     let forward = lib.pass("standard", "ForwardBase").unwrap();
-    assert_eq!(Space::full(forward).count(), BigUint::from(9216u32));
+    assert_eq!(Space::full(forward).count(), BigUint::from(55_296u32));
 }
 
 #[test]

@@ -93,11 +93,11 @@ fn compute_all(lib: &Library) -> Vec<Reflection> {
 
 /// The rule the README documents: within a pass, a (group, binding) slot always holds the
 /// same resource — same name, same kind — in every variant that has it. Checked over the full
-/// space of every bundled pass (150967 variants).
+/// space of every bundled pass (289207 variants).
 #[test]
 fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
     let all = reflect_all();
-    assert_eq!(all.len(), 150967);
+    assert_eq!(all.len(), 289_207);
     // (shader, pass, group, binding) -> (name, kind)
     type Slot = (String, String, u32, u32);
     let mut seen: BTreeMap<Slot, (String, BindingKind)> = BTreeMap::new();
@@ -123,12 +123,13 @@ fn binding_numbers_are_stable_across_every_variant_of_every_bundled_pass() {
         assert!(old.is_none(), "{shader}/{pass} {name} has two slots");
     }
     // The standard passes use three groups: frame (0), material (1), object (2: the object,
-    // and its baked occlusion with SHADOWS_SHADOWMASK).
+    // its baked occlusion with SHADOWS_SHADOWMASK, and its lightmaps: the record, four maps
+    // and their sampler).
     let standard: Vec<_> = seen
         .keys()
         .filter(|k| k.0 == "standard" && k.1 == "Deferred")
         .collect();
-    assert_eq!(standard.len(), 6 + 10 + 2);
+    assert_eq!(standard.len(), 6 + 10 + 8);
 }
 
 /// A keyword that is off removes its texture; one that is on brings it (with the same slot).
@@ -184,9 +185,33 @@ fn keywords_add_and_remove_bindings() {
             r.pass,
             r.keywords
         );
+        // The lightmaps (ForwardBase, Deferred): each map with its keywords, the record and
+        // the sampler with either lightmap.
+        let lightmapped = on("LIGHTMAP_ON") || on("DYNAMICLIGHTMAP_ON");
+        let directional = on("DIRLIGHTMAP_COMBINED");
+        for (name, bound, slot) in [
+            ("lightmap", lightmapped, (2, 2)),
+            ("lightmap_tex", on("LIGHTMAP_ON"), (2, 3)),
+            ("lightmap_dir", on("LIGHTMAP_ON") && directional, (2, 4)),
+            ("dynamic_lightmap", on("DYNAMICLIGHTMAP_ON"), (2, 5)),
+            (
+                "dynamic_lightmap_dir",
+                on("DYNAMICLIGHTMAP_ON") && directional,
+                (2, 6),
+            ),
+            ("lightmap_sampler", lightmapped, (2, 7)),
+        ] {
+            assert_eq!(
+                has(name),
+                bound.then_some(slot),
+                "{name} in {}/{:?}",
+                r.pass,
+                r.keywords
+            );
+        }
         checked += 1;
     }
-    assert_eq!(checked, 9216 + 18432 + 18432 + 8);
+    assert_eq!(checked, 55_296 + 18432 + 110_592 + 8);
 }
 
 #[test]

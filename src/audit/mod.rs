@@ -14,8 +14,8 @@
 //! let lib = wgsl_variants_shaders::library().unwrap();
 //! let pass = lib.pass("standard", "Deferred").unwrap();
 //! let report = audit::audit_pass(&lib, pass, &audit::AuditOptions::default()).unwrap();
-//! assert_eq!(report.full_space, 18432u32.into());
-//! assert_eq!(report.distinct.count, 18432u32.into());
+//! assert_eq!(report.full_space, 110_592u32.into());
+//! assert_eq!(report.distinct.count, 110_592u32.into());
 //! assert!(report.distinct.exact && report.dead_keywords.is_empty());
 //! ```
 

@@ -33,7 +33,7 @@ pub use load::LoadOptions;
 ///
 /// let lib = wgsl_variants_shaders::library().unwrap();
 /// let pass = lib.pass("standard", "Deferred").unwrap();
-/// assert_eq!(wgsl_variants::variants::Space::full(pass).count(), 18432u32.into());
+/// assert_eq!(wgsl_variants::variants::Space::full(pass).count(), 110_592u32.into());
 /// let variant = lib.variant("standard", "Deferred", &["_NORMAL_MAP", "UNITY_HDR_ON"]).unwrap();
 /// let wgsl = lib.wgsl(&variant);
 /// assert!(wgsl.contains("normal_map"));
@@ -448,7 +448,7 @@ impl Library {
     /// let listing = lib.listing(None).unwrap();
     /// let deferred = listing.shaders.iter().flat_map(|s| &s.passes)
     ///     .find(|p| p.pass.name == "Deferred").unwrap();
-    /// assert_eq!(deferred.full_space, 18432u32.into());
+    /// assert_eq!(deferred.full_space, 110_592u32.into());
     /// ```
     pub fn listing(
         &self,

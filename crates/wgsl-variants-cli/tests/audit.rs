@@ -51,11 +51,11 @@ fn cli_json_has_the_required_fields() {
     let v = json_of(&out);
     let d = pass_json(&v, "standard", "Deferred");
     for key in ["full_space", "after_filtering", "build_set", "distinct"] {
-        assert_eq!(d[key], 18432, "{key}");
+        assert_eq!(d[key], 110_592, "{key}");
     }
     assert_eq!(d["dead_keywords"], serde_json::json!([]));
     assert_eq!(d["distinct_exact"], true);
-    assert_eq!(d["sets"].as_array().unwrap().len(), 13);
+    assert_eq!(d["sets"].as_array().unwrap().len(), 16);
     // Every pass of the bundled library is audited.
     let passes = wgsl_variants_shaders::library().unwrap().passes().count();
     assert!(passes >= 11);

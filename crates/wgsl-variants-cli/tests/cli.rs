@@ -36,18 +36,18 @@ fn validate_all_json_covers_the_full_space_of_both_standard_passes() {
     let report = json(&["validate", "--all", "--json"]);
     let deferred = pass(&report, "standard", "Deferred");
     for (key, value) in [
-        ("full_space", 18432),
-        ("built", 18432),
-        ("valid", 18432),
+        ("full_space", 110_592),
+        ("built", 110_592),
+        ("valid", 110_592),
         ("invalid", 0),
     ] {
         assert_eq!(deferred[key], value, "Deferred {key}");
     }
     let forward = pass(&report, "standard", "ForwardBase");
     for (key, value) in [
-        ("full_space", 9216),
-        ("built", 9216),
-        ("valid", 9216),
+        ("full_space", 55_296),
+        ("built", 55_296),
+        ("valid", 55_296),
         ("invalid", 0),
     ] {
         assert_eq!(forward[key], value, "ForwardBase {key}");
@@ -63,7 +63,7 @@ fn validate_all_json_covers_the_full_space_of_both_standard_passes() {
     assert_eq!(report["totals"]["built"], total_built);
 }
 
-/// `validate` on a third of standard/Deferred's 18,432 variants (shard 1/3) without the cache
+/// `validate` on a third of standard/Deferred's 110,592 variants (shard 1/3) without the cache
 /// (every variant validated on each run, not read back); the full space's order is checked by the manifest
 /// snapshot at one thread and at one per core (tests/snapshots.rs).
 #[test]
@@ -110,13 +110,13 @@ fn list_reports_tags_sets_and_counts() {
         .iter()
         .find(|p| p["name"] == "Deferred")
         .expect("Deferred");
-    assert_eq!(deferred["full_space"], 18432);
+    assert_eq!(deferred["full_space"], 110_592);
     assert_eq!(
         deferred["tags"][0],
         serde_json::json!(["LightMode", "Deferred"])
     );
     assert_eq!(deferred["exclude_renderers"], serde_json::json!(["nomrt"]));
-    assert_eq!(deferred["keyword_sets"].as_array().unwrap().len(), 13);
+    assert_eq!(deferred["keyword_sets"].as_array().unwrap().len(), 16);
 }
 
 #[test]
@@ -124,7 +124,7 @@ fn audit_json_has_the_stage_counts() {
     let audit = json(&["audit", "--json"]);
     let deferred = pass(&audit, "standard", "Deferred");
     for key in ["full_space", "after_filtering", "build_set", "distinct"] {
-        assert_eq!(deferred[key], 18432, "{key}");
+        assert_eq!(deferred[key], 110_592, "{key}");
     }
 }
 
@@ -177,10 +177,11 @@ fn materials_restrict_the_build_set() {
     let path = dir.path().join("materials.toml");
     std::fs::write(&path, "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAP\", \"_METALLIC_MAP\"]\n").unwrap();
     let report = json(&["validate", "--json", "--materials", path.to_str().unwrap()]);
-    // One shader_feature combination × the 8 · 3 multi_compile combinations of Deferred (the
-    // last 3: the BRDF tier), × the 2 · 3 (SHADOWS_SCREEN, tier) of ForwardBase.
-    assert_eq!(pass(&report, "standard", "Deferred")["built"], 24);
-    assert_eq!(pass(&report, "standard", "ForwardBase")["built"], 6);
+    // One shader_feature combination × the 8 · 3 · 6 multi_compile combinations of Deferred
+    // (HDR, reflection buffers, shadowmask; the BRDF tier; the lightmaps), × the 2 · 3 · 6
+    // (SHADOWS_SCREEN, tier, lightmaps) of ForwardBase.
+    assert_eq!(pass(&report, "standard", "Deferred")["built"], 144);
+    assert_eq!(pass(&report, "standard", "ForwardBase")["built"], 36);
     std::fs::write(
         &path,
         "[[material]]\nname = \"Bricks\"\nshader = \"standard\"\nkeywords = [\"_NORMAL_MAPP\"]\n",
@@ -284,10 +285,10 @@ fn the_cache_changes_speed_not_output() {
         1,
         "one segment per save, in one folder per version"
     );
-    // One entry per distinct program (pruned text) of the 18432 variants.
+    // One entry per distinct program (pruned text) of the 110592 variants.
     assert_eq!(
         wgsl_variants::cache::ValidCache::open(dir.path()).len(),
-        10752
+        64512
     );
     let second = run(&args);
     assert_eq!(first.stdout, second.stdout);

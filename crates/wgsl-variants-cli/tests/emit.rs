@@ -77,11 +77,11 @@ fn emit_out_writes_a_build_set_with_a_deterministic_manifest() {
 
     let manifest: Value = serde_json::from_slice(&a["manifest.json"]).unwrap();
     let variants = manifest["variants"].as_array().unwrap();
-    // 2 materials: ForwardBase 2 × 2 (SHADOWS_SCREEN) × 3 (BRDF tier); ForwardAdd 2 × 16 light
-    // and shadow combinations × 3; Deferred 2 × 8 multi_compile combinations × 3; ShadowCaster
-    // 2 (SHADOWS_DEPTH, SHADOWS_CUBE: neither material has a caster keyword, so both use the
-    // same two).
-    assert_eq!(variants.len(), 12 + 96 + 48 + 2);
+    // 2 materials: ForwardBase 2 × 2 (SHADOWS_SCREEN) × 3 (BRDF tier) × 6 (lightmaps);
+    // ForwardAdd 2 × 16 light and shadow combinations × 3; Deferred 2 × 8 multi_compile
+    // combinations × 3 × 6; ShadowCaster 2 (SHADOWS_DEPTH, SHADOWS_CUBE: neither material has
+    // a caster keyword, so both use the same two).
+    assert_eq!(variants.len(), 72 + 96 + 288 + 2);
     let targets: Vec<&str> = manifest["targets"]
         .as_array()
         .unwrap()

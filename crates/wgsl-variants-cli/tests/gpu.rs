@@ -34,9 +34,9 @@ fn check_gpu_shards_merge_to_the_counts_of_one_run() {
                 "--pass",
                 pass,
             ])
-            // Every 45th variant of the full space (the passes are past the default covering
-            // threshold since the BRDF tiers): ForwardBase's 9216 give 205.
-            .args(["--full", "--sample", "45", "--workers", "1"])
+            // Every 270th variant of the full space (the passes are past the default covering
+            // threshold since the BRDF tiers): ForwardBase's 55296 give 205.
+            .args(["--full", "--sample", "270", "--workers", "1"])
             .args(extra)
             .output()
             .expect("run check-gpu");
@@ -78,7 +78,7 @@ fn check_gpu_shards_merge_to_the_counts_of_one_run() {
     ] {
         assert_eq!(a[key], b[key], "{key}");
     }
-    assert_eq!(a["variants_run"].as_u64().unwrap(), 9216u64.div_ceil(45));
+    assert_eq!(a["variants_run"].as_u64().unwrap(), 55_296u64.div_ceil(270));
     // Another pass's report is from another selection: refused, naming it.
     let other = tmp.path().join("other.json");
     std::fs::write(&other, check("Deferred", &["--shard", "2/3"]).as_slice()).unwrap();
@@ -91,8 +91,8 @@ fn check_gpu_shards_merge_to_the_counts_of_one_run() {
     assert!(stderr.contains("other.json` has fingerprint"), "{stderr}");
 }
 
-/// `check-gpu --cover 2` renders the pairwise covering sets of the standard passes (10 of
-/// Deferred's 18432 variants, 13 of ForwardBase's 9216), each with a partner per keyword (15
+/// `check-gpu --cover 2` renders the pairwise covering sets of the standard passes (12 of
+/// Deferred's 110592 variants, 13 of ForwardBase's 55296), each with a partner per keyword (18
 /// each) so keyword coverage is judged, and compares them with the reference.
 #[test]
 fn check_gpu_cover_renders_the_covering_sets() {
@@ -108,22 +108,22 @@ fn check_gpu_cover_renders_the_covering_sets() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(
-        stdout.contains("ok   standard/Deferred: 25 variants"),
+        stdout.contains("ok   standard/Deferred: 30 variants"),
         "{stdout}"
     );
     assert!(
-        stdout.contains("ok   standard/ForwardBase: 28 variants"),
+        stdout.contains("ok   standard/ForwardBase: 31 variants"),
         "{stdout}"
     );
     assert!(
-        stdout.contains("2-wise covering set of 10 variants")
-            && stdout.contains("plus 15 partners"),
+        stdout.contains("2-wise covering set of 12 variants")
+            && stdout.contains("plus 18 partners"),
         "{stdout}"
     );
 }
 
 /// A sample step that shares a factor with the shard count still splits the sample evenly:
-/// `--full --sample 64` of ForwardBase's 9216 variants is 144, and shard 2/2 runs 72 of them
+/// `--full --sample 384` of ForwardBase's 55296 variants is 144, and shard 2/2 runs 72 of them
 /// (it ran none when shards were taken by the index in the space).
 #[test]
 fn check_gpu_sample_and_shard_with_a_common_factor() {
@@ -133,7 +133,7 @@ fn check_gpu_sample_and_shard_with_a_common_factor() {
             "ForwardBase",
             "--full",
             "--sample",
-            "64",
+            "384",
             "--shard",
             "2/2",
             "--workers",

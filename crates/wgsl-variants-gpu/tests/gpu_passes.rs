@@ -1,5 +1,5 @@
-//! The GPU proof of the bundled passes: `standard/Deferred` (18432 variants) and
-//! `standard/ForwardBase` (9216) rendered on the test scene and compared pixel by pixel with the
+//! The GPU proof of the bundled passes: `standard/Deferred` (110592 variants) and
+//! `standard/ForwardBase` (55296) rendered on the test scene and compared pixel by pixel with the
 //! CPU reference — in CI a 3-wise covering set of each with a partner per keyword (every keyword
 //! judged), every variant in the `--ignored` tests — then the deferred reflection, add and final
 //! passes (`check::run`).
@@ -87,7 +87,7 @@ fn assert_pass(report: &CheckReport, shader: &str, pass: &str, variants: usize) 
     assert!(p.pixels_compared > 0 && p.draws > 0, "{report}");
 }
 
-/// Every variant of `standard/Deferred` (18432; many minutes on lavapipe with a cold shader
+/// Every variant of `standard/Deferred` (110592; many minutes on lavapipe with a cold shader
 /// cache, so CI runs [`deferred_covering_set_matches_the_reference`] instead).
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
@@ -100,16 +100,16 @@ fn deferred_every_variant_matches_the_reference() {
     }) else {
         return;
     };
-    let variants = 18432usize.div_ceil(n);
+    let variants = 110_592usize.div_ceil(n);
     assert_pass(&report, "standard", "Deferred", variants);
     let p = &report.passes[0];
     // 16 × 16 pixels × 4 targets per variant, 5 for the half with SHADOWS_SHADOWMASK (RT4);
     // cutout discards some pixels.
     if n == 1 {
-        assert_eq!(p.pixels_compared, (18432 * 4 + 9216) * 256);
+        assert_eq!(p.pixels_compared, (110_592 * 4 + 55_296) * 256);
     }
     assert!(p.discarded_compared > 0);
-    assert_eq!(p.keywords.len(), 15, "every keyword of the pass is covered");
+    assert_eq!(p.keywords.len(), 18, "every keyword of the pass is covered");
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 
@@ -117,7 +117,7 @@ fn deferred_every_variant_matches_the_reference() {
 #[test]
 fn deferred_covering_set_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
-    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "Deferred", 15) else {
+    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "Deferred", 18) else {
         return;
     };
     // 4 targets per variant, 5 with RT4; some of each; cutout discards some pixels.
@@ -130,14 +130,14 @@ fn deferred_covering_set_matches_the_reference() {
 #[test]
 fn forward_base_covering_set_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
-    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardBase", 15) else {
+    let Some(p) = common::gpu::standard_covering_set_matches(&lib, "ForwardBase", 18) else {
         return;
     };
     assert!(p.discarded_compared > 0);
     assert_eq!(p.pixels_compared, p.variants_run * 256);
 }
 
-/// Every variant of `standard/ForwardBase` (9216; many minutes on lavapipe with a cold shader
+/// Every variant of `standard/ForwardBase` (55296; many minutes on lavapipe with a cold shader
 /// cache, so CI runs [`forward_base_covering_set_matches_the_reference`] instead).
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
@@ -150,11 +150,11 @@ fn forward_base_every_variant_matches_the_reference() {
     }) else {
         return;
     };
-    let variants = 9216usize.div_ceil(n);
+    let variants = 55_296usize.div_ceil(n);
     assert_pass(&report, "standard", "ForwardBase", variants);
     let p = &report.passes[0];
     assert_eq!(p.pixels_compared, variants * 256);
-    assert_eq!(p.keywords.len(), 15, "every keyword of the pass is covered");
+    assert_eq!(p.keywords.len(), 18, "every keyword of the pass is covered");
     assert!(p.untested_keywords.is_empty(), "{report}");
 }
 
@@ -211,6 +211,36 @@ fn a_wrong_library_fails_the_check() {
     );
     eprintln!(
         "a wrong library is caught: {} mismatches, e.g. {m}",
+        p.mismatches
+    );
+}
+
+/// The lightmaps are checked: a baked lightmap decoded with RGBM's gamma-space range (5) where
+/// its linear-space range (5^2.2 = 34.49) belongs fails the Deferred covering set, in the
+/// `LIGHTMAP_ON` variants only.
+#[test]
+fn a_lightmap_decoded_with_the_wrong_range_fails_the_check() {
+    let lib = common::mutate::bundled_with(
+        "standard/my_lighting.wgsl",
+        "lightmap_sampler, luv), lightmap.decode)",
+        "lightmap_sampler, luv), lightmap.decode * vec4f(5.0 / 34.493242, 1.0, 1.0, 1.0))",
+    );
+    let Some(report) = run_options(&lib, Some("standard"), Some("Deferred"), |o| {
+        o.cover = Some(3);
+    }) else {
+        return;
+    };
+    assert!(!report.passed());
+    let p = &report.passes[0];
+    assert!(p.mismatches > 0);
+    assert!(
+        p.first_mismatches
+            .iter()
+            .all(|m| m.keywords.contains("LIGHTMAP_ON")),
+        "{report}"
+    );
+    eprintln!(
+        "a lightmap with the wrong range is caught: {} mismatches",
         p.mismatches
     );
 }

@@ -23,6 +23,14 @@
 // Unity's Standard BRDF per graphics tier (UNITY_PBS_USE_BRDF1/2/3, which Unity's tier settings
 // select; docs/shading.md §5): no keyword is BRDF1, the desktop tiers' choice.
 #pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
+// Unity's lightmap keywords (multi_compile_fwdbase / multi_compile_prepassfinal): the baked
+// lightmap, its directional map, the realtime (Enlighten) lightmap (docs/shading.md §14).
+// DIRLIGHTMAP_COMBINED needs a lightmap; `require` takes the baked one (Unity also builds it
+// with the realtime lightmap alone, a departure stated in §9).
+#pragma multi_compile _ LIGHTMAP_ON
+#pragma multi_compile _ DIRLIGHTMAP_COMBINED
+#pragma multi_compile _ DYNAMICLIGHTMAP_ON
+#pragma require DIRLIGHTMAP_COMBINED LIGHTMAP_ON
 #define FORWARD_BASE_PASS
 #import standard/my_lighting
 #endpass
@@ -80,6 +88,14 @@
 // The tier changes the indirect specular only, so with UNITY_ENABLE_REFLECTION_BUFFERS its
 // variants are duplicates (as Unity builds them).
 #pragma multi_compile _ UNITY_PBS_USE_BRDF2 UNITY_PBS_USE_BRDF3
+// Unity's lightmap keywords (multi_compile_fwdbase / multi_compile_prepassfinal): the baked
+// lightmap, its directional map, the realtime (Enlighten) lightmap (docs/shading.md §14).
+// DIRLIGHTMAP_COMBINED needs a lightmap; `require` takes the baked one (Unity also builds it
+// with the realtime lightmap alone, a departure stated in §9).
+#pragma multi_compile _ LIGHTMAP_ON
+#pragma multi_compile _ DIRLIGHTMAP_COMBINED
+#pragma multi_compile _ DYNAMICLIGHTMAP_ON
+#pragma require DIRLIGHTMAP_COMBINED LIGHTMAP_ON
 #define DEFERRED_PASS
 #import standard/my_lighting
 #endpass

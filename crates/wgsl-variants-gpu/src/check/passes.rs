@@ -51,7 +51,7 @@ pub fn reference_outputs(
             let mut targets = vec![g.rt0, g.rt1, g.rt2, g.rt3];
             if shadowmask {
                 // RT4 stores the baked occlusion texel as it is (docs/shading.md §13).
-                targets.push(scene.maps.shadowmask.get(x, y));
+                targets.push(scene.shadowmask_texel(kw.lightmap, x, y));
             }
             targets
         })

@@ -23,6 +23,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use crate::{BoundResource, Resource, TargetFormat, VertexBuffer};
 use wgsl_variants_shaders::reference::cube::{CubeFaces, face_margin};
 use wgsl_variants_shaders::reference::gbuffer::{decode_normal, encode_normal};
+use wgsl_variants_shaders::reference::lightmap::{LightmapDecode, LightmapTexels};
 use wgsl_variants_shaders::reference::probe::{Probe, box_project, box_project_grown, falloff};
 use wgsl_variants_shaders::reference::quantize::{unorm, unorm_to_f32};
 use wgsl_variants_shaders::reference::surface::{
@@ -140,7 +141,7 @@ impl MapTexture {
 }
 
 /// The material's textures.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Maps {
     /// `main_tex`.
     pub main_tex: MapTexture,
@@ -161,6 +162,22 @@ pub struct Maps {
     /// `shadowmask_map`: the object's baked occlusion of up to four lights, one per channel
     /// (the Deferred pass's `SHADOWS_SHADOWMASK` variants copy it to RT4).
     pub shadowmask: MapTexture,
+    /// `lightmap_tex`, `lightmap_dir`, `dynamic_lightmap`, `dynamic_lightmap_dir` (read at the
+    /// lightmap uvs, [`Maps::lightmap_st`]).
+    pub lightmaps: [MapTexture; 4],
+    /// Unity's `unity_LightmapST` and `unity_DynamicLightmapST`: lightmap uv = uv · xy + zw.
+    pub lightmap_st: [Vec4; 2],
+}
+
+impl Maps {
+    /// One-texel black lightmaps (RGBM alpha 1) and flat directional maps, read at uv: for
+    /// scenes without lightmapped objects.
+    pub fn no_lightmaps() -> ([MapTexture; 4], [Vec4; 2]) {
+        let black = || MapTexture::new(1, 1, |_, _| [0, 0, 0, 255]);
+        let flat = || MapTexture::new(1, 1, |_, _| [128, 128, 128, 255]);
+        let st = Vec4::new(1.0, 1.0, 0.0, 0.0);
+        ([black(), flat(), black(), flat()], [st, st])
+    }
 }
 
 /// The whole test scene: geometry, material, textures, lighting and probes.
@@ -309,6 +326,43 @@ impl TestScene {
                 _ => baked.byte(0.0, 1.0),
             })
         });
+        // The lightmaps, twice the scene's size, read through uv · ½ + offset (texel x + w/2
+        // for the baked one, x + w for the realtime one): RGBM multipliers that decode to
+        // 0.2-3.4, realtime texels to 0-1.5, directional maps of every direction. Their own
+        // generator, so the other maps stay what they were.
+        let mut lm = Rng::new(seed ^ 0x11_6d_4a_95);
+        let baked_map = MapTexture::new(2 * w, 2 * h, |_, _| {
+            [
+                lm.byte(0.0, 1.0),
+                lm.byte(0.0, 1.0),
+                lm.byte(0.0, 1.0),
+                lm.byte(0.1, 0.35),
+            ]
+        });
+        let realtime_map = MapTexture::new(2 * w, 2 * h, |_, _| {
+            [
+                lm.byte(0.0, 1.0),
+                lm.byte(0.0, 1.0),
+                lm.byte(0.0, 1.0),
+                lm.byte(0.2, 0.6),
+            ]
+        });
+        let mut dir_map = || {
+            MapTexture::new(2 * w, 2 * h, |_, _| {
+                [
+                    lm.byte(0.0, 1.0),
+                    lm.byte(0.0, 1.0),
+                    lm.byte(0.0, 1.0),
+                    lm.byte(0.3, 1.0),
+                ]
+            })
+        };
+        let (baked_dir, realtime_dir) = (dir_map(), dir_map());
+        let lightmaps = [baked_map, baked_dir, realtime_map, realtime_dir];
+        let lightmap_st = [
+            Vec4::new(0.5, 0.5, 0.25, 0.25),
+            Vec4::new(0.5, 0.5, 0.5, 0.0),
+        ];
 
         let scene = Scene {
             camera_position: Vec3::new(0.75, -0.5, 6.0),
@@ -340,6 +394,12 @@ impl TestScene {
                     1,
                 ),
             ],
+            // RGBM baked lightmaps (desktop, linear colour space); realtime texels through
+            // pow(2 · a · rgb, 2.2).
+            lightmap_decode: LightmapDecode {
+                baked: LightmapDecode::RGBM_LINEAR,
+                realtime: Vec4::new(2.0, 2.2, 0.0, 0.0),
+            },
             cubes: [
                 cube([
                     [230, 60, 40, 128],
@@ -473,6 +533,8 @@ impl TestScene {
                 detail_albedo,
                 detail_normal,
                 shadowmask,
+                lightmaps,
+                lightmap_st,
             },
             scene,
             deferred_probes,
@@ -515,10 +577,35 @@ impl TestScene {
         )
     }
 
+    /// The texel of `map` that pixel `(x, y)` reads at the uv `uv · st.xy + st.zw` (clamped),
+    /// as a nearest sampler picks it.
+    pub fn st_texel(&self, map: &MapTexture, st: Vec4, x: u32, y: u32) -> Vec4 {
+        let texel = |p: u32, pixels: u32, size: u32, scale: f32, offset: f32| {
+            let u = (p as f32 + 0.5) / pixels as f32 * scale + offset;
+            ((u * size as f32).floor().max(0.0) as u32).min(size - 1)
+        };
+        map.get(
+            texel(x, self.width, map.width, st.x, st.z),
+            texel(y, self.height, map.height, st.y, st.w),
+        )
+    }
+
+    /// The baked occlusion pixel `(x, y)` stores in RT4: the shadowmask at the mesh uv, or at
+    /// the lightmap uv with `LIGHTMAP_ON` (the shadowmask shares the lightmap's layout).
+    pub fn shadowmask_texel(&self, lightmapped: bool, x: u32, y: u32) -> Vec4 {
+        if lightmapped {
+            self.st_texel(&self.maps.shadowmask, self.maps.lightmap_st[0], x, y)
+        } else {
+            self.maps.shadowmask.get(x, y)
+        }
+    }
+
     /// The texels pixel `(x, y)` reads.
     pub fn texels(&self, x: u32, y: u32) -> Texels {
         let m = &self.maps;
         let (dx, dy) = self.detail_texel(x, y);
+        let [baked, baked_dir, realtime, realtime_dir] = &m.lightmaps;
+        let [st, dynamic_st] = m.lightmap_st;
         Texels {
             main_tex: m.main_tex.get(x, y),
             metallic_map: m.metallic_map.get(x, y),
@@ -528,6 +615,12 @@ impl TestScene {
             detail_mask: m.detail_mask.get(x, y),
             detail_albedo: m.detail_albedo.get(dx, dy),
             detail_normal: m.detail_normal.get(dx, dy),
+            lightmap: LightmapTexels {
+                baked: self.st_texel(baked, st, x, y),
+                baked_dir: self.st_texel(baked_dir, st, x, y),
+                realtime: self.st_texel(realtime, dynamic_st, x, y),
+                realtime_dir: self.st_texel(realtime_dir, dynamic_st, x, y),
+            },
         }
     }
 
@@ -746,6 +839,16 @@ impl StandardBindings<'_> {
         push_mat4(&mut object, self.model);
         push_mat4(&mut object, self.normal_matrix);
         let maps = self.maps;
+        let mut lightmap = Vec::new();
+        for v in [
+            maps.lightmap_st[0],
+            maps.lightmap_st[1],
+            s.lightmap_decode.baked,
+            s.lightmap_decode.realtime,
+        ] {
+            push_vec4(&mut lightmap, v);
+        }
+        let [baked, baked_dir, realtime, realtime_dir] = &maps.lightmaps;
         vec![
             BoundResource::new(0, 0, Resource::Uniform(camera)),
             BoundResource::new(0, 1, Resource::Uniform(lighting)),
@@ -772,6 +875,12 @@ impl StandardBindings<'_> {
             BoundResource::new(1, 9, maps.detail_normal.resource()),
             BoundResource::new(2, 0, Resource::Uniform(object)),
             BoundResource::new(2, 1, maps.shadowmask.resource()),
+            BoundResource::new(2, 2, Resource::Uniform(lightmap)),
+            BoundResource::new(2, 3, baked.resource()),
+            BoundResource::new(2, 4, baked_dir.resource()),
+            BoundResource::new(2, 5, realtime.resource()),
+            BoundResource::new(2, 6, realtime_dir.resource()),
+            BoundResource::new(2, 7, Resource::Sampler { nearest: true }),
             brdf_lut_resource(),
         ]
     }

@@ -22,6 +22,7 @@
 //! | [`brdf`] | metallic workflow, ambient SH, indirect specular, direct light |
 //! | [`light`] | per-pixel lights: the host API with its errors, falloff, cookies, spot cone, position from depth |
 //! | [`shadow`] | shadows: the host API with its errors, spot and cube-face matrices, depth comparison, PCF footprints and weights, strength |
+//! | [`lightmap`] | baked and realtime lightmaps: decoding (RGBM, HDR, dLDR, realtime), directional maps |
 //! | [`shadow_fade`] | the realtime shadows' distance fade (view depth or a sphere) |
 //! | [`cascades`] | a directional light's 1, 2 or 4 shadow cascades: fitting, the atlas, cascade selection by split depths or spheres |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
@@ -51,6 +52,7 @@ pub mod cube;
 pub mod gbuffer;
 pub mod ldr;
 pub mod light;
+pub mod lightmap;
 pub mod probe;
 pub mod quantize;
 pub mod shadow;

@@ -25,6 +25,7 @@ use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
 use super::ldr::{ldr_accumulate, ldr_decode};
 use super::light::{Cookies, LightParams, LightType, light_direct};
+use super::lightmap::{LightmapDecode, LightmapKeywords, LightmapTexels, lightmap_diffuse};
 use super::probe::{
     Probe, box_project, box_project_grown, composite_f16, draw_order, falloff, forward_blend,
     mip_from_smoothness, mix, sample_probe,
@@ -88,6 +89,12 @@ pub struct Keywords {
     pub reflection_buffers: bool,
     /// The Standard BRDF's tier: none (BRDF1), `UNITY_PBS_USE_BRDF2` or `UNITY_PBS_USE_BRDF3`.
     pub brdf: Brdf,
+    /// `LIGHTMAP_ON`: the baked lightmap replaces the ambient SH (ForwardBase, Deferred).
+    pub lightmap: bool,
+    /// `DIRLIGHTMAP_COMBINED`: the lightmaps' directional maps.
+    pub dirlightmap: bool,
+    /// `DYNAMICLIGHTMAP_ON`: the realtime lightmap.
+    pub dynamic_lightmap: bool,
 }
 
 /// A keyword set the reference cannot model.
@@ -108,7 +115,7 @@ pub enum KeywordsError {
 }
 
 /// Every keyword name [`Keywords::from_names`] knows, in the order [`Keywords::names`] lists them.
-pub const KEYWORD_NAMES: [&str; 16] = [
+pub const KEYWORD_NAMES: [&str; 19] = [
     "_RENDERING_CUTOUT",
     "_RENDERING_FADE",
     "_RENDERING_TRANSPARENT",
@@ -125,6 +132,9 @@ pub const KEYWORD_NAMES: [&str; 16] = [
     "UNITY_ENABLE_REFLECTION_BUFFERS",
     "UNITY_PBS_USE_BRDF2",
     "UNITY_PBS_USE_BRDF3",
+    "LIGHTMAP_ON",
+    "DIRLIGHTMAP_COMBINED",
+    "DYNAMICLIGHTMAP_ON",
 ];
 
 impl Default for Keywords {
@@ -148,6 +158,9 @@ impl Keywords {
         hdr: false,
         reflection_buffers: false,
         brdf: Brdf::Brdf1,
+        lightmap: false,
+        dirlightmap: false,
+        dynamic_lightmap: false,
     };
 
     /// Every texture map on, smoothness from the metallic map's alpha; opaque, LDR, no
@@ -247,6 +260,9 @@ impl Keywords {
                     one_of_set(&mut tier, name)?;
                     k.brdf = Brdf::Brdf3;
                 }
+                "LIGHTMAP_ON" => k.lightmap = true,
+                "DIRLIGHTMAP_COMBINED" => k.dirlightmap = true,
+                "DYNAMICLIGHTMAP_ON" => k.dynamic_lightmap = true,
                 other => return Err(KeywordsError::Unknown(other.to_string())),
             }
         }
@@ -280,12 +296,24 @@ impl Keywords {
             self.reflection_buffers,
             self.brdf == Brdf::Brdf2,
             self.brdf == Brdf::Brdf3,
+            self.lightmap,
+            self.dirlightmap,
+            self.dynamic_lightmap,
         ];
         KEYWORD_NAMES
             .iter()
             .zip(on)
             .filter_map(|(name, on)| on.then_some(*name))
             .collect()
+    }
+
+    /// The lightmap keywords.
+    pub fn lightmaps(&self) -> LightmapKeywords {
+        LightmapKeywords {
+            baked: self.lightmap,
+            directional: self.dirlightmap,
+            realtime: self.dynamic_lightmap,
+        }
     }
 
     /// Whether `_RENDERING_CUTOUT` is on (alpha test).
@@ -359,6 +387,8 @@ pub struct Texels {
     pub detail_albedo: Vec4,
     /// `_DetailNormalMap` (`_DETAIL_NORMAL_MAP`).
     pub detail_normal: Vec4,
+    /// The lightmaps at the pixel's lightmap uvs (`LIGHTMAP_ON`, `DYNAMICLIGHTMAP_ON`).
+    pub lightmap: LightmapTexels,
 }
 
 impl Default for Texels {
@@ -373,6 +403,7 @@ impl Default for Texels {
             detail_mask: Vec4::ONE,
             detail_albedo: Vec4::ONE,
             detail_normal: flat,
+            lightmap: LightmapTexels::default(),
         }
     }
 }
@@ -408,6 +439,8 @@ pub struct Scene {
     pub probes: [Probe; 2],
     /// The cube maps of probes 0 and 1.
     pub cubes: [CubeFaces; 2],
+    /// The lightmaps' decode instructions.
+    pub lightmap_decode: LightmapDecode,
 }
 
 impl Default for Scene {
@@ -424,6 +457,7 @@ impl Default for Scene {
             light_color: Vec3::ZERO,
             probes: [probe; 2],
             cubes: [CubeFaces::uniform(Vec4::new(0.0, 0.0, 0.0, 1.0)); 2],
+            lightmap_decode: LightmapDecode::default(),
         }
     }
 }
@@ -624,6 +658,7 @@ pub fn forward_environment(scene: &Scene, world_position: Vec3, r: Vec3, smoothn
 /// What the lighting shares between the passes: the view vector, the indirect diffuse light
 /// (`sh(n) · occlusion`) and, when `with_reflections`, the forward probes' indirect specular in
 /// tier `brdf` (else 0).
+#[allow(clippy::too_many_arguments)]
 fn indirect(
     s: &Surface,
     spec: Vec3,
@@ -632,9 +667,16 @@ fn indirect(
     scene: &Scene,
     with_reflections: bool,
     brdf: Brdf,
+    (lightmaps, texels): (LightmapKeywords, &LightmapTexels),
 ) -> (Vec3, Vec3, Vec3) {
     let (v, r) = view_and_reflection(scene.camera_position, geo.world_position, s.normal);
-    let indirect_diffuse = sh_ambient(scene.sh_r, scene.sh_g, scene.sh_b, s.normal) * s.occlusion;
+    // Unity's UnityGI_Base: the lightmaps where the object has them, else the ambient SH.
+    let ambient = if lightmaps.any() {
+        lightmap_diffuse(lightmaps, texels, &scene.lightmap_decode, s.normal)
+    } else {
+        sh_ambient(scene.sh_r, scene.sh_g, scene.sh_b, s.normal)
+    };
+    let indirect_diffuse = ambient * s.occlusion;
     let specular = if with_reflections {
         let env = forward_environment(scene, geo.world_position, r, s.smoothness) * s.occlusion;
         indirect_specular(brdf, env, spec, s.smoothness, omr, s.normal, v)
@@ -678,8 +720,16 @@ pub fn shade_deferred(
         return None;
     }
     let (diffuse, spec, omr) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
-    let (_, indirect_diffuse, indirect_specular) =
-        indirect(&s, spec, omr, geo, scene, !kw.reflection_buffers, kw.brdf);
+    let (_, indirect_diffuse, indirect_specular) = indirect(
+        &s,
+        spec,
+        omr,
+        geo,
+        scene,
+        !kw.reflection_buffers,
+        kw.brdf,
+        (kw.lightmaps(), &tex.lightmap),
+    );
     let c = s.emission + diffuse * indirect_diffuse + indirect_specular;
     Some(GBuffer::pack(
         diffuse,
@@ -732,8 +782,16 @@ pub fn shade_forward(
         diffuse *= alpha;
         alpha = 1.0 - omr + alpha * omr;
     }
-    let (v, indirect_diffuse, indirect_specular) =
-        indirect(&s, spec, omr, geo, scene, true, kw.brdf);
+    let (v, indirect_diffuse, indirect_specular) = indirect(
+        &s,
+        spec,
+        omr,
+        geo,
+        scene,
+        true,
+        kw.brdf,
+        (kw.lightmaps(), &tex.lightmap),
+    );
     let d = direct(
         kw.brdf,
         diffuse,

@@ -16,9 +16,20 @@
 //            6 emission_map (_EMISSION_MAP), 7 detail_mask (_DETAIL_MASK),
 //            8 detail_albedo (_DETAIL_ALBEDO_MAP), 9 detail_normal (_DETAIL_NORMAL_MAP)
 //   group 2: 0 object, 1 shadowmask_map (Deferred with SHADOWS_SHADOWMASK: the object's baked
-//            occlusion, Unity's unity_ShadowMask, sampled with material_sampler at the uv)
+//            occlusion, Unity's unity_ShadowMask, sampled with material_sampler at the uv, or
+//            at the lightmap uv with LIGHTMAP_ON),
+//            2 lightmap (Lightmap; LIGHTMAP_ON or DYNAMICLIGHTMAP_ON; lighting/lightmap),
+//            3 lightmap_tex (LIGHTMAP_ON: Unity's unity_Lightmap),
+//            4 lightmap_dir (LIGHTMAP_ON with DIRLIGHTMAP_COMBINED: unity_LightmapInd),
+//            5 dynamic_lightmap (DYNAMICLIGHTMAP_ON: unity_DynamicLightmap),
+//            6 dynamic_lightmap_dir (DYNAMICLIGHTMAP_ON with DIRLIGHTMAP_COMBINED:
+//              unity_DynamicDirectionality),
+//            7 lightmap_sampler (LIGHTMAP_ON or DYNAMICLIGHTMAP_ON; Unity filters bilinearly)
 
 #import deferred/probe
+#if defined(LIGHTMAP_ON) || defined(DYNAMICLIGHTMAP_ON)
+#import lighting/lightmap
+#endif
 
 struct Camera {
     view_proj: mat4x4f,
@@ -92,4 +103,20 @@ struct Object {
 @group(2) @binding(0) var<uniform> object: Object;
 #if defined(DEFERRED_PASS) && defined(SHADOWS_SHADOWMASK)
 @group(2) @binding(1) var shadowmask_map: texture_2d<f32>;
+#endif
+#if defined(LIGHTMAP_ON) || defined(DYNAMICLIGHTMAP_ON)
+@group(2) @binding(2) var<uniform> lightmap: Lightmap;
+@group(2) @binding(7) var lightmap_sampler: sampler;
+#endif
+#if defined(LIGHTMAP_ON)
+@group(2) @binding(3) var lightmap_tex: texture_2d<f32>;
+#endif
+#if defined(LIGHTMAP_ON) && defined(DIRLIGHTMAP_COMBINED)
+@group(2) @binding(4) var lightmap_dir: texture_2d<f32>;
+#endif
+#if defined(DYNAMICLIGHTMAP_ON)
+@group(2) @binding(5) var dynamic_lightmap: texture_2d<f32>;
+#endif
+#if defined(DYNAMICLIGHTMAP_ON) && defined(DIRLIGHTMAP_COMBINED)
+@group(2) @binding(6) var dynamic_lightmap_dir: texture_2d<f32>;
 #endif

@@ -68,6 +68,40 @@ fn my_lighting_probe_env(r: vec3f, p: vec3f, smoothness: f32) -> vec3f {
 }
 #endif
 
+#if defined(FORWARD_BASE_PASS) || defined(DEFERRED_PASS)
+// The indirect diffuse light before occlusion (Unity's UnityGI_Base): the ambient SH for an
+// object without lightmaps (Unity's LIGHTPROBE_SH objects), else the baked lightmap
+// (LIGHTMAP_ON) plus the realtime one (DYNAMICLIGHTMAP_ON), each through its directional map's
+// half-Lambert term with DIRLIGHTMAP_COMBINED. The lightmap uvs are the mesh uv through
+// unity_LightmapST / unity_DynamicLightmapST (our vertex format has one uv set).
+fn my_lighting_ambient(n: vec3f, uv: vec2f) -> vec3f {
+#if !defined(LIGHTMAP_ON) && !defined(DYNAMICLIGHTMAP_ON)
+    return brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b);
+#else
+    var d = vec3f(0.0);
+#if defined(LIGHTMAP_ON)
+    let luv = uv * lightmap.st.xy + lightmap.st.zw;
+    let baked = probe_rgbm_decode(textureSample(lightmap_tex, lightmap_sampler, luv), lightmap.decode);
+#if defined(DIRLIGHTMAP_COMBINED)
+    d += lightmap_directional(baked, textureSample(lightmap_dir, lightmap_sampler, luv), n);
+#else
+    d += baked;
+#endif
+#endif
+#if defined(DYNAMICLIGHTMAP_ON)
+    let duv = uv * lightmap.dynamic_st.xy + lightmap.dynamic_st.zw;
+    let realtime = lightmap_decode_realtime(textureSample(dynamic_lightmap, lightmap_sampler, duv), lightmap.dynamic_decode);
+#if defined(DIRLIGHTMAP_COMBINED)
+    d += lightmap_directional(realtime, textureSample(dynamic_lightmap_dir, lightmap_sampler, duv), n);
+#else
+    d += realtime;
+#endif
+#endif
+    return d;
+#endif
+}
+#endif
+
 @fragment
 #if defined(DEFERRED_PASS)
 fn fs_main(in: VertexOutput) -> GBufferOutput {
@@ -101,7 +135,7 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
     let s = light_at_pixel(in.world_position, pixel, 1.0);
     let c = light_direct(diffuse, setup.spec_color, smoothness, n, v, light, s);
 #else
-    let indirect_diffuse = brdf_sh_ambient(n, lighting.sh_r, lighting.sh_g, lighting.sh_b) * occlusion;
+    let indirect_diffuse = my_lighting_ambient(n, uv) * occlusion;
 #if defined(DEFERRED_PASS) && UNITY_ENABLE_REFLECTION_BUFFERS
     // The per-pixel probes of internal/deferred_reflections add the indirect specular later.
     let indirect_specular = vec3f(0.0);
@@ -119,7 +153,12 @@ fn fs_main(in: VertexOutput) -> @location(0) vec4f {
 #if defined(SHADOWS_SHADOWMASK)
     // RT4: the baked occlusion as stored (Unity's UnityGetRawBakedOcclusions); the lighting
     // pass picks the light's channel.
+#if defined(LIGHTMAP_ON)
+    // A lightmapped object's shadowmask shares its lightmap's uv layout (Unity's unity_ShadowMask).
+    g.rt4 = textureSample(shadowmask_map, material_sampler, uv * lightmap.st.xy + lightmap.st.zw);
+#else
     g.rt4 = textureSample(shadowmask_map, material_sampler, uv);
+#endif
 #endif
     return g;
 #elif defined(FORWARD_ADD_PASS)

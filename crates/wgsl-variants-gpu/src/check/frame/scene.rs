@@ -24,6 +24,7 @@ use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{
     Cookie2d, Light, LightError, LightParams, LightShape, LightType, look_at_rh, perspective_rh,
 };
+use wgsl_variants_shaders::reference::lightmap::{LightmapDecode, LightmapTexels};
 use wgsl_variants_shaders::reference::probe::Probe;
 use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
 use wgsl_variants_shaders::reference::shadow_fade::{FadeDistance, ShadowFade};
@@ -78,12 +79,14 @@ impl FrameObject {
             detail_mask: t[5],
             detail_albedo: t[6],
             detail_normal: t[7],
+            lightmap: LightmapTexels::default(),
         }
     }
 
     /// The maps as textures of one texel each.
     pub fn maps(&self) -> Maps {
         let map = |i: usize| MapTexture::new(1, 1, |_, _| self.texels[i]);
+        let (lightmaps, lightmap_st) = Maps::no_lightmaps();
         Maps {
             main_tex: map(0),
             metallic_map: map(1),
@@ -95,6 +98,8 @@ impl FrameObject {
             detail_normal: map(7),
             // Unoccluded: the frame's materials do not use the Shadowmask modes.
             shadowmask: MapTexture::new(1, 1, |_, _| [255; 4]),
+            lightmaps,
+            lightmap_st,
         }
     }
 
@@ -372,6 +377,7 @@ impl FrameScene {
                     1,
                 ),
             ],
+            lightmap_decode: LightmapDecode::default(),
             cubes: [
                 cube([
                     [200, 170, 140, 160],

@@ -3,6 +3,7 @@
 use super::*;
 use crate::reference::gbuffer::{GBufferTexel, encode_normal};
 use crate::reference::ldr::ldr_encode;
+use crate::reference::lightmap::LightmapTexels;
 
 fn geo() -> Geometry {
     Geometry {
@@ -43,6 +44,12 @@ fn busy_texels() -> Texels {
         detail_mask: Vec4::new(0.0, 0.0, 0.0, 0.5),
         detail_albedo: Vec4::new(0.2, 0.9, 0.6, 1.0),
         detail_normal: Vec4::new(0.3, 0.65, 0.9, 1.0),
+        lightmap: LightmapTexels {
+            baked: Vec4::new(0.6, 0.4, 0.2, 0.3),
+            baked_dir: Vec4::new(0.8, 0.3, 0.6, 0.7),
+            realtime: Vec4::new(0.3, 0.5, 0.7, 0.4),
+            realtime_dir: Vec4::new(0.2, 0.7, 0.4, 0.9),
+        },
     }
 }
 
@@ -112,7 +119,11 @@ fn each_deferred_keyword_changes_the_gbuffer() {
     for name in KEYWORD_NAMES {
         if matches!(
             name,
-            "_RENDERING_FADE" | "_RENDERING_TRANSPARENT" | "_SMOOTHNESS_METALLIC" | "_DETAIL_MASK"
+            "_RENDERING_FADE"
+                | "_RENDERING_TRANSPARENT"
+                | "_SMOOTHNESS_METALLIC"
+                | "_DETAIL_MASK"
+                | "DIRLIGHTMAP_COMBINED"
         ) {
             continue; // no deferred variant / only acts with another keyword (tested below)
         }
@@ -139,6 +150,15 @@ fn each_deferred_keyword_changes_the_gbuffer() {
         mask(&["_DETAIL_MASK", "_DETAIL_NORMAL_MAP"]),
         mask(&["_DETAIL_NORMAL_MAP"])
     );
+    // DIRLIGHTMAP_COMBINED only acts with a lightmap (each one's directional map).
+    assert_eq!(mask(&["DIRLIGHTMAP_COMBINED"]), base);
+    for lightmap in ["LIGHTMAP_ON", "DYNAMICLIGHTMAP_ON"] {
+        assert_ne!(
+            mask(&[lightmap, "DIRLIGHTMAP_COMBINED"]),
+            mask(&[lightmap]),
+            "{lightmap}"
+        );
+    }
     // Fade / Transparent have no deferred variant: same as opaque.
     for name in ["_RENDERING_FADE", "_RENDERING_TRANSPARENT"] {
         assert_eq!(
@@ -159,6 +179,7 @@ fn each_forward_keyword_changes_the_colour() {
                 | "UNITY_ENABLE_REFLECTION_BUFFERS"
                 | "_SMOOTHNESS_METALLIC"
                 | "_DETAIL_MASK"
+                | "DIRLIGHTMAP_COMBINED"
         ) {
             continue;
         }
