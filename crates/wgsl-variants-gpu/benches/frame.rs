@@ -1,6 +1,7 @@
 //! GPU time of the frame forward and deferred (docs/shading.md §12, docs/guide/gpu-proof.md):
 //! the frame of `check::frame` at 1920×1080 with 1, 4, 16, 64, 256 and 1024 unshadowed point
-//! lights (and the main light), rendered as a renderer does it ([`ResidentFrame`]: every target
+//! lights (and the main light; without the semi-transparent objects, whose forward part both
+//! paths share), rendered as a renderer does it ([`ResidentFrame`]: every target
 //! stays on the GPU between passes, nothing is read back while a frame runs), each pass timed
 //! with wgpu timestamp queries:
 //!

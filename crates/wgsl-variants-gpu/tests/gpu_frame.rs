@@ -33,10 +33,18 @@ fn frame_passes(hdr: bool, brdf: Brdf) {
     // Most of the frame is surface, not silhouette.
     assert!(report.compared > 2000, "{report}");
     assert!(report.edges < report.compared / 5, "{report}");
+    // The forward part both paths share: two semi-transparent objects, ForwardBase and four
+    // ForwardAdd draws each.
+    let transparent = 2 * (1 + 4);
     // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd.
-    assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4);
+    assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4 + transparent);
     // Deferred: the G-buffer, the masks, five lights, and the final pass in LDR.
-    assert_eq!(report.deferred_draws, 5 + 2 + 5 + usize::from(!hdr));
+    assert_eq!(
+        report.deferred_draws,
+        5 + 2 + 5 + usize::from(!hdr) + transparent
+    );
+    // The semi-transparent objects cover opaque objects and the background.
+    assert!(report.through_transparent > 100, "{report}");
     // Shadows fall on the surfaces in view, and most pixels are clear of a shadow edge.
     assert!(report.shadowed > 100, "{report}");
     assert!(report.uncertain < report.compared / 20, "{report}");
@@ -59,9 +67,10 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 
 /// The comparison is sharp: a frame rendered with the main light 10 % too bright, the warm
 /// point light 25 % too bright in HDR (50 % in LDR, whose 8-bit targets round each of the five
-/// forward draws), without the spot light's draws, without the shadows, or without one
-/// directional light's screen-space shadow fails against the reference of the true frame, on
-/// both paths.
+/// forward draws), without the spot light's draws, without the shadows, without one
+/// directional light's screen-space shadow, with the floor's lightmap decoded with the wrong
+/// range (RGBM's gamma-space 5 for its linear 34.49), or with the glass sphere more opaque
+/// (alpha 0.45 → 0.55) fails against the reference of the true frame, on both paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -89,6 +98,10 @@ fn a_light_too_bright_or_missing_is_caught() {
     main_unshadowed.main_shadow = None;
     let mut sun_unshadowed = truth.clone();
     sun_unshadowed.lights[1].shadow = None;
+    let mut lightmap_range = truth.clone();
+    lightmap_range.scene.lightmap_decode.baked.x = 5.0;
+    let mut opaque_glass = truth.clone();
+    opaque_glass.transparent[0].material.tint.w = 0.55;
     let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
@@ -98,6 +111,8 @@ fn a_light_too_bright_or_missing_is_caught() {
         ("no shadows", &unshadowed, &[true, false]),
         ("no main-light shadow", &main_unshadowed, &[true, false]),
         ("no cookie-sun shadow", &sun_unshadowed, &[true]),
+        ("lightmap range 5", &lightmap_range, &[true, false]),
+        ("glass alpha 0.55", &opaque_glass, &[true, false]),
     ] {
         for &hdr in modes {
             let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");
@@ -113,8 +128,9 @@ fn a_light_too_bright_or_missing_is_caught() {
 }
 
 /// The frame's scenes the GPU-resident frame can draw: the test frame without its
-/// screen-space shadows (the point light's cube shadow, the spot's map, both cookies and the
-/// spot's volume stay), and the bench's frame of 16 point lights.
+/// screen-space shadows (the point light's cube shadow, the spot's map, both cookies, the
+/// spot's volume and the semi-transparent objects stay), and the bench's frame of 16 point
+/// lights.
 fn resident_scenes() -> Vec<(&'static str, FrameScene)> {
     let mut four = FrameScene::new();
     four.main_shadow = None;
@@ -149,11 +165,16 @@ fn the_gpu_resident_frame_is_the_read_back_frame() {
             let what = format!("{name}, hdr {hdr}");
             let forward = ResidentFrame::forward(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
             let deferred = ResidentFrame::deferred(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
-            assert_eq!(forward.pass_names(), ["forward base", "forward add"]);
+            // The forward part, where the scene has semi-transparent objects.
+            let transparent = (!frame.transparent.is_empty()).then_some("transparent");
+            let mut names = vec!["forward base", "forward add"];
+            names.extend(transparent);
+            assert_eq!(forward.pass_names(), names);
             let mut names = vec!["G-buffer", "lighting"];
             if !hdr {
                 names.push("final");
             }
+            names.extend(transparent);
             assert_eq!(deferred.pass_names(), names);
             for path in [&forward, &deferred] {
                 let time = path.run(&ctx).expect(&what);

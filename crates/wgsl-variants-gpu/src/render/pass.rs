@@ -72,6 +72,13 @@ impl DepthTest {
         compare: wgpu::CompareFunction::LessEqual,
         write: false,
     };
+
+    /// Semi-transparent geometry (Unity's transparent queue: `ZTest LEqual`, `ZWrite Off`):
+    /// drawn in front of the opaque surfaces, leaving the depth buffer to them.
+    pub const TRANSPARENT: DepthTest = DepthTest {
+        compare: wgpu::CompareFunction::LessEqual,
+        write: false,
+    };
 }
 
 /// One draw of a [`DrawPass`]: a variant's text and entry points, its mesh and resources, and

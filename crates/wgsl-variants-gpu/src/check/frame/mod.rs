@@ -37,7 +37,7 @@ use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
 pub use shadow::{FrameShadow, FrameShadows, ShadowSpec, render_shadows};
@@ -58,7 +58,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
 use wgsl_variants_shaders::reference::light::{Cookies, LightParams, LightType};
 use wgsl_variants_shaders::reference::surface::{
-    Geometry, Keywords, shade_deferred, shade_forward, shade_forward_add, surface,
+    Geometry, Keywords, RenderingMode, shade_deferred, shade_forward, shade_forward_add, surface,
     view_and_reflection,
 };
 use wgsl_variants_shaders::reference::tolerance::{
@@ -103,6 +103,10 @@ fn object_keywords(
         reflection_buffers: false,
         occlusion_map: object.keywords.occlusion_map && pass != "ForwardAdd",
         emission_map: object.keywords.emission_map && pass != "ForwardAdd",
+        // ForwardAdd adds one light's direct term: no lightmap keywords.
+        lightmap: object.keywords.lightmap && pass != "ForwardAdd",
+        dirlightmap: object.keywords.dirlightmap && pass != "ForwardAdd",
+        dynamic_lightmap: object.keywords.dynamic_lightmap && pass != "ForwardAdd",
         ..object.keywords
     }
     .names();
@@ -123,6 +127,7 @@ struct Drawer<'a> {
     frame: &'a FrameScene,
     hdr: bool,
     texts: HashMap<VariantKey, VariantText>,
+    /// The resources of the opaque objects, then of the transparent ones.
     objects: Vec<Arc<[BoundResource]>>,
 }
 
@@ -131,6 +136,7 @@ impl<'a> Drawer<'a> {
         let objects = frame
             .objects
             .iter()
+            .chain(&frame.transparent)
             .map(|o| Arc::from(frame.object_resources(o)))
             .collect();
         Drawer {
@@ -178,7 +184,8 @@ impl<'a> Drawer<'a> {
     }
 
     /// Object `o`'s draw of a `standard` pass, with the bindings of `light` (ForwardAdd) and
-    /// of `shadow` (ForwardAdd's light's, or ForwardBase's main light's).
+    /// of `shadow` (ForwardAdd's light's, or ForwardBase's main light's). `o` counts the
+    /// opaque objects, then the transparent ones.
     fn object(
         &mut self,
         o: usize,
@@ -186,7 +193,11 @@ impl<'a> Drawer<'a> {
         light: Option<&FrameLight>,
         shadow: Option<&FrameShadow>,
     ) -> Result<Draw, GpuError> {
-        let object = &self.frame.objects[o];
+        let opaque = self.frame.objects.len();
+        let object = match o.checked_sub(opaque) {
+            Some(t) => &self.frame.transparent[t],
+            None => &self.frame.objects[o],
+        };
         let mut names = object_keywords(object, pass, light.map(|l| l.light_type), self.hdr);
         names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
         let (label, wgsl) = self.text("standard", pass, names)?;
@@ -217,6 +228,58 @@ const ADD: wgpu::BlendState = wgpu::BlendState {
         operation: wgpu::BlendOperation::Add,
     },
 };
+
+/// The blend state of a semi-transparent object's ForwardBase draw (`add` false) or
+/// ForwardAdd draw, as Unity's Standard shader sets them for its rendering modes
+/// (`StandardShaderGUI.cs`: `_SrcBlend` SrcAlpha for Fade, One for Transparent — the shader
+/// premultiplies — with `_DstBlend` OneMinusSrcAlpha; the ForwardAdd pass blends
+/// `[_SrcBlend] One`).
+fn transparent_blend(mode: RenderingMode, add: bool) -> wgpu::BlendState {
+    let src = match mode {
+        RenderingMode::Fade => wgpu::BlendFactor::SrcAlpha,
+        _ => wgpu::BlendFactor::One,
+    };
+    let dst = if add {
+        wgpu::BlendFactor::One
+    } else {
+        wgpu::BlendFactor::OneMinusSrcAlpha
+    };
+    let component = wgpu::BlendComponent {
+        src_factor: src,
+        dst_factor: dst,
+        operation: wgpu::BlendOperation::Add,
+    };
+    wgpu::BlendState {
+        color: component,
+        alpha: component,
+    }
+}
+
+/// The forward part of either path: each semi-transparent object in
+/// [`FrameScene::transparent_order`], its ForwardBase draw then one ForwardAdd draw per light,
+/// blended ([`transparent_blend`]), back faces culled, depth tested against the opaque
+/// objects' without writing, and without shadow keywords (the transparent queue receives no
+/// shadows).
+fn transparent_draws(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>, GpuError> {
+    let mut draws = Vec::new();
+    for t in frame.transparent_order() {
+        let o = frame.objects.len() + t;
+        let mode = frame.transparent[t].keywords.rendering;
+        let blended = |draw: Draw, add: bool| {
+            draw.with_blend(transparent_blend(mode, add))
+                .with_depth(DepthTest::TRANSPARENT)
+                .with_cull(wgpu::Face::Back)
+        };
+        draws.push(blended(drawer.object(o, "ForwardBase", None, None)?, false));
+        for light in &frame.lights {
+            draws.push(blended(
+                drawer.object(o, "ForwardAdd", Some(light), None)?,
+                true,
+            ));
+        }
+    }
+    Ok(draws)
+}
 
 /// The forward path's draws: ForwardBase per object (with the main light's shadow), then
 /// ForwardAdd per light and object (blended One / One onto the same surface).
@@ -284,6 +347,7 @@ pub fn render_forward(
     let (base, add) = forward_draws(&mut drawer, frame, shadows)?;
     pass.draws = base;
     pass.draws.extend(add);
+    pass.draws.extend(transparent_draws(&mut drawer, frame)?);
     draws += pass.draws.len();
     let bytes = render_pass(ctx, &pass)?.targets.remove(0);
     Ok(PathImage {
@@ -435,7 +499,7 @@ pub fn render_deferred(
             2,
             texture(TargetFormat::Rgb10a2Unorm, w, h, &g.targets[2]),
         ),
-        BoundResource::new(0, 3, depth_texture),
+        BoundResource::new(0, 3, depth_texture.clone()),
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
     ]);
     let (draws, volumes) = lighting_draws(&mut drawer, frame, &shadows, hdr, &shared)?;
@@ -443,18 +507,36 @@ pub fn render_deferred(
     // The depth fill is this harness's way to hand the G-buffer's depth to the next pass.
     let mut draws = gbuffer.draws.len() + collects + lighting.draws.len() - 1;
     let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
-    if hdr {
+    let (lit, format) = if hdr {
+        (rt3, rt3_format)
+    } else {
+        draws += 1;
+        (final_pass(ctx, lib, &rt3, w, h)?, TargetFormat::Rgba8Unorm)
+    };
+    // The forward part: the semi-transparent objects over the lit image (RT3 in HDR, the
+    // final pass's output in LDR), tested against the G-buffer pass's depth.
+    let transparent = transparent_draws(&mut drawer, frame)?;
+    if transparent.is_empty() {
         return Ok(PathImage {
-            bytes: rt3,
-            format: rt3_format,
+            bytes: lit,
+            format,
             draws,
             volumes,
         });
     }
-    draws += 1;
+    draws += transparent.len();
+    let mut forward = DrawPass::new(
+        "frame: forward part",
+        w,
+        h,
+        vec![ColorTarget::new(format).with_initial(lit)],
+    );
+    forward.depth = true;
+    forward.draws.push(depth_fill_draw(depth_texture));
+    forward.draws.extend(transparent);
     Ok(PathImage {
-        bytes: final_pass(ctx, lib, &rt3, w, h)?,
-        format: TargetFormat::Rgba8Unorm,
+        bytes: render_pass(ctx, &forward)?.targets.remove(0),
+        format,
         draws,
         volumes,
     })
@@ -595,11 +677,21 @@ fn terms(
 }
 
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
-/// centre sees, lit by the forward formulas and shadowed by `shadows`; `None` on the
-/// background.
+/// centre sees, lit by the forward formulas and shadowed by `shadows`, with the
+/// semi-transparent surfaces in front blended over it; `None` on the background where no
+/// semi-transparent surface covers it.
 pub fn reference_rgb(frame: &FrameScene, shadows: &FrameShadows, x: u32, y: u32) -> Option<Vec3> {
-    let hit = frame.cast(f64::from(x) + 0.5, f64::from(y) + 0.5)?;
-    Some(terms(frame, shadows, &frame.objects[hit.object], &hit.geometry).total())
+    let (hit, layers) = frame.cast_through(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    if hit.is_none() && layers.is_empty() {
+        return None;
+    }
+    let opaque = hit.map_or(Vec3::ZERO, |h| {
+        terms(frame, shadows, &frame.objects[h.object], &h.geometry).total()
+    });
+    Some(layers.iter().fold(opaque, |under, h| {
+        let l = layer(frame, &frame.transparent[h.object], &[h.geometry]);
+        l.base.0 + under * (1.0 - l.alpha) + l.adds.iter().map(|a| a.0).sum::<Vec3>()
+    }))
 }
 
 /// One compared pixel whose forward or deferred value (or their pair) is out of tolerance.
@@ -650,6 +742,8 @@ pub struct FrameReport {
     pub shadowed: usize,
     /// Compared pixels where a shadow tap is too close to call (the reference allows both).
     pub uncertain: usize,
+    /// Compared pixels seen through semi-transparent objects (background included).
+    pub through_transparent: usize,
     /// The first mismatches (at most 20).
     pub mismatches: Vec<FrameMismatch>,
 }
@@ -692,8 +786,8 @@ impl fmt::Display for FrameReport {
         }
         writeln!(
             f,
-            "  {} pixels in a shadow, {} with a shadow tap too close to call",
-            self.shadowed, self.uncertain
+            "  {} pixels in a shadow, {} with a shadow tap too close to call, {} seen through semi-transparent objects",
+            self.shadowed, self.uncertain, self.through_transparent
         )?;
         for m in &self.mismatches {
             writeln!(
@@ -789,6 +883,98 @@ fn deferred_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, lights: usize) ->
     }
 }
 
+/// A semi-transparent surface over a pixel's sub-pixel window: the range of what its
+/// ForwardBase draw adds (`rgb` times its source factor), its alpha (the destination keeps
+/// `1 − alpha`), and the range of what each light's ForwardAdd draw adds.
+#[derive(Clone, Debug)]
+struct Layer {
+    base: (Vec3, Vec3),
+    alpha: f32,
+    adds: Vec<(Vec3, Vec3)>,
+}
+
+/// The reference of transparent object `object` at the window's points `geos` (the centre
+/// first): the forward formulas without shadows, scaled by the blend's source factors
+/// ([`transparent_blend`]).
+fn layer(frame: &FrameScene, object: &FrameObject, geos: &[Geometry]) -> Layer {
+    let kw = object.keywords;
+    let tex = object.reference_texels();
+    let (cookie, cube) = frame.cookies();
+    let cookies = Some(Cookies {
+        texture: &cookie,
+        cube,
+    });
+    // Fade scales the source by its alpha; Transparent's shader premultiplied it.
+    let scaled = |c: Vec4| match kw.rendering {
+        RenderingMode::Fade => c.truncate() * c.w,
+        _ => c.truncate(),
+    };
+    let base: Vec<Vec4> = geos
+        .iter()
+        .map(|g| shade_forward(&kw, &object.material, &tex, g, &frame.scene).unwrap_or(Vec4::ZERO))
+        .collect();
+    let adds = frame
+        .lights
+        .iter()
+        .map(|l| {
+            let values: Vec<Vec3> = geos
+                .iter()
+                .map(|g| {
+                    let c = shade_forward_add(
+                        &kw,
+                        &object.material,
+                        &tex,
+                        g,
+                        frame.scene.camera_position,
+                        &l.params,
+                        l.light_type,
+                        cookies,
+                    );
+                    scaled(c.unwrap_or(Vec4::ZERO))
+                })
+                .collect();
+            window_range(&values)
+        })
+        .collect();
+    Layer {
+        base: window_range(&base.iter().map(|c| scaled(*c)).collect::<Vec<_>>()),
+        alpha: base[0].w,
+        adds,
+    }
+}
+
+/// `under`, the allowed interval of a pixel before its semi-transparent surfaces, after
+/// `layers` draw over it in order: each draw blends (`src + (1 − alpha) · dst`, then `+ add`
+/// per light; monotone in every input, so the interval's ends map to the result's) and
+/// stores (one f16 rounding, or an 8-bit target's clamp and rounding).
+fn through_layers(under: Interval, layers: &[Layer], hdr: bool) -> Interval {
+    let store = |i: Interval| {
+        if hdr {
+            let e = Vec3::from_array(i.lo.abs().max(i.hi.abs()).to_array().map(f16_store_error));
+            Interval {
+                lo: i.lo - e,
+                hi: i.hi + e,
+            }
+        } else {
+            i.saturated(unorm_store_error(8))
+        }
+    };
+    layers.iter().fold(under, |dst, l| {
+        let keep = 1.0 - l.alpha;
+        let mut out = store(Interval {
+            lo: l.base.0 + dst.lo * keep,
+            hi: l.base.1 + dst.hi * keep,
+        });
+        for (lo, hi) in &l.adds {
+            out = store(Interval {
+                lo: out.lo + *lo,
+                hi: out.hi + *hi,
+            });
+        }
+        out
+    })
+}
+
 /// Renders the frame both ways in HDR or LDR and compares every pixel with the reference and
 /// the two paths with each other.
 pub fn check_frame(
@@ -826,6 +1012,7 @@ pub fn compare(
         lit_by: frame.lights.iter().map(|l| (l.name, 0)).collect(),
         shadowed: 0,
         uncertain: 0,
+        through_transparent: 0,
         mismatches: Vec::new(),
     };
     // ForwardBase plus one ForwardAdd per light store into the forward target.
@@ -834,19 +1021,55 @@ pub fn compare(
     let deferred_lights = 1 + frame.lights.len();
     for (i, (x, y)) in frame.pixels().enumerate() {
         let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-        let centre = frame.cast(cx, cy);
-        let window: Vec<Option<Hit>> = window_offsets()[1..]
+        let (centre, centre_layers) = frame.cast_through(cx, cy);
+        let window: Vec<(Option<Hit>, Vec<Hit>)> = window_offsets()[1..]
             .iter()
-            .map(|&(dx, dy)| frame.cast(cx + f64::from(dx), cy + f64::from(dy)))
+            .map(|&(dx, dy)| frame.cast_through(cx + f64::from(dx), cy + f64::from(dy)))
             .collect();
-        let same = |h: &Option<Hit>| h.map(|h| h.object) == centre.map(|h| h.object);
-        if !window.iter().all(same) {
+        // The same opaque object and the same transparent ones over the whole window.
+        let key = |(h, layers): &(Option<Hit>, Vec<Hit>)| {
+            let objects: Vec<usize> = layers.iter().map(|l| l.object).collect();
+            (h.map(|h| h.object), objects)
+        };
+        let centre_key = key(&(centre, centre_layers.clone()));
+        if !window.iter().all(|w| key(w) == centre_key) {
             report.edges += 1;
             continue;
         }
         let (f, d) = (forward.rgb(i), deferred.rgb(i));
+        let layers: Vec<Layer> = centre_layers
+            .iter()
+            .enumerate()
+            .map(|(k, l)| {
+                let mut geos = vec![l.geometry];
+                geos.extend(window.iter().map(|w| w.1[k].geometry));
+                layer(frame, &frame.transparent[l.object], &geos)
+            })
+            .collect();
+        report.through_transparent += usize::from(!layers.is_empty());
         let Some(hit) = centre else {
             report.background += 1;
+            if !layers.is_empty() {
+                // Semi-transparent surfaces over the empty background.
+                let empty = Interval {
+                    lo: Vec3::ZERO,
+                    hi: Vec3::ZERO,
+                };
+                let (fi, di) = (
+                    through_layers(empty, &layers, hdr),
+                    through_layers(empty, &layers, hdr),
+                );
+                judge(
+                    &mut report,
+                    [x, y],
+                    "background",
+                    (fi.lo + fi.hi) * 0.5,
+                    (f, d),
+                    [fi, di, di],
+                    true,
+                );
+                continue;
+            }
             let empty = f == Vec3::ZERO && d == Vec3::ZERO;
             if !empty {
                 report.failures[0] += usize::from(f != Vec3::ZERO);
@@ -875,7 +1098,7 @@ pub fn compare(
         report.uncertain += usize::from(factors.iter().any(|f| f.0 != f.1));
         let window_terms: Vec<Terms> = window
             .iter()
-            .flatten()
+            .filter_map(|w| w.0.as_ref())
             .map(|h| terms(frame, shadows, object, &h.geometry))
             .collect();
         let mut values = vec![t.total(), t.total_lo()];
@@ -905,20 +1128,67 @@ pub fn compare(
             (f - e, hi)
         };
         let pi = deferred_interval(&t, f_lo - width, f_hi + width, hdr, deferred_lights);
-        let ratios = [fi.ratio(f), di.ratio(d), pi.ratio(d)];
-        let failed = [!fi.contains(f), !di.contains(d), !pi.contains(d)];
-        for k in 0..3 {
-            if ratios[k] > report.worst[k] {
-                report.worst[k] = ratios[k];
-                report.worst_pixel[k] = [x, y];
-            }
-            report.failures[k] += usize::from(failed[k]);
-        }
-        if failed.iter().any(|b| *b) {
-            push_mismatch(&mut report, [x, y], object.name, total, f, d, failed);
+        if layers.is_empty() {
+            judge(
+                &mut report,
+                [x, y],
+                object.name,
+                total,
+                (f, d),
+                [fi, di, pi],
+                false,
+            );
+        } else {
+            let (fi, di) = (
+                through_layers(fi, &layers, hdr),
+                through_layers(di, &layers, hdr),
+            );
+            let name = frame.transparent[centre_layers[0].object].name;
+            let reference = (fi.lo + fi.hi) * 0.5;
+            judge(
+                &mut report,
+                [x, y],
+                name,
+                reference,
+                (f, d),
+                [fi, di, di],
+                true,
+            );
         }
     }
     report
+}
+
+/// Counts pixel `pixel`'s comparisons: forward `got.0` in `intervals[0]`, deferred `got.1` in
+/// `intervals[1]`, and the pair (deferred in `intervals[2]`, the interval the forward value
+/// implies) — or, seen `through` semi-transparent surfaces (whose blending the forward value
+/// cannot be undone through), both paths in their own intervals.
+fn judge(
+    report: &mut FrameReport,
+    pixel: [u32; 2],
+    object: &'static str,
+    reference: Vec3,
+    (f, d): (Vec3, Vec3),
+    intervals: [Interval; 3],
+    through: bool,
+) {
+    let [fi, di, pi] = intervals;
+    let mut ratios = [fi.ratio(f), di.ratio(d), pi.ratio(d)];
+    let mut failed = [!fi.contains(f), !di.contains(d), !pi.contains(d)];
+    if through {
+        ratios[2] = ratios[0].max(ratios[1]);
+        failed[2] = failed[0] || failed[1];
+    }
+    for k in 0..3 {
+        if ratios[k] > report.worst[k] {
+            report.worst[k] = ratios[k];
+            report.worst_pixel[k] = pixel;
+        }
+        report.failures[k] += usize::from(failed[k]);
+    }
+    if failed.iter().any(|b| *b) {
+        push_mismatch(report, pixel, object, reference, f, d, failed);
+    }
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -1,15 +1,18 @@
 //! The frame's scene, made by code: a floor, two spheres and two boxes, each with its own
-//! keyword set and material, seen by a perspective camera; the ambient light, the directional
-//! main light (with a hard screen-space shadow) and the two reflection probes of [`Scene`];
-//! and four per-pixel lights (a directional light with a 2D cookie and a soft screen-space
-//! shadow, a point light with a cube shadow, a point light with a cube cookie, a spot with a
-//! soft shadow).
+//! keyword set and material (the floor lightmapped with a directional baked lightmap, one box
+//! with a realtime lightmap), and two semi-transparent objects (a `Fade` sphere, a
+//! `Transparent` box) drawn after them, seen by a perspective camera; the ambient light, the
+//! directional main light (with a hard screen-space shadow) and the two reflection probes of
+//! [`Scene`]; and four per-pixel lights (a directional light with a 2D cookie and a soft
+//! screen-space shadow, a point light with a cube shadow, a point light with a cube cookie, a
+//! spot with a soft shadow).
 //!
-//! Every map of an object is one texel (`Rgba8Unorm`, exact in 8 bits), so a sample does not
-//! depend on the uv the rasterizer interpolates: the keywords still change the surface (a
-//! tilted normal map, a detail albedo, a metallic map …), and the only per-pixel inputs left
-//! are the interpolated position, normal and tangent — which the CPU reference gets by casting
-//! the pixel's ray against the same triangles ([`FrameScene::cast`]).
+//! Every map of an object (its lightmaps too) is one texel (`Rgba8Unorm`, exact in 8 bits), so
+//! a sample does not depend on the uv the rasterizer interpolates: the keywords still change
+//! the surface (a tilted normal map, a detail albedo, a metallic map …), and the only
+//! per-pixel inputs left are the interpolated position, normal and tangent — which the CPU
+//! reference gets by casting the pixel's ray against the same triangles
+//! ([`FrameScene::cast_through`]).
 
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
 
@@ -53,6 +56,9 @@ pub struct FrameObject {
     pub material: Material,
     /// The one texel of each map.
     pub texels: [[u8; 4]; 8],
+    /// The one texel of each lightmap: baked, its directional map, realtime, its directional
+    /// map ([`NO_LIGHTMAPS`] for an object without lightmap keywords).
+    pub lightmaps: [[u8; 4]; 4],
     /// Object-to-world transform (rotation, uniform scale and translation).
     pub model: Mat4,
     /// The triangle list, three vertices per triangle.
@@ -67,9 +73,9 @@ impl FrameObject {
 
     /// The texels as the reference reads them (`code / 255`).
     pub fn reference_texels(&self) -> Texels {
-        let t = self
-            .texels
-            .map(|c| Vec4::from_array(c.map(|x| unorm_to_f32(u32::from(x), 8))));
+        let value = |c: [u8; 4]| Vec4::from_array(c.map(|x| unorm_to_f32(u32::from(x), 8)));
+        let t = self.texels.map(value);
+        let lm = self.lightmaps.map(value);
         Texels {
             main_tex: t[0],
             metallic_map: t[1],
@@ -79,14 +85,21 @@ impl FrameObject {
             detail_mask: t[5],
             detail_albedo: t[6],
             detail_normal: t[7],
-            lightmap: LightmapTexels::default(),
+            lightmap: LightmapTexels {
+                baked: lm[0],
+                baked_dir: lm[1],
+                realtime: lm[2],
+                realtime_dir: lm[3],
+            },
         }
     }
 
     /// The maps as textures of one texel each.
     pub fn maps(&self) -> Maps {
         let map = |i: usize| MapTexture::new(1, 1, |_, _| self.texels[i]);
-        let (lightmaps, lightmap_st) = Maps::no_lightmaps();
+        let lightmaps = self.lightmaps.map(|c| MapTexture::new(1, 1, |_, _| c));
+        // One texel: any scale and offset read it.
+        let lightmap_st = [Vec4::new(1.0, 1.0, 0.0, 0.0); 2];
         Maps {
             main_tex: map(0),
             metallic_map: map(1),
@@ -185,8 +198,12 @@ pub struct FrameScene {
     pub shadow_fade: ShadowFade,
     /// The per-pixel lights.
     pub lights: Vec<FrameLight>,
-    /// The objects, drawn in this order.
+    /// The opaque and cutout objects, drawn in this order (they cast shadows).
     pub objects: Vec<FrameObject>,
+    /// The semi-transparent objects (`Fade` and `Transparent`), drawn after the opaque ones
+    /// in [`FrameScene::transparent_order`] with blending and no depth writes; they neither
+    /// cast nor receive shadows (Unity's transparent queue).
+    pub transparent: Vec<FrameObject>,
     /// The 2D cookie of `DIRECTIONAL_COOKIE` lights (`Rgba8Unorm`, alpha read; nearest,
     /// repeating).
     pub cookie: MapTexture,
@@ -216,6 +233,15 @@ fn normal_texel(tx: f32, ty: f32) -> [u8; 4] {
 
 /// The default texels: white maps, flat normals.
 const WHITE: [u8; 4] = [255; 4];
+
+/// The lightmaps of an object without lightmap keywords (never read): black RGBM texels and
+/// flat directional maps.
+pub const NO_LIGHTMAPS: [[u8; 4]; 4] = [
+    [0, 0, 0, 255],
+    [128, 128, 128, 255],
+    [0, 0, 0, 255],
+    [128, 128, 128, 255],
+];
 const FLAT: [u8; 4] = [128, 128, 255, 255];
 
 /// A UV sphere of radius 1 around the origin: `stacks × slices` quads, smooth normals, tangents
@@ -254,7 +280,9 @@ fn sphere(stacks: u32, slices: u32) -> Vec<Vertex> {
                 vertex(i, j + 1),
                 vertex(i + 1, j + 1),
             );
-            out.extend([a, b, c, c, b, d]);
+            // Counter-clockwise seen from outside (wgpu's front faces): the semi-transparent
+            // objects cull their back faces.
+            out.extend([a, c, b, c, d, b]);
         }
     }
     out
@@ -461,13 +489,25 @@ impl FrameScene {
         let objects = vec![
             FrameObject {
                 name: "floor",
-                keywords: Keywords::NONE,
+                // Static: a baked lightmap with its directional map (RGBM, decoding to about
+                // 0.6 · rgb, a dominant direction up and to the side).
+                keywords: Keywords {
+                    lightmap: true,
+                    dirlightmap: true,
+                    ..Keywords::NONE
+                },
                 material: Material {
                     tint: Vec4::new(0.7, 0.7, 0.65, 1.0),
                     smoothness: 0.35,
                     ..Material::default()
                 },
                 texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
+                lightmaps: [
+                    [230, 200, 160, 40],
+                    [166, 230, 140, 200],
+                    NO_LIGHTMAPS[2],
+                    NO_LIGHTMAPS[3],
+                ],
                 model: Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0)),
                 vertices: floor_mesh(),
             },
@@ -494,6 +534,7 @@ impl FrameScene {
                     WHITE,
                     FLAT,
                 ],
+                lightmaps: NO_LIGHTMAPS,
                 model: placed(Vec3::new(-1.7, 1.0 + lift, 0.2), 1.0, 0.0),
                 vertices: sphere(12, 24),
             },
@@ -523,14 +564,17 @@ impl FrameScene {
                     [200, 120, 90, 255],
                     FLAT,
                 ],
+                lightmaps: NO_LIGHTMAPS,
                 model: placed(Vec3::new(1.6, 0.75 + lift, 1.2), 0.75, 0.0),
                 vertices: sphere(12, 24),
             },
             FrameObject {
                 name: "detail box",
+                // Lit by Enlighten's realtime lightmap.
                 keywords: Keywords {
                     smoothness: SmoothnessSource::Albedo,
                     detail_normal: true,
+                    dynamic_lightmap: true,
                     ..Keywords::NONE
                 },
                 material: Material {
@@ -549,6 +593,12 @@ impl FrameScene {
                     WHITE,
                     WHITE,
                     normal_texel(-0.25, 0.3),
+                ],
+                lightmaps: [
+                    NO_LIGHTMAPS[0],
+                    NO_LIGHTMAPS[1],
+                    [120, 150, 210, 110],
+                    NO_LIGHTMAPS[3],
                 ],
                 model: placed(Vec3::new(0.3, 0.6 + lift, -1.6), 0.6, 35.0),
                 vertices: cube_mesh(),
@@ -575,7 +625,44 @@ impl FrameScene {
                     WHITE,
                     FLAT,
                 ],
+                lightmaps: NO_LIGHTMAPS,
                 model: placed(Vec3::new(2.6, 0.45 + lift, -0.9), 0.45, -20.0),
+                vertices: cube_mesh(),
+            },
+        ];
+        // In front of the opaque objects: each over two of them.
+        let transparent = vec![
+            FrameObject {
+                name: "glass sphere (Fade)",
+                keywords: Keywords {
+                    rendering: RenderingMode::Fade,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    tint: Vec4::new(0.55, 0.8, 1.0, 0.45),
+                    smoothness: 0.9,
+                    ..Material::default()
+                },
+                texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
+                lightmaps: NO_LIGHTMAPS,
+                model: placed(Vec3::new(-0.5, 1.3, 1.6), 0.55, 0.0),
+                vertices: sphere(12, 24),
+            },
+            FrameObject {
+                name: "tinted box (Transparent)",
+                keywords: Keywords {
+                    rendering: RenderingMode::Transparent,
+                    ..Keywords::NONE
+                },
+                material: Material {
+                    tint: Vec4::new(1.0, 0.6, 0.4, 0.35),
+                    smoothness: 0.8,
+                    metallic: 0.2,
+                    ..Material::default()
+                },
+                texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
+                lightmaps: NO_LIGHTMAPS,
+                model: placed(Vec3::new(0.6, 1.0, 0.7), 0.45, 25.0),
                 vertices: cube_mesh(),
             },
         ];
@@ -617,6 +704,7 @@ impl FrameScene {
             .expect("the frame's fade is a valid ramp"),
             lights,
             objects,
+            transparent,
             cookie,
             cube_cookie,
             brdf: Brdf::Brdf1,
@@ -626,19 +714,22 @@ impl FrameScene {
     /// The frame drawn in BRDF tier `brdf`: every object's variants and the lighting pass's.
     pub fn with_brdf(mut self, brdf: Brdf) -> FrameScene {
         self.brdf = brdf;
-        for object in &mut self.objects {
+        for object in self.objects.iter_mut().chain(&mut self.transparent) {
             object.keywords.brdf = brdf;
         }
         self
     }
 
     /// The frame with `n` point lights instead of its four per-pixel lights (the main light
-    /// stays, unshadowed, so that both paths' cost is the lights'): the benchmark's light count. They are placed by a fixed pseudo-random sequence
-    /// over the floor in view, 0.6 to 1.8 above it, with ranges of 1.2 to 2.2 (so each is drawn
-    /// as its volume in the deferred path) and varied colours.
+    /// stays, unshadowed) and without its semi-transparent objects (a forward part both paths
+    /// share), so that the paths differ by the lights' cost: the benchmark's light count.
+    /// The lights are placed by a fixed pseudo-random sequence over the floor in view, 0.6 to
+    /// 1.8 above it, with ranges of 1.2 to 2.2 (so each is drawn as its volume in the deferred
+    /// path) and varied colours.
     pub fn with_point_lights(mut self, n: usize) -> FrameScene {
         let mut rng = Rng::new(0x1167_5EED);
         self.main_shadow = None;
+        self.transparent.clear();
         self.lights = (0..n)
             .map(|_| {
                 let position = Vec3::new(
@@ -730,67 +821,120 @@ impl FrameScene {
         (0..self.height).flat_map(move |y| (0..self.width).map(move |x| (x, y)))
     }
 
-    /// What the ray through the point `(px, py)` of the target (in pixels, `(x + 0.5, y + 0.5)`
-    /// is pixel `(x, y)`'s centre) hits first, in `f64`: the object and its vertex data
-    /// interpolated at the hit (barycentric in world space, which is what perspective-correct
-    /// interpolation computes).
+    /// What opaque object the ray through the point `(px, py)` of the target (in pixels,
+    /// `(x + 0.5, y + 0.5)` is pixel `(x, y)`'s centre) hits first, in `f64`: the object and
+    /// its vertex data interpolated at the hit (barycentric in world space, which is what
+    /// perspective-correct interpolation computes).
     pub fn cast(&self, px: f64, py: f64) -> Option<Hit> {
-        let inv = self.view_proj.as_dmat4().inverse();
-        let ndc_x = px / f64::from(self.width) * 2.0 - 1.0;
-        let ndc_y = 1.0 - py / f64::from(self.height) * 2.0;
-        let unproject = |z: f64| {
-            let h = inv * DVec4::new(ndc_x, ndc_y, z, 1.0);
-            h.truncate() / h.w
-        };
-        let origin = unproject(0.0);
-        let dir = unproject(1.0) - origin;
-        let mut best: Option<(f64, usize, [f64; 3], usize)> = None;
-        for (o, object) in self.objects.iter().enumerate() {
-            let model = object.model.as_dmat4();
-            for (t_index, tri) in object.vertices.chunks_exact(3).enumerate() {
-                let p = |v: &Vertex| {
-                    model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()))
-                };
-                let (a, b, c) = (p(&tri[0]), p(&tri[1]), p(&tri[2]));
-                if let Some((t, w)) = intersect(origin, dir, a, b, c)
-                    && best.is_none_or(|(bt, ..)| t < bt)
-                {
-                    best = Some((t, o, w, t_index));
-                }
+        cast_into(&self.objects, self.view_proj, self.size(), px, py).map(|(_, hit)| hit)
+    }
+
+    /// The semi-transparent objects in drawing order: back to front by the distance from the
+    /// camera to each one's centre (Unity's default sort of the transparent queue for a
+    /// perspective camera), as indices into [`FrameScene::transparent`].
+    pub fn transparent_order(&self) -> Vec<usize> {
+        let camera = self.scene.camera_position;
+        let distance = |o: &FrameObject| o.model.w_axis.truncate().distance(camera);
+        let mut order: Vec<usize> = (0..self.transparent.len()).collect();
+        order.sort_by(|&a, &b| {
+            distance(&self.transparent[b]).total_cmp(&distance(&self.transparent[a]))
+        });
+        order
+    }
+
+    /// What the ray through `(px, py)` sees: the first opaque hit ([`FrameScene::cast`]) and
+    /// the semi-transparent surfaces in front of it in drawing order
+    /// ([`FrameScene::transparent_order`]; their `object` indexes
+    /// [`FrameScene::transparent`]). A transparent object contributes the surface nearest the
+    /// camera (its back faces are culled; the frame's are convex).
+    pub fn cast_through(&self, px: f64, py: f64) -> (Option<Hit>, Vec<Hit>) {
+        let size = self.size();
+        let opaque = cast_into(&self.objects, self.view_proj, size, px, py);
+        let limit = opaque.as_ref().map_or(f64::INFINITY, |(t, _)| *t);
+        let layers = self
+            .transparent_order()
+            .into_iter()
+            .filter_map(|o| {
+                let object = std::slice::from_ref(&self.transparent[o]);
+                let (t, hit) = cast_into(object, self.view_proj, size, px, py)?;
+                (t < limit).then_some(Hit { object: o, ..hit })
+            })
+            .collect();
+        (opaque.map(|(_, hit)| hit), layers)
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+}
+
+/// The first hit of the ray through the target point `(px, py)` among `objects` (see
+/// [`FrameScene::cast`]), with its ray parameter.
+fn cast_into(
+    objects: &[FrameObject],
+    view_proj: Mat4,
+    (width, height): (u32, u32),
+    px: f64,
+    py: f64,
+) -> Option<(f64, Hit)> {
+    let inv = view_proj.as_dmat4().inverse();
+    let ndc_x = px / f64::from(width) * 2.0 - 1.0;
+    let ndc_y = 1.0 - py / f64::from(height) * 2.0;
+    let unproject = |z: f64| {
+        let h = inv * DVec4::new(ndc_x, ndc_y, z, 1.0);
+        h.truncate() / h.w
+    };
+    let origin = unproject(0.0);
+    let dir = unproject(1.0) - origin;
+    let mut best: Option<(f64, usize, [f64; 3], usize)> = None;
+    for (o, object) in objects.iter().enumerate() {
+        let model = object.model.as_dmat4();
+        for (t_index, tri) in object.vertices.chunks_exact(3).enumerate() {
+            let p = |v: &Vertex| {
+                model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()))
+            };
+            let (a, b, c) = (p(&tri[0]), p(&tri[1]), p(&tri[2]));
+            if let Some((t, w)) = intersect(origin, dir, a, b, c)
+                && best.is_none_or(|(bt, ..)| t < bt)
+            {
+                best = Some((t, o, w, t_index));
             }
         }
-        let (_, o, w, t_index) = best?;
-        let object = &self.objects[o];
-        let tri = &object.vertices[t_index * 3..t_index * 3 + 3];
-        let model = object.model.as_dmat4();
-        let normal_matrix = object.normal_matrix().as_dmat4();
-        let world =
-            |v: &Vertex| model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()));
-        let position = world(&tri[0]) * w[0] + world(&tri[1]) * w[1] + world(&tri[2]) * w[2];
-        // The vertex shader transforms per vertex; the rasterizer interpolates the results.
-        let per_vertex = |m: DMat4, range: std::ops::Range<usize>| {
-            let at = |v: &Vertex| {
-                m.transform_vector3(DVec3::new(
-                    v[range.start].into(),
-                    v[range.start + 1].into(),
-                    v[range.start + 2].into(),
-                ))
-            };
-            at(&tri[0]) * w[0] + at(&tri[1]) * w[1] + at(&tri[2]) * w[2]
+    }
+    let (t, o, w, t_index) = best?;
+    let object = &objects[o];
+    let tri = &object.vertices[t_index * 3..t_index * 3 + 3];
+    let model = object.model.as_dmat4();
+    let normal_matrix = object.normal_matrix().as_dmat4();
+    let world =
+        |v: &Vertex| model.transform_point3(DVec3::new(v[0].into(), v[1].into(), v[2].into()));
+    let position = world(&tri[0]) * w[0] + world(&tri[1]) * w[1] + world(&tri[2]) * w[2];
+    // The vertex shader transforms per vertex; the rasterizer interpolates the results.
+    let per_vertex = |m: DMat4, range: std::ops::Range<usize>| {
+        let at = |v: &Vertex| {
+            m.transform_vector3(DVec3::new(
+                v[range.start].into(),
+                v[range.start + 1].into(),
+                v[range.start + 2].into(),
+            ))
         };
-        let normal = per_vertex(normal_matrix, 3..6);
-        let tangent = per_vertex(model, 6..9);
-        // The bitangent sign is the same at the three vertices of every triangle here.
-        let sign = tri[0][9];
-        Some(Hit {
+        at(&tri[0]) * w[0] + at(&tri[1]) * w[1] + at(&tri[2]) * w[2]
+    };
+    let normal = per_vertex(normal_matrix, 3..6);
+    let tangent = per_vertex(model, 6..9);
+    // The bitangent sign is the same at the three vertices of every triangle here.
+    let sign = tri[0][9];
+    Some((
+        t,
+        Hit {
             object: o,
             geometry: Geometry {
                 world_position: position.as_vec3(),
                 normal: normal.as_vec3(),
                 tangent: tangent.as_vec3().extend(sign),
             },
-        })
-    }
+        },
+    ))
 }
 
 impl Default for FrameScene {
@@ -825,6 +969,44 @@ fn intersect(origin: DVec3, dir: DVec3, a: DVec3, b: DVec3, c: DVec3) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_mesh_faces_outward() {
+        // Counter-clockwise seen from outside: each triangle's winding normal points along
+        // its vertex normals (degenerate triangles at the sphere's poles have none).
+        for (name, mesh) in [("sphere", sphere(12, 24)), ("cube", cube_mesh())] {
+            for tri in mesh.chunks_exact(3) {
+                let p = |v: &Vertex| Vec3::new(v[0], v[1], v[2]);
+                let winding = (p(&tri[1]) - p(&tri[0])).cross(p(&tri[2]) - p(&tri[0]));
+                let normal: Vec3 = tri.iter().map(|v| Vec3::new(v[3], v[4], v[5])).sum();
+                assert!(
+                    winding.length() < 1e-6 || winding.dot(normal) > 0.0,
+                    "{name}: {winding} against {normal}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn transparent_objects_are_seen_over_two_opaque_objects_each() {
+        let f = FrameScene::new();
+        let mut over = vec![std::collections::BTreeMap::new(); f.transparent.len()];
+        for (x, y) in f.pixels() {
+            let (hit, layers) = f.cast_through(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            for l in layers {
+                let under = hit.map_or("background", |h| f.objects[h.object].name);
+                *over[l.object].entry(under).or_insert(0) += 1;
+            }
+        }
+        for (o, under) in over.iter().enumerate() {
+            let name = f.transparent[o].name;
+            assert!(under.values().sum::<usize>() > 40, "{name}: {under:?}");
+            assert!(
+                under.values().filter(|&&n| n > 5).count() >= 2,
+                "{name}: {under:?}"
+            );
+        }
+    }
 
     #[test]
     fn rays_hit_what_the_camera_sees() {

@@ -7,9 +7,14 @@
 //! ([`crate::PassSpan`]).
 //!
 //! - forward: `forward base` (ForwardBase per object), `forward add` (ForwardAdd per light and
-//!   object, blended One / One, the depth buffer read-only);
+//!   object, blended One / One, the depth buffer read-only), `transparent`;
 //! - deferred: `G-buffer` (Deferred per object into RT0–RT3 and depth), `lighting` (one
-//!   Lighting draw per light, RT0–RT2 and depth bound as textures), and in LDR `final`.
+//!   Lighting draw per light, RT0–RT2 and depth bound as textures), in LDR `final`, and
+//!   `transparent`;
+//!
+//! where `transparent` is the forward part both paths share: each semi-transparent object's
+//! ForwardBase and ForwardAdd draws, blended over the lit image, the opaque depth read-only
+//! (absent from a scene without semi-transparent objects).
 //!
 //! Nothing is read back while a frame runs; [`ResidentFrame::image`] copies the final target
 //! back afterwards, which is how the tests hold this frame to the read-back one.
@@ -39,7 +44,7 @@ use std::time::{Duration, Instant};
 
 use super::{
     ADD, Drawer, FrameScene, FrameShadows, PathImage, forward_draws, gbuffer_targets,
-    lighting_draws, rt3_format,
+    lighting_draws, rt3_format, transparent_draws,
 };
 use crate::check::gbuffer::rt3_blend;
 use crate::render::resident::{
@@ -155,6 +160,34 @@ pub struct ResidentFrame {
     counter: Option<Counter>,
 }
 
+/// The `transparent` pass over `color` with the opaque `depth` read-only, or none without
+/// draws.
+fn transparent_pass(
+    ctx: &GpuContext,
+    color: &GpuTexture,
+    depth: &GpuTexture,
+    draws: &[Draw],
+) -> Result<Option<PreparedPass>, GpuError> {
+    if draws.is_empty() {
+        return Ok(None);
+    }
+    prepare(
+        ctx,
+        &ResidentPass {
+            label: "transparent",
+            colors: vec![ResidentColor {
+                texture: color,
+                clear: None,
+                blend: None,
+            }],
+            depth: Some((depth, DepthUse::ReadOnly)),
+            inputs: Vec::new(),
+            draws,
+        },
+    )
+    .map(Some)
+}
+
 /// Refuses shadows that need a depth read-back (see the module's documentation).
 fn resident_shadows(label: &str, shadows: &FrameShadows) -> Result<(), GpuError> {
     if shadows.needs_masks() {
@@ -194,6 +227,7 @@ impl ResidentFrame {
         let depth = GpuTexture::new(ctx, label, w, h, DEPTH_FORMAT)?;
         let mut drawer = Drawer::new(lib, frame, hdr);
         let (base, add) = forward_draws(&mut drawer, frame, shadows)?;
+        let transparent = transparent_draws(&mut drawer, frame)?;
         let base = prepare(
             ctx,
             &ResidentPass {
@@ -222,14 +256,10 @@ impl ResidentFrame {
                 draws: &add,
             },
         )?;
+        let mut passes = vec![base, add];
+        passes.extend(transparent_pass(ctx, &color, &depth, &transparent)?);
         Ok(ResidentFrame::new(
-            ctx,
-            label,
-            vec![base, add],
-            color,
-            format,
-            0,
-            None,
+            ctx, label, passes, color, format, 0, None,
         ))
     }
 
@@ -326,6 +356,8 @@ impl ResidentFrame {
             )?);
             (out, TargetFormat::Rgba8Unorm)
         };
+        let transparent = transparent_draws(&mut drawer, frame)?;
+        passes.extend(transparent_pass(ctx, &output, &depth, &transparent)?);
         Ok(ResidentFrame::new(
             ctx,
             label,
