@@ -148,8 +148,13 @@ pub fn covering_snapshots(lib: &Library) -> Result<Vec<Snapshot>, VariantError> 
 /// any variant shows in review. `budget` bounds the variants per pass. `wgsl-variants manifest`
 /// prints it; [`manifest_summary`] is the short form that snapshots hold.
 pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
+    manifest_of(lib, &lib.passes().collect::<Vec<_>>(), budget)
+}
+
+/// [`manifest`] of the passes `passes` only (of `lib`), in that order.
+pub fn manifest_of(lib: &Library, passes: &[&Pass], budget: u64) -> Result<String, ManifestError> {
     let mut out = String::new();
-    for pass in manifest_passes(lib, budget)? {
+    for pass in manifest_passes(lib, passes, budget)? {
         out.push_str(&format!(
             "# {}/{}: {} variants\n",
             pass.shader,
@@ -175,11 +180,29 @@ pub fn manifest(lib: &Library, budget: u64) -> Result<String, ManifestError> {
 /// assert!(summary.contains("standard/Deferred: 110592 variants, 64512 distinct"));
 /// ```
 pub fn manifest_summary(lib: &Library, budget: u64) -> Result<String, ManifestError> {
+    manifest_summary_of(lib, &lib.passes().collect::<Vec<_>>(), budget)
+}
+
+/// [`manifest_summary`] of the passes `passes` only (of `lib`), in that order: the same line
+/// per pass as the whole library's summary.
+///
+/// ```
+/// let lib = wgsl_variants_shaders::library().unwrap();
+/// let pass = lib.pass("deferred_final", "Final").unwrap();
+/// let one = wgsl_variants::snapshot::manifest_summary_of(&lib, &[pass], 100).unwrap();
+/// assert!(one.contains("deferred_final/Final: 1 variants, 1 distinct"));
+/// assert!(!one.contains("standard/"));
+/// ```
+pub fn manifest_summary_of(
+    lib: &Library,
+    passes: &[&Pass],
+    budget: u64,
+) -> Result<String, ManifestError> {
     let mut out = String::from(
         "# shader/pass: variants, distinct canonical texts, digest of the full manifest lines\n\
          # (print the full list with `wgsl-variants manifest`)\n",
     );
-    for pass in manifest_passes(lib, budget)? {
+    for pass in manifest_passes(lib, passes, budget)? {
         let mut hasher = blake3::Hasher::new();
         let mut distinct = std::collections::HashSet::new();
         for line in &pass.lines {
@@ -206,9 +229,13 @@ struct PassManifest {
     lines: Vec<String>,
 }
 
-fn manifest_passes(lib: &Library, budget: u64) -> Result<Vec<PassManifest>, ManifestError> {
+fn manifest_passes(
+    lib: &Library,
+    selected: &[&Pass],
+    budget: u64,
+) -> Result<Vec<PassManifest>, ManifestError> {
     let mut passes = Vec::new();
-    for pass in lib.passes() {
+    for &pass in selected {
         let choices =
             Space::full(pass)
                 .enumerate(budget)

@@ -161,61 +161,97 @@ fn wgpu_option_adds_only_the_wgpu_conversions() {
     assert!(wgpu.contains(
         "pub fn bind_group_layout_entries(&self, group: u32) -> Vec<wgpu::BindGroupLayoutEntry> {"
     ));
-    // Every line of the plain module is in the wgpu one, in order (only the header differs).
+    // Every line of the plain module is in the wgpu one, in order (only the header differs),
+    // and the wgpu one less its conversions block is the plain one.
     let mut lines = wgpu.lines();
     for line in plain.lines().filter(|l| !l.starts_with("// It needs")) {
         assert!(lines.any(|l| l == line), "missing: {line}");
     }
+    assert_eq!(without_wgpu(&wgpu), plain);
+}
+
+/// A module generated with the wgpu option, less its wgpu conversions (one block) and with the
+/// plain module's header line: the plain module (`wgpu_option_adds_only_the_wgpu_conversions`).
+fn without_wgpu(wgpu: &str) -> String {
+    let start = wgpu.find("/// The interfaces as wgpu's types").unwrap();
+    let end = wgpu.find("pub use tables::").unwrap();
+    format!("{}{}", &wgpu[..start], &wgpu[end..]).replace(
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features, and `wgpu` 30.",
+        "// It needs `bytemuck` with the `derive` and `min_const_generics` features.",
+    )
+}
+
+/// The passes the `render_variant` example draws through (their committed modules are
+/// generated with the wgpu option).
+const EXAMPLE_MODULES: [(&str, &str); 2] = [
+    ("standard", "Deferred"),
+    ("universal_lit", "UniversalGBuffer"),
+];
+
+/// One bundled pass through the generator.
+struct Bundled {
+    shader: String,
+    pass: String,
+    /// The plain module.
+    generated: wgsl_variants::bindings::Generated,
+    /// The module with the wgpu option, for [`EXAMPLE_MODULES`]' passes.
+    wgpu: Option<String>,
+    /// How long the generator took.
+    seconds: f64,
 }
 
 /// Every pass of the bundled library through the generator (plain data), each with the time
 /// it took, generated once for the tests that read them (each large pass takes tens of seconds
-/// on 2 cores: every distinct text is validated).
-fn bundled_modules() -> &'static [(String, String, wgsl_variants::bindings::Generated, f64)] {
-    static MODULES: std::sync::OnceLock<
-        Vec<(String, String, wgsl_variants::bindings::Generated, f64)>,
-    > = std::sync::OnceLock::new();
+/// on 2 cores: every distinct text is validated). The example's passes are generated once,
+/// with the wgpu option; their plain module is that less its wgpu block ([`without_wgpu`]).
+fn bundled_modules() -> &'static [Bundled] {
+    static MODULES: std::sync::OnceLock<Vec<Bundled>> = std::sync::OnceLock::new();
     MODULES.get_or_init(|| {
         let lib = wgsl_variants_shaders::library().unwrap();
         lib.passes()
             .map(|pass| {
                 let one = std::time::Instant::now();
-                let generated = wgsl_variants::bindings::generate(&lib, pass, 1_000_000).unwrap();
-                let seconds = one.elapsed().as_secs_f64();
-                (pass.shader.clone(), pass.name.clone(), generated, seconds)
+                let example = EXAMPLE_MODULES
+                    .iter()
+                    .any(|(s, p)| pass.shader == *s && pass.name == *p);
+                let options = wgsl_variants::bindings::Options::default().wgpu(example);
+                let mut generated =
+                    wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
+                        .unwrap();
+                let wgpu = example.then(|| {
+                    let plain = without_wgpu(&generated.code);
+                    std::mem::replace(&mut generated.code, plain)
+                });
+                Bundled {
+                    shader: pass.shader.clone(),
+                    pass: pass.name.clone(),
+                    generated,
+                    wgpu,
+                    seconds: one.elapsed().as_secs_f64(),
+                }
             })
             .collect()
     })
 }
 
-/// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`).
+/// The bundled pass `shader/pass`.
+fn bundled(shader: &str, pass: &str) -> &'static Bundled {
+    bundled_modules()
+        .iter()
+        .find(|b| b.shader == shader && b.pass == pass)
+        .unwrap()
+}
+
+/// `wgsl-variants bindings standard Deferred`, as a snapshot (`snapshots/bindings.*`), and
+/// with the wgpu option the module the `render_variant` example draws through, committed
+/// there.
 #[test]
 fn snapshot_standard_deferred() {
-    let lib = wgsl_variants_shaders::library().unwrap();
-    let generated = &bundled_modules()
-        .iter()
-        .find(|(shader, pass, ..)| shader == "standard" && pass == "Deferred")
-        .unwrap()
-        .2;
-    // A second run, with the wgpu option: the module the `render_variant` example draws
-    // through, committed there.
-    let pass = lib.pass("standard", "Deferred").unwrap();
-    let options = wgsl_variants::bindings::Options::default().wgpu(true);
-    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
-        .unwrap()
-        .code;
-    assert_example_module_is_current(&wgpu, "standard", "Deferred", "standard_deferred.rs");
-    // Deterministic: less its wgpu conversions (one block) and header line, the second run
-    // wrote the same bytes.
-    let start = wgpu.find("/// The interfaces as wgpu's types").unwrap();
-    let end = wgpu.find("pub use tables::").unwrap();
-    let again = format!("{}{}", &wgpu[..start], &wgpu[end..]).replace(
-        "// It needs `bytemuck` with the `derive` and `min_const_generics` features, and `wgpu` 30.",
-        "// It needs `bytemuck` with the `derive` and `min_const_generics` features.",
-    );
-    assert_eq!(generated.code, again);
+    let deferred = bundled("standard", "Deferred");
+    let wgpu = deferred.wgpu.as_deref().unwrap();
+    assert_example_module_is_current(wgpu, "standard", "Deferred", "standard_deferred.rs");
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
-        insta::assert_snapshot!("bindings.standard.Deferred", generated.code);
+        insta::assert_snapshot!("bindings.standard.Deferred", deferred.generated.code);
     });
 }
 
@@ -223,14 +259,9 @@ fn snapshot_standard_deferred() {
 /// `render_variant` example draws URP's G-buffer through, is current.
 #[test]
 fn example_universal_gbuffer_module_is_current() {
-    let lib = wgsl_variants_shaders::library().unwrap();
-    let pass = lib.pass("universal_lit", "UniversalGBuffer").unwrap();
-    let options = wgsl_variants::bindings::Options::default().wgpu(true);
-    let wgpu = wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
-        .unwrap()
-        .code;
+    let gbuffer = bundled("universal_lit", "UniversalGBuffer");
     assert_example_module_is_current(
-        &wgpu,
+        gbuffer.wgpu.as_deref().unwrap(),
         "universal_lit",
         "UniversalGBuffer",
         "universal_gbuffer.rs",
@@ -331,12 +362,19 @@ fn every_pass_compiles_with_its_layout_assertions() {
     let started = std::time::Instant::now();
     let padding = padding_library().bindings("padding", "P", 100).unwrap();
     let mut modules = vec![("padding_p".to_string(), &padding)];
-    for (shader, pass, generated, seconds) in bundled_modules() {
+    for b in bundled_modules() {
+        let generated = &b.generated;
         eprintln!(
-            "{shader}/{pass}: {} variants, {} distinct texts, {} structs, {} interfaces in {seconds:.1} s",
-            generated.variants, generated.distinct_texts, generated.structs, generated.interfaces,
+            "{}/{}: {} variants, {} distinct texts, {} structs, {} interfaces in {:.1} s",
+            b.shader,
+            b.pass,
+            generated.variants,
+            generated.distinct_texts,
+            generated.structs,
+            generated.interfaces,
+            b.seconds,
         );
-        let name = format!("{shader}_{pass}").to_lowercase();
+        let name = format!("{}_{}", b.shader, b.pass).to_lowercase();
         modules.push((name, generated));
     }
     eprintln!(

@@ -15,8 +15,8 @@ use super::output::print_json;
 #[derive(clap::Args, Debug)]
 pub struct CheckGpuArgs {
     /// Only this shader (standard, deferred_shading, screen_space_shadows,
-    /// deferred_reflections, deferred_final, universal_lit, stencil_deferred; kernels for the
-    /// compute kernels).
+    /// deferred_reflections, deferred_final, universal_lit, stencil_deferred, skybox; kernels
+    /// for the compute kernels).
     #[arg(long, value_name = "SHADER")]
     shader: Option<String>,
     /// Only passes (or kernels) with this name.

@@ -132,6 +132,12 @@ enum Command {
         /// Only print the summary (variants, distinct texts, digest per pass).
         #[arg(long)]
         summary: bool,
+        /// Only this shader.
+        #[arg(long, value_name = "SHADER")]
+        shader: Option<String>,
+        /// Only passes with this name.
+        #[arg(long, value_name = "PASS")]
+        pass: Option<String>,
     },
     /// Put the outputs of N shards (`--shard K/N`: validate and check-gpu reports, emit
     /// folders) back together into what one run prints or writes; shards are checked to be
@@ -155,14 +161,20 @@ enum Command {
     Render(render::RenderArgs),
 }
 
-/// `wgsl-variants manifest [--summary]`.
-fn manifest(ctx: &Context, summary: bool) -> Result<ExitCode, Failed> {
+/// `wgsl-variants manifest [--summary] [--shader S] [--pass P]`.
+fn manifest(
+    ctx: &Context,
+    summary: bool,
+    shader: Option<&str>,
+    pass: Option<&str>,
+) -> Result<ExitCode, Failed> {
+    let passes = wgsl_variants::plan::select_passes(&ctx.lib, shader, pass)?;
     let make = if summary {
-        wgsl_variants::snapshot::manifest_summary
+        wgsl_variants::snapshot::manifest_summary_of
     } else {
-        wgsl_variants::snapshot::manifest
+        wgsl_variants::snapshot::manifest_of
     };
-    let text = make(&ctx.lib, 1_000_000).map_err(|e| Failed(format!("error: {e}")))?;
+    let text = make(&ctx.lib, &passes, 1_000_000).map_err(|e| Failed(format!("error: {e}")))?;
     print!("{text}");
     Ok(ExitCode::SUCCESS)
 }
@@ -343,7 +355,11 @@ fn main() -> ExitCode {
         Command::Audit(args) => audit::run(&ctx, &args),
         Command::Merge(args) => merge::run(&ctx, &args),
         Command::Cache(args) => cache::run(&ctx, &args),
-        Command::Manifest { summary } => manifest(&ctx, summary),
+        Command::Manifest {
+            summary,
+            shader,
+            pass,
+        } => manifest(&ctx, summary, shader.as_deref(), pass.as_deref()),
         Command::Watch(_) => unreachable!("watch is run before the library is loaded"),
         #[cfg(feature = "gpu")]
         Command::CheckGpu(args) => check_gpu::run(&ctx, &args),

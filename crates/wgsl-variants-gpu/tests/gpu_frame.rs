@@ -33,9 +33,9 @@ fn frame_passes(hdr: bool, brdf: Brdf) {
     // Most of the frame is surface, not silhouette.
     assert!(report.compared > 2000, "{report}");
     assert!(report.edges < report.compared / 5, "{report}");
-    // The forward part both paths share: two semi-transparent objects, ForwardBase and four
-    // ForwardAdd draws each.
-    let transparent = 2 * (1 + 4);
+    // The forward part both paths share: the sky, then two semi-transparent objects,
+    // ForwardBase and four ForwardAdd draws each.
+    let transparent = 1 + 2 * (1 + 4);
     // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd.
     assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4 + transparent);
     // Deferred: the G-buffer, the masks, five lights, and the final pass in LDR.
@@ -69,8 +69,9 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 /// point light 25 % too bright in HDR (50 % in LDR, whose 8-bit targets round each of the five
 /// forward draws), without the spot light's draws, without the shadows, without one
 /// directional light's screen-space shadow, with the floor's lightmap decoded with the wrong
-/// range (RGBM's gamma-space 5 for its linear 34.49), or with the glass sphere more opaque
-/// (alpha 0.45 → 0.55) fails against the reference of the true frame, on both paths.
+/// range (RGBM's gamma-space 5 for its linear 34.49), with the glass sphere more opaque
+/// (alpha 0.45 → 0.55), or with the sky turned the wrong way fails against the reference of
+/// the true frame, on both paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -102,6 +103,10 @@ fn a_light_too_bright_or_missing_is_caught() {
     lightmap_range.scene.lightmap_decode.baked.x = 5.0;
     let mut opaque_glass = truth.clone();
     opaque_glass.transparent[0].material.tint.w = 0.55;
+    let mut sky_turned = truth.clone();
+    if let Some(sky) = &mut sky_turned.sky {
+        sky.skybox.rotation_degrees = -sky.skybox.rotation_degrees;
+    }
     let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
@@ -113,6 +118,7 @@ fn a_light_too_bright_or_missing_is_caught() {
         ("no cookie-sun shadow", &sun_unshadowed, &[true]),
         ("lightmap range 5", &lightmap_range, &[true, false]),
         ("glass alpha 0.55", &opaque_glass, &[true, false]),
+        ("sky turned the wrong way", &sky_turned, &[true, false]),
     ] {
         for &hdr in modes {
             let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");
@@ -165,8 +171,9 @@ fn the_gpu_resident_frame_is_the_read_back_frame() {
             let what = format!("{name}, hdr {hdr}");
             let forward = ResidentFrame::forward(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
             let deferred = ResidentFrame::deferred(&ctx, &lib, &frame, &shadows, hdr).expect(&what);
-            // The forward part, where the scene has semi-transparent objects.
-            let transparent = (!frame.transparent.is_empty()).then_some("transparent");
+            // The forward part, where the scene has a sky or semi-transparent objects.
+            let part = frame.sky.is_some() || !frame.transparent.is_empty();
+            let transparent = part.then_some("forward part");
             let mut names = vec!["forward base", "forward add"];
             names.extend(transparent);
             assert_eq!(forward.pass_names(), names);

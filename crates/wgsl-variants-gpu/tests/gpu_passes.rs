@@ -179,6 +179,48 @@ fn deferred_reflections_add_and_final_match_the_reference() {
     assert!(report.passes[0].pixels_compared >= 1024 + 256);
 }
 
+/// `skybox/Cubemap` into HDR and LDR targets matches the reference over five faces, their
+/// edges and a corner; the reference of a sky turned the wrong way, or decoded without its
+/// RGBM alpha, fails against the same pictures.
+#[test]
+fn the_skybox_matches_the_reference_and_a_wrong_sky_fails() {
+    use wgsl_variants_gpu::TargetFormat;
+    use wgsl_variants_gpu::check::report::PassReport;
+    use wgsl_variants_gpu::check::skybox::{Sky, check_sky};
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let Some(report) = run(&lib, Some("skybox"), None, 1) else {
+        return;
+    };
+    assert_pass(&report, "skybox", "Cubemap", 1);
+    assert_eq!(report.passes[0].pixels_compared, 2 * 64 * 48, "{report}");
+    let ctx = wgsl_variants_gpu::GpuContext::new(common::gpu::adapter_filter().as_deref())
+        .expect("the check ran on this adapter");
+    let sky = Sky::check();
+    let turned = wgsl_variants_shaders::reference::skybox::Skybox {
+        rotation_degrees: -sky.skybox.rotation_degrees,
+        ..sky.skybox
+    };
+    let mut no_alpha = sky.skybox;
+    no_alpha.decode.w = 0.0;
+    for (what, wrong) in [
+        ("turned the wrong way", turned),
+        ("RGBM alpha ignored", no_alpha),
+    ] {
+        for format in [TargetFormat::Rgba16Float, TargetFormat::Rgba8Unorm] {
+            let mut r = PassReport::new("skybox", "Cubemap");
+            check_sky(&ctx, &lib, &sky, &wrong, format, &mut r).expect("the sky renders");
+            eprintln!(
+                "a sky {what}, {format:?}: {} of {} pixels caught",
+                r.mismatches, r.pixels_compared
+            );
+            assert!(
+                r.mismatches > 100,
+                "a sky {what} ({format:?}) was not caught: {r:?}"
+            );
+        }
+    }
+}
+
 /// The check is not vacuous: a library whose BRDF is off by a little (dielectric specular 0.05
 /// instead of 0.04) fails it, and the mismatch names the shader, pass, keyword set, target and
 /// pixel.

@@ -27,13 +27,14 @@
 //! | [`lights`] | `deferred_shading/Lighting` (all 384 variants: every BRDF tier) over LDR and HDR G-buffers (with RT4 for `SHADOWS_SHADOWMASK`), positions from depth; `SHADOWS_SCREEN` over the masks of [`screen_shadows`] |
 //! | [`screen_shadows`] | `screen_space_shadows/Collect` (all 8 variants): the directional lights' 1, 2 and 4 cascades (`standard/ShadowCaster`, orthographic, one atlas tile each) turned into masks of the camera view, every pixel against the reference over the read-back atlas |
 //! | [`caster`] | `standard/ShadowCaster` (all 8 variants): the occluder scene's spot map and six cube faces, every texel against the nearest kept occluder point |
-//! | [`frame`] | a whole frame (five objects, a main light and four per-pixel lights with cookies and shadows) forward and deferred, HDR and LDR, every pixel against the reference and forward against deferred (the `gpu_frame` test; `render --frame`) |
+//! | [`frame`] | a whole frame (five opaque objects, two of them lightmapped; two semi-transparent objects; a sky; a main light and four per-pixel lights with cookies and shadows) forward and deferred, HDR and LDR, every pixel against the reference and forward against deferred (the `gpu_frame` test; `render --frame`) |
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants_shaders::reference::urp::gbuffer`] |
 //! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
+//! | [`skybox`] | `skybox/Cubemap` (its one variant) through a wide view over five faces, their edges and a corner, HDR and LDR |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
 //! | [`pictures`] | the scene's targets as PNG images (the `render` command) |
@@ -80,6 +81,7 @@ pub mod scene;
 mod screen_masks;
 pub mod screen_shadows;
 pub mod shadows;
+pub mod skybox;
 mod standard;
 pub mod urp;
 pub mod urp_caster;
@@ -104,7 +106,7 @@ use pass_check::{Needs, PassCheck, Setup};
 use wgsl_variants::Library;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 14] = [
+pub const PASSES: [(&str, &str); 15] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -119,6 +121,7 @@ pub const PASSES: [(&str, &str); 14] = [
     ("universal_lit", "ShadowCaster"),
     ("stencil_deferred", "PunctualLit"),
     ("stencil_deferred", "DirectionalLit"),
+    ("skybox", "Cubemap"),
 ];
 
 /// The pseudo-shader name that selects the compute kernels.
@@ -139,6 +142,7 @@ static CHECKS: &[&dyn PassCheck] = &[
     &urp_caster::URP_SHADOW_CASTER,
     &urp_lighting::PUNCTUAL_LIT,
     &urp_lighting::DIRECTIONAL_LIT,
+    &skybox::CUBEMAP,
     &deferred::CHAIN,
 ];
 

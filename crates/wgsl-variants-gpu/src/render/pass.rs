@@ -73,6 +73,13 @@ impl DepthTest {
         write: false,
     };
 
+    /// The background at the far plane (Unity's skybox: `ZTest LEqual`, `ZWrite Off`): drawn
+    /// only where the depth buffer still holds its clear value, 1.
+    pub const BACKGROUND: DepthTest = DepthTest {
+        compare: wgpu::CompareFunction::LessEqual,
+        write: false,
+    };
+
     /// Semi-transparent geometry (Unity's transparent queue: `ZTest LEqual`, `ZWrite Off`):
     /// drawn in front of the opaque surfaces, leaving the depth buffer to them.
     pub const TRANSPARENT: DepthTest = DepthTest {

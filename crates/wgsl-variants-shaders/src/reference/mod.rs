@@ -25,6 +25,7 @@
 //! | [`lightmap`] | baked and realtime lightmaps: decoding (RGBM, HDR, dLDR, realtime), directional maps |
 //! | [`shadow_fade`] | the realtime shadows' distance fade (view depth or a sphere) |
 //! | [`cascades`] | a directional light's 1, 2 or 4 shadow cascades: fitting, the atlas, cascade selection by split depths or spheres |
+//! | [`skybox`] | the background: Unity's `Skybox/Cubemap` (rotation, decode, tint, exposure) and the faces a filtered sample reads |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
 //! | [`vector`] | `reflect` and the view and reflection directions |
 //! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
@@ -57,6 +58,7 @@ pub mod probe;
 pub mod quantize;
 pub mod shadow;
 pub mod shadow_fade;
+pub mod skybox;
 pub mod surface;
 pub mod tolerance;
 pub mod urp;

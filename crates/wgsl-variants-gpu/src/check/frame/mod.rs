@@ -48,6 +48,7 @@ use super::deferred::final_pass;
 use super::gbuffer::rt3_blend;
 use super::rig::shadowed;
 use super::scene::{brdf_lut_resource, texture};
+use super::skybox::{sky_draw, stored_range, view_direction};
 use super::volume_draw::{depth_fill_draw, over_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -255,13 +256,19 @@ fn transparent_blend(mode: RenderingMode, add: bool) -> wgpu::BlendState {
     }
 }
 
-/// The forward part of either path: each semi-transparent object in
-/// [`FrameScene::transparent_order`], its ForwardBase draw then one ForwardAdd draw per light,
-/// blended ([`transparent_blend`]), back faces culled, depth tested against the opaque
-/// objects' without writing, and without shadow keywords (the transparent queue receives no
-/// shadows).
-fn transparent_draws(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>, GpuError> {
+/// The forward part of either path: the sky where no surface was drawn, then each
+/// semi-transparent object in [`FrameScene::transparent_order`], its ForwardBase draw then one
+/// ForwardAdd draw per light, blended ([`transparent_blend`]), back faces culled, depth tested
+/// against the opaque objects' without writing, and without shadow keywords (the transparent
+/// queue receives no shadows).
+fn forward_part(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>, GpuError> {
     let mut draws = Vec::new();
+    if let Some(sky) = &frame.sky {
+        let camera = frame.scene.camera_position;
+        draws.push(
+            sky_draw(drawer.lib, sky, frame.view_proj, camera)?.with_depth(DepthTest::BACKGROUND),
+        );
+    }
     for t in frame.transparent_order() {
         let o = frame.objects.len() + t;
         let mode = frame.transparent[t].keywords.rendering;
@@ -347,7 +354,7 @@ pub fn render_forward(
     let (base, add) = forward_draws(&mut drawer, frame, shadows)?;
     pass.draws = base;
     pass.draws.extend(add);
-    pass.draws.extend(transparent_draws(&mut drawer, frame)?);
+    pass.draws.extend(forward_part(&mut drawer, frame)?);
     draws += pass.draws.len();
     let bytes = render_pass(ctx, &pass)?.targets.remove(0);
     Ok(PathImage {
@@ -513,10 +520,10 @@ pub fn render_deferred(
         draws += 1;
         (final_pass(ctx, lib, &rt3, w, h)?, TargetFormat::Rgba8Unorm)
     };
-    // The forward part: the semi-transparent objects over the lit image (RT3 in HDR, the
-    // final pass's output in LDR), tested against the G-buffer pass's depth.
-    let transparent = transparent_draws(&mut drawer, frame)?;
-    if transparent.is_empty() {
+    // The forward part: the sky and the semi-transparent objects over the lit image (RT3 in
+    // HDR, the final pass's output in LDR), tested against the G-buffer pass's depth.
+    let part = forward_part(&mut drawer, frame)?;
+    if part.is_empty() {
         return Ok(PathImage {
             bytes: lit,
             format,
@@ -524,7 +531,7 @@ pub fn render_deferred(
             volumes,
         });
     }
-    draws += transparent.len();
+    draws += part.len();
     let mut forward = DrawPass::new(
         "frame: forward part",
         w,
@@ -533,7 +540,7 @@ pub fn render_deferred(
     );
     forward.depth = true;
     forward.draws.push(depth_fill_draw(depth_texture));
-    forward.draws.extend(transparent);
+    forward.draws.extend(part);
     Ok(PathImage {
         bytes: render_pass(ctx, &forward)?.targets.remove(0),
         format,
@@ -678,16 +685,22 @@ fn terms(
 
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
 /// centre sees, lit by the forward formulas and shadowed by `shadows`, with the
-/// semi-transparent surfaces in front blended over it; `None` on the background where no
-/// semi-transparent surface covers it.
+/// semi-transparent surfaces in front blended over it (on the background, the sky); `None` on
+/// an empty background.
 pub fn reference_rgb(frame: &FrameScene, shadows: &FrameShadows, x: u32, y: u32) -> Option<Vec3> {
-    let (hit, layers) = frame.cast_through(f64::from(x) + 0.5, f64::from(y) + 0.5);
-    if hit.is_none() && layers.is_empty() {
+    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+    let (hit, layers) = frame.cast_through(cx, cy);
+    if hit.is_none() && layers.is_empty() && frame.sky.is_none() {
         return None;
     }
-    let opaque = hit.map_or(Vec3::ZERO, |h| {
-        terms(frame, shadows, &frame.objects[h.object], &h.geometry).total()
-    });
+    let opaque = match hit {
+        Some(h) => terms(frame, shadows, &frame.objects[h.object], &h.geometry).total(),
+        None => frame.sky.as_ref().map_or(Vec3::ZERO, |sky| {
+            let dir = view_direction(frame.view_proj, (frame.width, frame.height), cx, cy);
+            let (lo, hi) = sky.range(&sky.skybox, &[dir]);
+            (lo + hi) * 0.5
+        }),
+    };
     Some(layers.iter().fold(opaque, |under, h| {
         let l = layer(frame, &frame.transparent[h.object], &[h.geometry]);
         l.base.0 + under * (1.0 - l.alpha) + l.adds.iter().map(|a| a.0).sum::<Vec3>()
@@ -975,6 +988,38 @@ fn through_layers(under: Interval, layers: &[Layer], hdr: bool) -> Interval {
     })
 }
 
+/// What both paths may hold at background pixel `(cx, cy)` (its centre) before the
+/// semi-transparent objects: the sky's range over the pixel's sub-pixel window, stored in the
+/// output's format (`Rgba16Float` in HDR, `Rgba8Unorm` in LDR), or 0 without a sky.
+fn background(frame: &FrameScene, cx: f64, cy: f64, hdr: bool) -> Interval {
+    let Some(sky) = &frame.sky else {
+        return Interval {
+            lo: Vec3::ZERO,
+            hi: Vec3::ZERO,
+        };
+    };
+    let size = (frame.width, frame.height);
+    let dirs: Vec<Vec3> = window_offsets()
+        .iter()
+        .map(|&(dx, dy)| {
+            view_direction(
+                frame.view_proj,
+                size,
+                cx + f64::from(dx),
+                cy + f64::from(dy),
+            )
+        })
+        .collect();
+    let (lo, hi) = sky.range(&sky.skybox, &dirs);
+    let format = if hdr {
+        TargetFormat::Rgba16Float
+    } else {
+        TargetFormat::Rgba8Unorm
+    };
+    let (lo, hi) = stored_range(format, lo, hi);
+    Interval { lo, hi }
+}
+
 /// Renders the frame both ways in HDR or LDR and compares every pixel with the reference and
 /// the two paths with each other.
 pub fn check_frame(
@@ -1049,42 +1094,20 @@ pub fn compare(
         report.through_transparent += usize::from(!layers.is_empty());
         let Some(hit) = centre else {
             report.background += 1;
-            if !layers.is_empty() {
-                // Semi-transparent surfaces over the empty background.
-                let empty = Interval {
-                    lo: Vec3::ZERO,
-                    hi: Vec3::ZERO,
-                };
-                let (fi, di) = (
-                    through_layers(empty, &layers, hdr),
-                    through_layers(empty, &layers, hdr),
-                );
-                judge(
-                    &mut report,
-                    [x, y],
-                    "background",
-                    (fi.lo + fi.hi) * 0.5,
-                    (f, d),
-                    [fi, di, di],
-                    true,
-                );
-                continue;
-            }
-            let empty = f == Vec3::ZERO && d == Vec3::ZERO;
-            if !empty {
-                report.failures[0] += usize::from(f != Vec3::ZERO);
-                report.failures[1] += usize::from(d != Vec3::ZERO);
-                report.failures[2] += 1;
-                push_mismatch(
-                    &mut report,
-                    [x, y],
-                    "background",
-                    Vec3::ZERO,
-                    f,
-                    d,
-                    [f != Vec3::ZERO, d != Vec3::ZERO, true],
-                );
-            }
+            let under = background(frame, cx, cy, hdr);
+            let i = through_layers(under, &layers, hdr);
+            // Both paths draw the background the same way onto the same format: equal.
+            let same = Interval { lo: f, hi: f };
+            let reference = (i.lo + i.hi) * 0.5;
+            judge(
+                &mut report,
+                [x, y],
+                "background",
+                reference,
+                (f, d),
+                [i, i, same],
+                false,
+            );
             continue;
         };
         report.compared += 1;

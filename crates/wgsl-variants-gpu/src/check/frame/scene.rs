@@ -14,11 +14,11 @@
 //! reference gets by casting the pixel's ray against the same triangles
 //! ([`FrameScene::cast_through`]).
 
-use glam::{DMat4, DVec3, DVec4, Mat4, Vec3, Vec4};
+use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
-use super::super::scene::{
-    MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe, push_mat4, push_vec4,
-};
+use super::super::camera::{deferred_camera, pixel_ray};
+use super::super::scene::{MapTexture, Maps, Rng, StandardBindings, cube, cube_resource, probe};
+use super::super::skybox::Sky;
 use super::shadow::ShadowSpec;
 use crate::{BoundResource, Resource, VertexBuffer};
 use wgsl_variants_shaders::reference::brdf::Brdf;
@@ -31,6 +31,7 @@ use wgsl_variants_shaders::reference::lightmap::{LightmapDecode, LightmapTexels}
 use wgsl_variants_shaders::reference::probe::Probe;
 use wgsl_variants_shaders::reference::quantize::unorm_to_f32;
 use wgsl_variants_shaders::reference::shadow_fade::{FadeDistance, ShadowFade};
+use wgsl_variants_shaders::reference::skybox::Skybox;
 use wgsl_variants_shaders::reference::surface::{
     Geometry, Keywords, Material, RenderingMode, Scene, SmoothnessSource, Texels,
 };
@@ -204,6 +205,9 @@ pub struct FrameScene {
     /// in [`FrameScene::transparent_order`] with blending and no depth writes; they neither
     /// cast nor receive shadows (Unity's transparent queue).
     pub transparent: Vec<FrameObject>,
+    /// The background (`skybox/Cubemap`) where no surface is drawn: after the opaque objects,
+    /// before the semi-transparent ones; `None` leaves the background empty.
+    pub sky: Option<Sky>,
     /// The 2D cookie of `DIRECTIONAL_COOKIE` lights (`Rgba8Unorm`, alpha read; nearest,
     /// repeating).
     pub cookie: MapTexture,
@@ -705,6 +709,23 @@ impl FrameScene {
             lights,
             objects,
             transparent,
+            sky: Some(Sky {
+                skybox: Skybox {
+                    tint: Vec3::new(0.45, 0.5, 0.6),
+                    exposure: 0.5,
+                    rotation_degrees: 20.0,
+                    decode: Vec4::new(2.0, 2.2, 0.0, 1.0),
+                    ..Skybox::default()
+                },
+                faces: [
+                    [200, 170, 150, 160],
+                    [150, 170, 200, 150],
+                    [170, 200, 255, 190],
+                    [90, 80, 70, 120],
+                    [180, 190, 210, 140],
+                    [210, 180, 160, 170],
+                ],
+            }),
             cookie,
             cube_cookie,
             brdf: Brdf::Brdf1,
@@ -721,8 +742,9 @@ impl FrameScene {
     }
 
     /// The frame with `n` point lights instead of its four per-pixel lights (the main light
-    /// stays, unshadowed) and without its semi-transparent objects (a forward part both paths
-    /// share), so that the paths differ by the lights' cost: the benchmark's light count.
+    /// stays, unshadowed) and without its sky and semi-transparent objects (a forward part
+    /// both paths share), so that the paths differ by the lights' cost: the benchmark's light
+    /// count.
     /// The lights are placed by a fixed pseudo-random sequence over the floor in view, 0.6 to
     /// 1.8 above it, with ranges of 1.2 to 2.2 (so each is drawn as its volume in the deferred
     /// path) and varied colours.
@@ -730,6 +752,7 @@ impl FrameScene {
         let mut rng = Rng::new(0x1167_5EED);
         self.main_shadow = None;
         self.transparent.clear();
+        self.sky = None;
         self.lights = (0..n)
             .map(|_| {
                 let position = Vec3::new(
@@ -809,11 +832,7 @@ impl FrameScene {
     /// The `DeferredCamera` uniform of the full-screen passes: inverse view-projection,
     /// camera position, view-projection.
     pub fn deferred_camera(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        push_mat4(&mut out, self.view_proj.inverse());
-        push_vec4(&mut out, self.scene.camera_position.extend(1.0));
-        push_mat4(&mut out, self.view_proj);
-        out
+        deferred_camera(self.view_proj, self.scene.camera_position)
     }
 
     /// Every pixel `(x, y)`, row by row.
@@ -873,19 +892,11 @@ impl FrameScene {
 fn cast_into(
     objects: &[FrameObject],
     view_proj: Mat4,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     px: f64,
     py: f64,
 ) -> Option<(f64, Hit)> {
-    let inv = view_proj.as_dmat4().inverse();
-    let ndc_x = px / f64::from(width) * 2.0 - 1.0;
-    let ndc_y = 1.0 - py / f64::from(height) * 2.0;
-    let unproject = |z: f64| {
-        let h = inv * DVec4::new(ndc_x, ndc_y, z, 1.0);
-        h.truncate() / h.w
-    };
-    let origin = unproject(0.0);
-    let dir = unproject(1.0) - origin;
+    let (origin, dir) = pixel_ray(view_proj, size, px, py);
     let mut best: Option<(f64, usize, [f64; 3], usize)> = None;
     for (o, object) in objects.iter().enumerate() {
         let model = object.model.as_dmat4();

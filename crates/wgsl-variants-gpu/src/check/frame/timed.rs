@@ -7,14 +7,15 @@
 //! ([`crate::PassSpan`]).
 //!
 //! - forward: `forward base` (ForwardBase per object), `forward add` (ForwardAdd per light and
-//!   object, blended One / One, the depth buffer read-only), `transparent`;
+//!   object, blended One / One, the depth buffer read-only), `forward part`;
 //! - deferred: `G-buffer` (Deferred per object into RT0–RT3 and depth), `lighting` (one
 //!   Lighting draw per light, RT0–RT2 and depth bound as textures), in LDR `final`, and
-//!   `transparent`;
+//!   `forward part`;
 //!
-//! where `transparent` is the forward part both paths share: each semi-transparent object's
-//! ForwardBase and ForwardAdd draws, blended over the lit image, the opaque depth read-only
-//! (absent from a scene without semi-transparent objects).
+//! where `forward part` is what both paths share after their opaque objects: the sky, then
+//! each semi-transparent object's ForwardBase and ForwardAdd draws, blended over the lit
+//! image, the opaque depth read-only (absent from a scene without a sky or semi-transparent
+//! objects).
 //!
 //! Nothing is read back while a frame runs; [`ResidentFrame::image`] copies the final target
 //! back afterwards, which is how the tests hold this frame to the read-back one.
@@ -43,8 +44,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::{
-    ADD, Drawer, FrameScene, FrameShadows, PathImage, forward_draws, gbuffer_targets,
-    lighting_draws, rt3_format, transparent_draws,
+    ADD, Drawer, FrameScene, FrameShadows, PathImage, forward_draws, forward_part, gbuffer_targets,
+    lighting_draws, rt3_format,
 };
 use crate::check::gbuffer::rt3_blend;
 use crate::render::resident::{
@@ -160,9 +161,9 @@ pub struct ResidentFrame {
     counter: Option<Counter>,
 }
 
-/// The `transparent` pass over `color` with the opaque `depth` read-only, or none without
+/// The `forward part` pass over `color` with the opaque `depth` read-only, or none without
 /// draws.
-fn transparent_pass(
+fn forward_part_pass(
     ctx: &GpuContext,
     color: &GpuTexture,
     depth: &GpuTexture,
@@ -174,7 +175,7 @@ fn transparent_pass(
     prepare(
         ctx,
         &ResidentPass {
-            label: "transparent",
+            label: "forward part",
             colors: vec![ResidentColor {
                 texture: color,
                 clear: None,
@@ -227,7 +228,7 @@ impl ResidentFrame {
         let depth = GpuTexture::new(ctx, label, w, h, DEPTH_FORMAT)?;
         let mut drawer = Drawer::new(lib, frame, hdr);
         let (base, add) = forward_draws(&mut drawer, frame, shadows)?;
-        let transparent = transparent_draws(&mut drawer, frame)?;
+        let part = forward_part(&mut drawer, frame)?;
         let base = prepare(
             ctx,
             &ResidentPass {
@@ -257,7 +258,7 @@ impl ResidentFrame {
             },
         )?;
         let mut passes = vec![base, add];
-        passes.extend(transparent_pass(ctx, &color, &depth, &transparent)?);
+        passes.extend(forward_part_pass(ctx, &color, &depth, &part)?);
         Ok(ResidentFrame::new(
             ctx, label, passes, color, format, 0, None,
         ))
@@ -356,8 +357,8 @@ impl ResidentFrame {
             )?);
             (out, TargetFormat::Rgba8Unorm)
         };
-        let transparent = transparent_draws(&mut drawer, frame)?;
-        passes.extend(transparent_pass(ctx, &output, &depth, &transparent)?);
+        let part = forward_part(&mut drawer, frame)?;
+        passes.extend(forward_part_pass(ctx, &output, &depth, &part)?);
         Ok(ResidentFrame::new(
             ctx,
             label,
