@@ -73,19 +73,13 @@ impl DepthTest {
         write: false,
     };
 
-    /// The background at the far plane (Unity's skybox: `ZTest LEqual`, `ZWrite Off`): drawn
-    /// only where the depth buffer still holds its clear value, 1.
-    pub const BACKGROUND: DepthTest = DepthTest {
-        compare: wgpu::CompareFunction::LessEqual,
-        write: false,
-    };
+    /// The background at the far plane (Unity's skybox): [`DepthTest::SAME_SURFACE`]'s
+    /// `ZTest LEqual`, `ZWrite Off`, drawn only where the buffer still holds its clear value, 1.
+    pub const BACKGROUND: DepthTest = DepthTest::SAME_SURFACE;
 
-    /// Semi-transparent geometry (Unity's transparent queue: `ZTest LEqual`, `ZWrite Off`):
-    /// drawn in front of the opaque surfaces, leaving the depth buffer to them.
-    pub const TRANSPARENT: DepthTest = DepthTest {
-        compare: wgpu::CompareFunction::LessEqual,
-        write: false,
-    };
+    /// Semi-transparent geometry (Unity's transparent queue): [`DepthTest::SAME_SURFACE`]'s
+    /// `ZTest LEqual`, `ZWrite Off`, in front of the opaque surfaces, leaving the buffer to them.
+    pub const TRANSPARENT: DepthTest = DepthTest::SAME_SURFACE;
 }
 
 /// One draw of a [`DrawPass`]: a variant's text and entry points, its mesh and resources, and
