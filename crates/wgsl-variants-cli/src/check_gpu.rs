@@ -6,6 +6,7 @@
 
 use std::process::ExitCode;
 
+use wgsl_variants_gpu::GpuError;
 use wgsl_variants_gpu::check::{self, CheckOptions};
 
 use super::context::{Context, Failed};
@@ -48,6 +49,19 @@ pub struct CheckGpuArgs {
     /// covering set).
     #[arg(long)]
     full: bool,
+    /// Seconds each wait for the GPU may take before the check stops with an error (default
+    /// 30). On a software adapter such as lavapipe a large variant compiles at its first draw;
+    /// on a loaded machine, raise this rather than reading a slow compile as a hang.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    timeout: Option<std::time::Duration>,
+}
+
+/// Parses a positive number of seconds (fractions allowed).
+fn parse_seconds(text: &str) -> Result<std::time::Duration, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s > 0.0 && s.is_finite() => Ok(std::time::Duration::from_secs_f64(s)),
+        _ => Err(format!("`{text}` is not a positive number of seconds")),
+    }
 }
 
 pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
@@ -61,7 +75,14 @@ pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
     options.cover = args.cover;
     options.cover_above = args.cover_above;
     options.full = args.full;
-    let report = check::run(&ctx.lib, &options).map_err(|e| Failed(format!("error: {e}")))?;
+    options.timeout = args.timeout;
+    let report = check::run(&ctx.lib, &options).map_err(|e| match e {
+        GpuError::Timeout { .. } => Failed(format!(
+            "error: {e}\n  = help: a hang, or a slow first draw on a busy software adapter: \
+             rerun that selection, and raise `--timeout` if it passes slowly"
+        )),
+        e => Failed(format!("error: {e}")),
+    })?;
     if ctx.json {
         print_json(&report)?;
     } else {

@@ -267,3 +267,42 @@ fn render_forward_base_with_the_main_light_shadow() {
     let shadowed = render("_NORMAL_MAP,SHADOWS_SCREEN", "shadowed");
     assert_ne!(lit, shadowed, "the mask changes the picture");
 }
+
+/// `check-gpu --timeout`: nonsense is refused before any GPU work, and a bound far below any
+/// draw's time stops the check with the timeout error and the hint, without a panic.
+#[test]
+fn check_gpu_timeout_is_an_option_and_its_expiry_a_clear_error() {
+    let run = |timeout: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+            .args([
+                "check-gpu",
+                "--shader",
+                "standard",
+                "--pass",
+                "ForwardBase",
+                "--sample",
+                "4096",
+                &format!("--timeout={timeout}"),
+            ])
+            .output()
+            .expect("run check-gpu")
+    };
+    for bad in ["0", "-1", "soon", "inf"] {
+        let out = run(bad);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "--timeout {bad}: {stderr}");
+        assert!(
+            stderr.contains("not a positive number of seconds"),
+            "{stderr}"
+        );
+    }
+    let out = run("0.000001");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("did not finish within 0.000001 s")
+            && stderr.contains("raise `--timeout`")
+            && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+}

@@ -181,7 +181,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
             .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
     }
 
-    let ctx = GpuContext::new(options.adapter.as_deref())?;
+    let ctx = options.context()?;
     let mut report = empty_report(&ctx, lib, options);
     let scene = TestScene::default();
     let mut rig = LightRig::new(&scene);
@@ -198,7 +198,7 @@ pub fn run(lib: &Library, options: &CheckOptions) -> Result<CheckReport, GpuErro
     let mut contexts = Vec::new();
     if needs.workers {
         for _ in 1..options.threads() {
-            contexts.push(GpuContext::new(options.adapter.as_deref())?);
+            contexts.push(options.context()?);
         }
     }
     let setup = Setup::new(&ctx, &contexts, lib, options, &scene, &rig);

@@ -29,6 +29,10 @@ pub struct CheckOptions {
     pub cover_above: Option<u64>,
     /// Check every variant of every selected pass, whatever its size (no covering set).
     pub full: bool,
+    /// The bound on each wait for the GPU, for every worker's device (default
+    /// [`crate::DEFAULT_TIMEOUT`]). A software adapter compiles a large variant at its first
+    /// draw, so a busy machine may need more.
+    pub timeout: Option<std::time::Duration>,
 }
 
 /// Passes with more variants than this are covered by default (URP's `UniversalGBuffer`).
@@ -68,6 +72,15 @@ impl CheckOptions {
                 (count > self.cover_above.unwrap_or(DEFAULT_COVER_ABOVE)).then_some(DEFAULT_COVER_T)
             }
         }
+    }
+
+    /// Opens a device on the selected adapter with the selected timeout.
+    pub(crate) fn context(&self) -> Result<crate::GpuContext, crate::GpuError> {
+        let mut ctx = crate::GpuContext::new(self.adapter.as_deref())?;
+        if let Some(timeout) = self.timeout {
+            ctx.timeout = timeout;
+        }
+        Ok(ctx)
     }
 
     /// How many GPU workers to run: the `threads` field, or one per core (at most 4) for 0.
