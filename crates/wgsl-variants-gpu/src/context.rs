@@ -61,10 +61,12 @@ impl GpuContext {
     /// `Rg11b10Ufloat` (`RG11B10UFLOAT_RENDERABLE`) and, without accurate normals,
     /// `Rgba8Snorm` (renderable only as an adapter-specific format feature); the frame bench
     /// times each pass with timestamp queries (`TIMESTAMP_QUERY`; without it, it says so and
-    /// times the frame by the wall clock).
+    /// times the frame by the wall clock); the deferred frame marks the light culling mask's
+    /// layers in a `Depth32FloatStencil8` buffer (`DEPTH32FLOAT_STENCIL8`).
     pub const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::RG11B10UFLOAT_RENDERABLE
         .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
-        .union(wgpu::Features::TIMESTAMP_QUERY);
+        .union(wgpu::Features::TIMESTAMP_QUERY)
+        .union(wgpu::Features::DEPTH32FLOAT_STENCIL8);
 
     /// Creates a headless context.
     ///

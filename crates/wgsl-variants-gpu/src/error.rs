@@ -130,6 +130,18 @@ pub enum CheckError {
     /// There is no GPU worker to render on.
     #[error("no GPU worker to render on")]
     NoWorker,
+    /// The deferred path's stencil holds at most four layers a light leaves out (the Unity
+    /// Manual's Deferred Shading rendering path: the culling masks must keep 28 of the 32
+    /// layers).
+    #[error(
+        "the lights' culling masks leave out {} layers ({}); the deferred path supports at most four",
+        .layers.len(),
+        .layers.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+    )]
+    TooManyCulledLayers {
+        /// Every layer some light leaves out, ascending.
+        layers: Vec<u32>,
+    },
 }
 
 impl From<CheckError> for GpuError {

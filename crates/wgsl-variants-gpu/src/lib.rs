@@ -54,11 +54,12 @@ pub use layout::{
     storage_format, view_dimension,
 };
 pub use readback::{
-    PendingReadback, encode_texture_readback, finish_readbacks, map_buffers, read_texture,
+    PendingReadback, encode_aspect_readback, encode_texture_readback, finish_readbacks,
+    map_buffers, read_texture,
 };
 pub use render::{
-    ColorTarget, DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, PassSpan, RenderJob,
-    VertexBuffer, render, render_pass, render_with,
+    ColorTarget, DEPTH_FORMAT, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass, PassOutput,
+    PassSpan, RenderJob, StencilTest, VertexBuffer, render, render_pass, render_with,
 };
 pub use resources::{BoundResource, GpuResources, Resource};
 pub use urp::urp_gbuffer_formats;

@@ -42,12 +42,26 @@ impl PendingReadback {
 /// 256-byte row alignment.
 ///
 /// The texture needs `COPY_SRC` usage and a format with a single copyable aspect
-/// (no combined depth-stencil); otherwise, or if the staging buffer would exceed the device's
-/// `max_buffer_size`, a [`GpuError::Readback`] is returned and nothing is recorded.
+/// (no combined depth-stencil: [`encode_aspect_readback`] copies one aspect of those);
+/// otherwise, or if the staging buffer would exceed the device's `max_buffer_size`, a
+/// [`GpuError::Readback`] is returned and nothing is recorded.
 pub fn encode_texture_readback(
     ctx: &GpuContext,
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
+    label: &str,
+) -> Result<PendingReadback, GpuError> {
+    encode_aspect_readback(ctx, encoder, texture, wgpu::TextureAspect::All, label)
+}
+
+/// [`encode_texture_readback`] of one `aspect` of the texture: `DepthOnly` (4 bytes a
+/// texel for `Depth32FloatStencil8`) or `StencilOnly` (1 byte) of a combined depth-stencil
+/// format; `All` for the others.
+pub fn encode_aspect_readback(
+    ctx: &GpuContext,
+    encoder: &mut wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    aspect: wgpu::TextureAspect,
     label: &str,
 ) -> Result<PendingReadback, GpuError> {
     let fail = |message: String| GpuError::Readback {
@@ -64,14 +78,14 @@ pub fn encode_texture_readback(
         )));
     }
     let format = texture.format();
-    let aspect = match format {
-        f if f.has_depth_aspect() && f.has_stencil_aspect() => {
-            return Err(fail(format!(
-                "cannot read back combined depth-stencil {f:?}"
-            )));
-        }
-        _ => wgpu::TextureAspect::All,
-    };
+    if aspect == wgpu::TextureAspect::All
+        && format.has_depth_aspect()
+        && format.has_stencil_aspect()
+    {
+        return Err(fail(format!(
+            "cannot read back combined depth-stencil {format:?} whole: read one aspect"
+        )));
+    }
     let (block_w, block_h) = format.block_dimensions();
     let block_size = format
         .block_copy_size(Some(aspect))

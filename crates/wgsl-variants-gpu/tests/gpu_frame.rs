@@ -34,15 +34,19 @@ fn frame_passes(hdr: bool, brdf: Brdf) {
     assert!(report.compared > 2000, "{report}");
     assert!(report.edges < report.compared / 5, "{report}");
     // The forward part both paths share: the sky, then two semi-transparent objects,
-    // ForwardBase and four ForwardAdd draws each.
-    let transparent = 1 + 2 * (1 + 4);
-    // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd.
-    assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4 + transparent);
+    // ForwardBase and a ForwardAdd draw per light, but the warm point light's culling mask
+    // leaves out the glass sphere.
+    let transparent = 1 + 2 * (1 + 4) - 1;
+    // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd
+    // (the cookie sun and the cool point light leave out the glowing sphere).
+    assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4 - 2 + transparent);
     // Deferred: the G-buffer, the masks, five lights, and the final pass in LDR.
     assert_eq!(
         report.deferred_draws,
         5 + 2 + 5 + usize::from(!hdr) + transparent
     );
+    // The culling masks keep two lights off the glowing sphere, where both would show.
+    assert!(report.culled > 50, "{report}");
     // The semi-transparent objects cover opaque objects and the background.
     assert!(report.through_transparent > 100, "{report}");
     // Shadows fall on the surfaces in view, and most pixels are clear of a shadow edge.
@@ -70,8 +74,9 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 /// forward draws), without the spot light's draws, without the shadows, without one
 /// directional light's screen-space shadow, with the floor's lightmap decoded with the wrong
 /// range (RGBM's gamma-space 5 for its linear 34.49), with the glass sphere more opaque
-/// (alpha 0.45 → 0.55), or with the sky turned the wrong way fails against the reference of
-/// the true frame, on both paths.
+/// (alpha 0.45 → 0.55), with the sky turned the wrong way, or with every light lighting every
+/// layer (the culling masks ignored) fails against the reference of the true frame, on both
+/// paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
     let Some(ctx) = context() else {
@@ -107,6 +112,10 @@ fn a_light_too_bright_or_missing_is_caught() {
     if let Some(sky) = &mut sky_turned.sky {
         sky.skybox.rotation_degrees = -sky.skybox.rotation_degrees;
     }
+    let mut unmasked = truth.clone();
+    for light in &mut unmasked.lights {
+        light.culling_mask = u32::MAX;
+    }
     let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
@@ -119,6 +128,7 @@ fn a_light_too_bright_or_missing_is_caught() {
         ("lightmap range 5", &lightmap_range, &[true, false]),
         ("glass alpha 0.55", &opaque_glass, &[true, false]),
         ("sky turned the wrong way", &sky_turned, &[true, false]),
+        ("culling masks ignored", &unmasked, &[true, false]),
     ] {
         for &hdr in modes {
             let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");

@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use crate::light_volume::LightVolume;
-use crate::{BoundResource, DepthTest, Draw, Resource, VertexBuffer};
+use crate::{BoundResource, DepthTest, Draw, Resource, StencilTest, VertexBuffer};
 
 /// Writes the rig's depth (an `R32Float` texture) into the depth attachment.
 pub(crate) const DEPTH_FILL_WGSL: &str = "
@@ -33,6 +33,42 @@ pub(crate) fn depth_fill_draw(depth: Resource) -> Draw {
             compare: wgpu::CompareFunction::Always,
             write: true,
         })
+        .depth_only()
+}
+
+/// Sets a stencil bit where an `R8Uint` texture of stencil values has it.
+const STENCIL_FILL_WGSL: &str = "
+@group(0) @binding(0) var marks: texture_2d<u32>;
+@group(0) @binding(1) var<uniform> bit: vec4u;
+
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
+    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4f(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs_main(@builtin(position) p: vec4f) {
+    if (textureLoad(marks, vec2i(floor(p.xy)), 0).r & bit.x) == 0u {
+        discard;
+    }
+}
+";
+
+/// A draw of a pass with a stencil buffer that sets stencil bit `bit` where `marks` (an
+/// `R8Uint` texture of an earlier pass's stencil values) has it: how a pass that reads its
+/// depth from a texture ([`depth_fill_draw`]) gets an earlier pass's stencil marks too. No
+/// depth test, no colour.
+pub(crate) fn stencil_fill_draw(marks: Resource, bit: u32) -> Draw {
+    let fill: Arc<str> = Arc::from(STENCIL_FILL_WGSL);
+    let mut uniform = [0u8; 16];
+    uniform[..4].copy_from_slice(&bit.to_le_bytes());
+    Draw::fullscreen("scene stencil", &fill, "vs_main", "fs_main")
+        .with_resources(vec![
+            BoundResource::new(0, 0, marks),
+            BoundResource::new(0, 1, Resource::Uniform(uniform.to_vec())),
+        ])
+        .with_stencil(StencilTest::set(bit))
         .depth_only()
 }
 

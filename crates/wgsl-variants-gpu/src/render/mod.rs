@@ -23,7 +23,10 @@ mod target;
 pub(crate) mod timing;
 
 pub use job::{RenderJob, render, render_with};
-pub use pass::{DEPTH_FORMAT, DepthTest, Draw, DrawPass, PassOutput, render_pass};
+pub use pass::{
+    DEPTH_FORMAT, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass, PassOutput, StencilTest,
+    render_pass,
+};
 pub(crate) use pipeline::pipeline;
 pub use target::{ColorTarget, VertexBuffer};
 pub use timing::PassSpan;

@@ -7,7 +7,9 @@
 //! points, blend, depth test and vertex layout), uploads each distinct resource once (draws
 //! share equal ones: the camera, the probes, a light's uniform), records every
 //! draw in order into one pass and reads back the colour targets and, with
-//! [`DrawPass::depth`], the `Depth32Float` buffer (cleared to 1, the far plane).
+//! [`DrawPass::depth`], the `Depth32Float` buffer (cleared to 1, the far plane) — with
+//! [`DEPTH_STENCIL_FORMAT`], its depth and its stencil (cleared to 0), which draws mark and
+//! test with a [`StencilTest`].
 //!
 //! ```no_run
 //! use std::sync::Arc;
@@ -41,12 +43,108 @@ use super::target::{
 use crate::bindings::Slot;
 use crate::context::GpuContext;
 use crate::error::GpuError;
-use crate::readback::{encode_texture_readback, finish_readbacks};
+use crate::readback::{encode_aspect_readback, encode_texture_readback, finish_readbacks};
 use crate::resources::{BoundResource, GpuResources, ResourcePool};
 
 /// The depth buffer's format: 32-bit float, so the depth a deferred pass rebuilds positions
 /// from is the rasterizer's own value, not a 16- or 24-bit rounding of it.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The depth-stencil format of a pass whose draws mark or test stencil bits: 32-bit float
+/// depth, like [`DEPTH_FORMAT`], plus 8 stencil bits (the device needs
+/// `DEPTH32FLOAT_STENCIL8`, which [`GpuContext::OPTIONAL_FEATURES`] asks for). Both aspects
+/// can be read back, which `Depth24PlusStencil8`'s depth cannot.
+pub const DEPTH_STENCIL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32FloatStencil8;
+
+/// How a draw tests and writes the stencil bits of a pass with [`DEPTH_STENCIL_FORMAT`]
+/// (both faces alike; a failing stencil or depth test keeps the stored value).
+///
+/// The fragment passes where `(reference & read_mask) <compare> (stored & read_mask)`; where
+/// it passes both tests, `pass_op` updates the bits of `write_mask`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct StencilTest {
+    /// The comparison of the reference with the stored value, both masked by `read_mask`.
+    pub compare: wgpu::CompareFunction,
+    /// What a fragment passing both tests does to the stored bits.
+    pub pass_op: wgpu::StencilOperation,
+    /// The bits the comparison reads.
+    pub read_mask: u32,
+    /// The bits `pass_op` may change.
+    pub write_mask: u32,
+    /// The draw's reference value (set per draw: draws differing only in it share a
+    /// pipeline).
+    pub reference: u32,
+}
+
+impl StencilTest {
+    /// Marks every fragment the draw leaves: the stored value becomes `bits` (all eight bits
+    /// written, so a nearer surface's marks replace a farther one's, zero included).
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::mark(0b0101);
+    /// assert_eq!((t.reference, t.write_mask), (0b0101, 0xff));
+    /// ```
+    pub const fn mark(bits: u32) -> StencilTest {
+        StencilTest {
+            compare: wgpu::CompareFunction::Always,
+            pass_op: wgpu::StencilOperation::Replace,
+            read_mask: 0xff,
+            write_mask: 0xff,
+            reference: bits,
+        }
+    }
+
+    /// Draws only where none of `bits` is set (`(stored & bits) == 0`), writing nothing.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::none_of(0b0010);
+    /// assert_eq!((t.reference, t.read_mask, t.write_mask), (0, 0b0010, 0));
+    /// ```
+    pub const fn none_of(bits: u32) -> StencilTest {
+        StencilTest {
+            compare: wgpu::CompareFunction::Equal,
+            pass_op: wgpu::StencilOperation::Keep,
+            read_mask: bits,
+            write_mask: 0,
+            reference: 0,
+        }
+    }
+
+    /// Sets `bits` wherever the fragment stage does not discard (the other bits stay).
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::set(0b1000);
+    /// assert_eq!((t.reference, t.write_mask), (0b1000, 0b1000));
+    /// ```
+    pub const fn set(bits: u32) -> StencilTest {
+        StencilTest {
+            compare: wgpu::CompareFunction::Always,
+            pass_op: wgpu::StencilOperation::Replace,
+            read_mask: 0xff,
+            write_mask: bits,
+            reference: bits,
+        }
+    }
+
+    /// The pipeline's stencil state (everything but the reference).
+    fn state(&self) -> wgpu::StencilState {
+        let face = wgpu::StencilFaceState {
+            compare: self.compare,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
+            pass_op: self.pass_op,
+        };
+        wgpu::StencilState {
+            front: face,
+            back: face,
+            read_mask: self.read_mask,
+            write_mask: self.write_mask,
+        }
+    }
+}
 
 /// How a draw tests and writes the pass's depth buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -109,6 +207,9 @@ pub struct Draw {
     pub blend: Option<wgpu::BlendState>,
     /// Depth test; `None` draws without testing or writing depth.
     pub depth: Option<DepthTest>,
+    /// Stencil test and marks (the pass needs [`DEPTH_STENCIL_FORMAT`]); `None` neither
+    /// tests nor writes stencil.
+    pub stencil: Option<StencilTest>,
     /// Faces culled (`None`: none).
     pub cull: Option<wgpu::Face>,
     /// Which channels of every colour target the draw writes; empty for a draw that only
@@ -136,6 +237,7 @@ impl Draw {
             shared: Vec::new(),
             blend: None,
             depth: None,
+            stencil: None,
             cull: None,
             color_writes: wgpu::ColorWrites::ALL,
         }
@@ -172,6 +274,12 @@ impl Draw {
         self
     }
 
+    /// Sets the stencil test.
+    pub fn with_stencil(mut self, stencil: StencilTest) -> Draw {
+        self.stencil = Some(stencil);
+        self
+    }
+
     /// Culls `face`.
     pub fn with_cull(mut self, face: wgpu::Face) -> Draw {
         self.cull = Some(face);
@@ -196,12 +304,12 @@ pub struct DrawPass {
     pub height: u32,
     /// Colour targets in `@location` order, cleared or started with their initial contents.
     pub targets: Vec<ColorTarget>,
-    /// A depth buffer of [`DrawPass::depth_format`] cleared to 1 (the far plane), read back
-    /// after the pass. Without it a draw's [`Draw::depth`] is an error; with it the pass may
+    /// A depth buffer of [`DrawPass::depth_format`] cleared to 1 (the far plane; its stencil,
+    /// if any, to 0), read back after the pass. Without it a draw's [`Draw::depth`] is an error; with it the pass may
     /// have no colour targets (a shadow map).
     pub depth: bool,
     /// The depth buffer's format: [`DEPTH_FORMAT`] unless set (`Depth16Unorm` for a shadow
-    /// map the receivers compare against).
+    /// map the receivers compare against, [`DEPTH_STENCIL_FORMAT`] for stencil marks).
     pub depth_format: wgpu::TextureFormat,
     /// The draws, in order.
     pub draws: Vec<Draw>,
@@ -231,6 +339,8 @@ pub struct PassOutput {
     /// The depth buffer, with [`DrawPass::depth`] (a `Depth16Unorm` code `c` as `c / 65535`,
     /// exact in `f32`).
     pub depth: Option<Vec<f32>>,
+    /// The stencil bits, one byte per pixel, with a [`DEPTH_STENCIL_FORMAT`] buffer.
+    pub stencil: Option<Vec<u8>>,
 }
 
 /// What makes two draws' pipelines the same.
@@ -241,6 +351,7 @@ struct PipelineKey<'a> {
     fragment_entry: &'a str,
     blend: Option<wgpu::BlendState>,
     depth: Option<DepthTest>,
+    stencil: Option<wgpu::StencilState>,
     cull: Option<wgpu::Face>,
     color_writes: wgpu::ColorWrites,
     layouts: Vec<(u64, &'a [wgpu::VertexAttribute])>,
@@ -254,6 +365,7 @@ impl<'a> PipelineKey<'a> {
             fragment_entry: &draw.fragment_entry,
             blend: draw.blend,
             depth: draw.depth,
+            stencil: draw.stencil.map(|s| s.state()),
             cull: draw.cull,
             color_writes: draw.color_writes,
             layouts: draw
@@ -312,6 +424,7 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
         let depth_view = depth
             .as_ref()
             .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        let stencil = pass.depth_format.has_stencil_aspect();
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
@@ -326,7 +439,10 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                             load: wgpu::LoadOp::Clear(1.0),
                             store: wgpu::StoreOp::Store,
                         }),
-                        stencil_ops: None,
+                        stencil_ops: stencil.then_some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(0),
+                            store: wgpu::StoreOp::Store,
+                        }),
                     }
                 }),
                 timestamp_writes: None,
@@ -335,17 +451,34 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
             });
             prepared.record(&mut rp);
         }
-        let pending = targets
+        let mut pending = targets
             .iter()
-            .chain(&depth)
             .map(|t| encode_texture_readback(ctx, &mut encoder, t, label))
             .collect::<Result<Vec<_>, _>>();
+        if let (Ok(pending), Some(depth)) = (&mut pending, &depth) {
+            let aspects: &[wgpu::TextureAspect] = if stencil {
+                &[
+                    wgpu::TextureAspect::DepthOnly,
+                    wgpu::TextureAspect::StencilOnly,
+                ]
+            } else {
+                &[wgpu::TextureAspect::All]
+            };
+            for aspect in aspects {
+                match encode_aspect_readback(ctx, &mut encoder, depth, *aspect, label) {
+                    Ok(p) => pending.push(p),
+                    Err(e) => return Err(e),
+                }
+            }
+        }
         if pending.is_ok() {
             ctx.queue.submit([encoder.finish()]);
         }
         pending
     })??;
     let mut targets = finish_readbacks(ctx, label, pending)?;
+    let stencil = (pass.depth && pass.depth_format.has_stencil_aspect())
+        .then(|| targets.pop().unwrap_or_default());
     let depth = pass.depth.then(|| {
         let bytes = targets.pop().unwrap_or_default();
         match pass.depth_format {
@@ -359,7 +492,11 @@ pub fn render_pass(ctx: &GpuContext, pass: &DrawPass) -> Result<PassOutput, GpuE
                 .collect(),
         }
     });
-    Ok(PassOutput { targets, depth })
+    Ok(PassOutput {
+        targets,
+        depth,
+        stencil,
+    })
 }
 
 /// The draws of a pass made ready to record: each distinct pipeline compiled once (same text,
@@ -377,6 +514,7 @@ pub(crate) struct PreparedDraws {
 #[derive(Debug)]
 struct PreparedDraw {
     pipeline: usize,
+    stencil_reference: u32,
     groups: Vec<(u32, wgpu::BindGroup)>,
     buffers: Vec<wgpu::Buffer>,
     vertex_count: u32,
@@ -411,6 +549,15 @@ pub(crate) fn prepare_draws(
                 message: String::from("the draw tests depth but the pass has no depth buffer"),
             });
         }
+        if draw.stencil.is_some() && !depth_format.is_some_and(|f| f.has_stencil_aspect()) {
+            return Err(GpuError::Validation {
+                label: dl.to_owned(),
+                message: format!(
+                    "the draw tests stencil but the pass's depth buffer ({depth_format:?}) has no \
+                     stencil (use {DEPTH_STENCIL_FORMAT:?})"
+                ),
+            });
+        }
         let key = PipelineKey::of(draw);
         let index = match keys.iter().position(|k| *k == key) {
             Some(i) => i,
@@ -430,7 +577,7 @@ pub(crate) fn prepare_draws(
                         compare: wgpu::CompareFunction::Always,
                         write: false,
                     });
-                    depth_state(format, test)
+                    depth_state(format, test, draw.stencil)
                 });
                 let compiled = create_pipeline(
                     ctx,
@@ -475,6 +622,7 @@ pub(crate) fn prepare_draws(
             .collect::<Vec<_>>();
         prepared.push(PreparedDraw {
             pipeline: index,
+            stencil_reference: draw.stencil.map_or(0, |s| s.reference),
             groups,
             buffers,
             vertex_count: draw.vertex_count,
@@ -491,6 +639,7 @@ impl PreparedDraws {
     pub(crate) fn record(&self, rp: &mut wgpu::RenderPass<'_>) {
         for draw in &self.draws {
             rp.set_pipeline(&self.pipelines[draw.pipeline]);
+            rp.set_stencil_reference(draw.stencil_reference);
             for (group, bind_group) in &draw.groups {
                 rp.set_bind_group(*group, bind_group, &[]);
             }
@@ -507,13 +656,18 @@ impl PreparedDraws {
     }
 }
 
-/// The depth-only state of `test` on a buffer of `format`, no stencil, no bias.
-pub(crate) fn depth_state(format: wgpu::TextureFormat, test: DepthTest) -> wgpu::DepthStencilState {
+/// The state of `test` and `stencil` (none: the stencil neither tested nor written) on a
+/// buffer of `format`, no bias.
+fn depth_state(
+    format: wgpu::TextureFormat,
+    test: DepthTest,
+    stencil: Option<StencilTest>,
+) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         format,
         depth_write_enabled: Some(test.write),
         depth_compare: Some(test.compare),
-        stencil: wgpu::StencilState::default(),
+        stencil: stencil.map_or_else(wgpu::StencilState::default, |s| s.state()),
         bias: wgpu::DepthBiasState::default(),
     }
 }

@@ -25,6 +25,8 @@ use crate::readback::read_texture;
 pub(crate) struct GpuTexture {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
+    /// The view a shader binds: the depth aspect alone of a depth-stencil format.
+    bind_view: wgpu::TextureView,
 }
 
 impl GpuTexture {
@@ -56,7 +58,19 @@ impl GpuTexture {
             })
         })?;
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        Ok(GpuTexture { texture, view })
+        let bind_view = if format.has_stencil_aspect() {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                aspect: wgpu::TextureAspect::DepthOnly,
+                ..Default::default()
+            })
+        } else {
+            view.clone()
+        };
+        Ok(GpuTexture {
+            texture,
+            view,
+            bind_view,
+        })
     }
 
     /// Width and height in texels.
@@ -87,7 +101,7 @@ impl GpuTexture {
 /// How a [`ResidentPass`] uses its depth texture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum DepthUse {
-    /// Cleared to 1 (the far plane), written by the draws, stored.
+    /// Cleared to 1 (the far plane; a stencil aspect to 0), written by the draws, stored.
     Clear,
     /// Loaded and never written: a later pass testing against an earlier pass's depth, which
     /// it may also bind as a texture at the same time (both uses only read).
@@ -126,6 +140,8 @@ pub(crate) struct PreparedPass {
     label: String,
     colors: Vec<(wgpu::TextureView, wgpu::LoadOp<wgpu::Color>)>,
     depth: Option<(wgpu::TextureView, DepthUse)>,
+    /// Whether the depth attachment has a stencil aspect.
+    stencil: bool,
     draws: PreparedDraws,
 }
 
@@ -152,7 +168,7 @@ pub(crate) fn prepare(ctx: &GpuContext, pass: &ResidentPass<'_>) -> Result<Prepa
     let views: Vec<(Slot, wgpu::TextureView)> = pass
         .inputs
         .iter()
-        .map(|(slot, t)| (*slot, t.view.clone()))
+        .map(|(slot, t)| (*slot, t.bind_view.clone()))
         .collect();
     let depth_format = pass.depth.map(|(t, _)| t.format());
     let draws = prepare_draws(ctx, &targets, depth_format, pass.draws, &views)?;
@@ -170,6 +186,7 @@ pub(crate) fn prepare(ctx: &GpuContext, pass: &ResidentPass<'_>) -> Result<Prepa
             })
             .collect(),
         depth: pass.depth.map(|(t, use_)| (t.view.clone(), use_)),
+        stencil: depth_format.is_some_and(|f| f.has_stencil_aspect()),
         draws,
     })
 }
@@ -217,7 +234,13 @@ impl PreparedPass {
                         load: wgpu::LoadOp::Clear(1.0),
                         store: wgpu::StoreOp::Store,
                     }),
-                    stencil_ops: None,
+                    // Likewise the stencil: cleared to 0 and marked, or only tested.
+                    stencil_ops: (*use_ == DepthUse::Clear && self.stencil).then_some(
+                        wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(0),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    ),
                 });
         let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&self.label),

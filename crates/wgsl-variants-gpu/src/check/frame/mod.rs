@@ -29,6 +29,7 @@
 //! assert!(report.passed(), "{report}");
 //! ```
 
+pub mod culling;
 pub mod scene;
 pub mod shadow;
 pub mod timed;
@@ -39,7 +40,11 @@ use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
 
-pub use scene::{FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit};
+pub use culling::{LayerStencil, MAX_CULLED_LAYERS};
+pub use scene::{
+    FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit, LAYER_GLASS,
+    LAYER_SHELTERED,
+};
 pub use shadow::{FrameShadow, FrameShadows, ShadowSpec, render_shadows};
 pub use timed::{FrameTime, LightingTraffic, ResidentFrame};
 
@@ -49,11 +54,11 @@ use super::gbuffer::rt3_blend;
 use super::rig::shadowed;
 use super::scene::{brdf_lut_resource, texture};
 use super::skybox::{sky_draw, stored_range, view_direction};
-use super::volume_draw::{depth_fill_draw, over_volume};
+use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
-    BoundResource, CheckError, ColorTarget, DepthTest, Draw, DrawPass, GpuContext, GpuError,
-    Resource, TargetFormat, render_pass,
+    BoundResource, CheckError, ColorTarget, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass,
+    GpuContext, GpuError, Resource, StencilTest, TargetFormat, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
@@ -258,7 +263,7 @@ fn transparent_blend(mode: RenderingMode, add: bool) -> wgpu::BlendState {
 
 /// The forward part of either path: the sky where no surface was drawn, then each
 /// semi-transparent object in [`FrameScene::transparent_order`], its ForwardBase draw then one
-/// ForwardAdd draw per light, blended ([`transparent_blend`]), back faces culled, depth tested
+/// ForwardAdd draw per light that lights it, blended ([`transparent_blend`]), back faces culled, depth tested
 /// against the opaque objects' without writing, and without shadow keywords (the transparent
 /// queue receives no shadows).
 fn forward_part(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>, GpuError> {
@@ -278,7 +283,11 @@ fn forward_part(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>
                 .with_cull(wgpu::Face::Back)
         };
         draws.push(blended(drawer.object(o, "ForwardBase", None, None)?, false));
-        for light in &frame.lights {
+        for light in frame
+            .lights
+            .iter()
+            .filter(|l| l.lights(&frame.transparent[t]))
+        {
             draws.push(blended(
                 drawer.object(o, "ForwardAdd", Some(light), None)?,
                 true,
@@ -289,7 +298,8 @@ fn forward_part(drawer: &mut Drawer<'_>, frame: &FrameScene) -> Result<Vec<Draw>
 }
 
 /// The forward path's draws: ForwardBase per object (with the main light's shadow), then
-/// ForwardAdd per light and object (blended One / One onto the same surface).
+/// ForwardAdd per light and object it lights (blended One / One onto the same surface; a
+/// light's culling mask leaves the other objects' draws out).
 fn forward_draws(
     drawer: &mut Drawer<'_>,
     frame: &FrameScene,
@@ -298,7 +308,7 @@ fn forward_draws(
     let base = drawer.opaque("ForwardBase", shadows.main.as_ref())?;
     let mut add = Vec::with_capacity(frame.lights.len() * frame.objects.len());
     for (light, shadow) in frame.lights.iter().zip(&shadows.lights) {
-        for o in 0..frame.objects.len() {
+        for o in (0..frame.objects.len()).filter(|&o| light.lights(&frame.objects[o])) {
             add.push(
                 drawer
                     .object(o, "ForwardAdd", Some(light), shadow.as_ref())?
@@ -395,9 +405,35 @@ fn gbuffer_targets(hdr: bool) -> Vec<ColorTarget> {
     ]
 }
 
+/// The G-buffer pass's draws, one per opaque object, each marking its pixels' stencil with
+/// its layer's bit ([`LayerStencil::object_bits`], 0 included, so a nearer object's marks
+/// replace a farther one's) when some light leaves a layer out.
+fn gbuffer_draws(drawer: &mut Drawer<'_>, stencil: &LayerStencil) -> Result<Vec<Draw>, GpuError> {
+    let draws = drawer.opaque("Deferred", None)?;
+    if !stencil.any() {
+        return Ok(draws);
+    }
+    Ok(draws
+        .into_iter()
+        .zip(&drawer.frame.objects)
+        .map(|(d, o)| d.with_stencil(StencilTest::mark(stencil.object_bits(o))))
+        .collect())
+}
+
+/// The depth buffer format of the deferred path's G-buffer and Lighting passes: with the
+/// stencil when some light leaves a layer out.
+fn deferred_depth_format(stencil: &LayerStencil) -> wgpu::TextureFormat {
+    if stencil.any() {
+        DEPTH_STENCIL_FORMAT
+    } else {
+        crate::DEPTH_FORMAT
+    }
+}
+
 /// The Lighting pass's draws, one per light (the main light first, full screen; the others
 /// as their volumes where [`light_draw`] allows, else full screen; with the light's shadow
-/// keywords and `shadows`' maps), each with `shared` (the G-buffer's bindings and the camera,
+/// keywords and `shadows`' maps; passing only where the stencil holds none of the bits of the
+/// layers the light leaves out), each with `shared` (the G-buffer's bindings and the camera,
 /// however the caller binds them), and how many are volumes.
 fn lighting_draws(
     drawer: &mut Drawer<'_>,
@@ -405,6 +441,7 @@ fn lighting_draws(
     shadows: &FrameShadows,
     hdr: bool,
     shared: &Arc<[BoundResource]>,
+    stencil: &LayerStencil,
 ) -> Result<(Vec<Draw>, usize), GpuError> {
     let mut volumes = 0;
     let mut draws = Vec::with_capacity(1 + frame.lights.len());
@@ -413,13 +450,13 @@ fn lighting_draws(
         frame.main_light,
         None,
         shadows.main.as_ref(),
+        0,
     );
-    let lights = frame
-        .lights
-        .iter()
-        .zip(&shadows.lights)
-        .map(|(l, s)| (l.light_type, l.params, Some(&l.light), s.as_ref()));
-    for (light_type, params, light, shadow) in std::iter::once(main).chain(lights) {
+    let lights = frame.lights.iter().zip(&shadows.lights).map(|(l, s)| {
+        let bits = stencil.light_bits(l);
+        (l.light_type, l.params, Some(&l.light), s.as_ref(), bits)
+    });
+    for (light_type, params, light, shadow, bits) in std::iter::once(main).chain(lights) {
         let mut names = vec![light_type.keyword()];
         names.extend(shadow.map(FrameShadow::names).unwrap_or_default());
         if hdr {
@@ -444,9 +481,14 @@ fn lighting_draws(
             .with_shared(shared)
             .with_resources(resources);
         volumes += usize::from(volume.is_some());
-        draws.push(match volume {
+        let draw = match volume {
             Some(v) => over_volume(draw, "vs_volume", &v),
             None => draw,
+        };
+        draws.push(if bits == 0 {
+            draw
+        } else {
+            draw.with_stencil(StencilTest::none_of(bits))
         });
     }
     Ok((draws, volumes))
@@ -466,11 +508,14 @@ pub fn render_deferred(
 ) -> Result<PathImage, GpuError> {
     let (w, h) = (frame.width, frame.height);
     let rt3_format = rt3_format(hdr);
+    let stencil = LayerStencil::new(frame)?;
     let mut gbuffer = DrawPass::new("frame: G-buffer", w, h, gbuffer_targets(hdr));
     gbuffer.depth = true;
+    gbuffer.depth_format = deferred_depth_format(&stencil);
     let mut drawer = Drawer::new(lib, frame, hdr);
-    gbuffer.draws = drawer.opaque("Deferred", None)?;
+    gbuffer.draws = gbuffer_draws(&mut drawer, &stencil)?;
     let out = render_pass(ctx, &gbuffer)?;
+    let marks = out.stencil.unwrap_or_default();
     let g = GBufferFrame {
         depth: out.depth.unwrap_or_default(),
         targets: out.targets,
@@ -480,6 +525,7 @@ pub fn render_deferred(
     // The lighting pass tests the G-buffer's depth: a first draw writes it into the pass's
     // depth buffer (no colour), then each light draws its volume's back faces where the scene
     // lies in front of them (depth GreaterEqual), or full screen (light_volume::light_draw).
+    // The G-buffer's stencil marks come back the same way: one draw per culled layer's bit.
     let mut lighting = DrawPass::new(
         "frame: lighting",
         w,
@@ -491,6 +537,7 @@ pub fn render_deferred(
         ],
     );
     lighting.depth = true;
+    lighting.depth_format = gbuffer.depth_format;
     let depth_texture = Resource::Texture2d {
         format: wgpu::TextureFormat::R32Float,
         width: w,
@@ -498,6 +545,18 @@ pub fn render_deferred(
         data: g.depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
     };
     lighting.draws.push(depth_fill_draw(depth_texture.clone()));
+    let fills = stencil.layers().len();
+    if stencil.any() {
+        let marks = Resource::Texture2d {
+            format: wgpu::TextureFormat::R8Uint,
+            width: w,
+            height: h,
+            data: marks,
+        };
+        lighting
+            .draws
+            .extend((0..fills).map(|bit| stencil_fill_draw(marks.clone(), 1 << bit)));
+    }
     let shared: Arc<[BoundResource]> = Arc::from(vec![
         BoundResource::new(0, 0, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[0])),
         BoundResource::new(0, 1, texture(TargetFormat::Rgba8Unorm, w, h, &g.targets[1])),
@@ -509,10 +568,11 @@ pub fn render_deferred(
         BoundResource::new(0, 3, depth_texture.clone()),
         BoundResource::new(0, 4, Resource::Uniform(frame.deferred_camera())),
     ]);
-    let (draws, volumes) = lighting_draws(&mut drawer, frame, &shadows, hdr, &shared)?;
+    let (draws, volumes) = lighting_draws(&mut drawer, frame, &shadows, hdr, &shared, &stencil)?;
     lighting.draws.extend(draws);
-    // The depth fill is this harness's way to hand the G-buffer's depth to the next pass.
-    let mut draws = gbuffer.draws.len() + collects + lighting.draws.len() - 1;
+    // The depth and stencil fills are this harness's way to hand the G-buffer's depth and
+    // marks to the next pass.
+    let mut draws = gbuffer.draws.len() + collects + lighting.draws.len() - 1 - fills;
     let rt3 = render_pass(ctx, &lighting)?.targets.remove(0);
     let (lit, format) = if hdr {
         (rt3, rt3_format)
@@ -558,7 +618,10 @@ struct Terms {
     base: Vec3,
     /// The same with the main light's shadow factor's lower end.
     base_lo: Vec3,
-    /// The light each ForwardAdd draw adds (with the shadow factor's upper end).
+    /// The indices in [`FrameScene::lights`] of the lights that light the object (their
+    /// culling masks hold its layer): one ForwardAdd draw, one Lighting store, each.
+    lights: Vec<usize>,
+    /// The light each of their ForwardAdd draws adds (with the shadow factor's upper end).
     adds: Vec<Vec3>,
     /// The same with the shadow factor's lower end (an uncertain shadow tap may go either
     /// way; equal to `adds` where no tap is uncertain).
@@ -567,7 +630,7 @@ struct Terms {
     c0: Vec3,
     /// The main light's direct term.
     main: Vec3,
-    /// [`gbuffer_light_bound`] of the main light and each per-pixel light.
+    /// [`gbuffer_light_bound`] of the main light and each per-pixel light in `lights`.
     bounds: Vec<Vec3>,
 }
 
@@ -581,7 +644,8 @@ impl Terms {
     }
 }
 
-/// The reference terms of `object` at `geo`, the lights shadowed by `shadows`.
+/// The reference terms of `object` at `geo`, the lights shadowed by `shadows`; the lights
+/// whose culling mask leaves the object out add nothing, and draw nothing.
 fn terms(
     frame: &FrameScene,
     shadows: &FrameShadows,
@@ -632,17 +696,16 @@ fn terms(
         )
         .map_or(Vec3::ZERO, |c| c.truncate())
     };
-    let adds = frame
-        .lights
-        .iter()
-        .zip(&factors)
-        .map(|(l, f)| add(l, f.0.max(f.1)))
+    let lights: Vec<usize> = (0..frame.lights.len())
+        .filter(|&i| frame.lights[i].lights(object))
         .collect();
-    let adds_lo = frame
-        .lights
+    let adds = lights
         .iter()
-        .zip(&factors)
-        .map(|(l, f)| add(l, f.0.min(f.1)))
+        .map(|&i| add(&frame.lights[i], factors[i].0.max(factors[i].1)))
+        .collect();
+    let adds_lo = lights
+        .iter()
+        .map(|&i| add(&frame.lights[i], factors[i].0.min(factors[i].1)))
         .collect();
     let hdr_kw = Keywords { hdr: true, ..kw };
     let c0 = shade_deferred(&hdr_kw, mat, &tex, geo, &frame.scene)
@@ -665,22 +728,51 @@ fn terms(
         &shadowed(&frame.main_light, main_factor.1),
         LightType::Directional,
     )];
-    bounds.extend(
-        frame
-            .lights
-            .iter()
-            .zip(&factors)
-            .map(|(l, f)| bound(&shadowed(&l.params, f.0.max(f.1)), l.light_type)),
-    );
+    bounds.extend(lights.iter().map(|&i| {
+        let (l, f) = (&frame.lights[i], factors[i]);
+        bound(&shadowed(&l.params, f.0.max(f.1)), l.light_type)
+    }));
     Terms {
         main: base - c0,
         base,
         base_lo,
+        lights,
         adds,
         adds_lo,
         c0,
         bounds,
     }
+}
+
+/// Whether a light whose culling mask leaves `object` out would add more than 1 % of `total`
+/// at `geo` (unshadowed): the pixel shows that the mask is honoured.
+fn culled_light_matters(
+    frame: &FrameScene,
+    object: &FrameObject,
+    geo: &Geometry,
+    total: Vec3,
+) -> bool {
+    let kw = object.keywords;
+    let tex = object.reference_texels();
+    let (cookie, cube) = frame.cookies();
+    let cookies = Some(Cookies {
+        texture: &cookie,
+        cube,
+    });
+    frame.lights.iter().filter(|l| !l.lights(object)).any(|l| {
+        let add = shade_forward_add(
+            &kw,
+            &object.material,
+            &tex,
+            geo,
+            frame.scene.camera_position,
+            &l.params,
+            l.light_type,
+            cookies,
+        )
+        .map_or(Vec3::ZERO, |c| c.truncate());
+        add.max_element() > 0.01 * total.max_element().max(1e-3)
+    })
 }
 
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
@@ -757,6 +849,10 @@ pub struct FrameReport {
     pub uncertain: usize,
     /// Compared pixels seen through semi-transparent objects (background included).
     pub through_transparent: usize,
+    /// Compared pixels of opaque objects some light's culling mask leaves out, where that
+    /// light would add more than 1 % of the value: the pixels the deferred path's stencil
+    /// keeps it off.
+    pub culled: usize,
     /// The first mismatches (at most 20).
     pub mismatches: Vec<FrameMismatch>,
 }
@@ -799,8 +895,8 @@ impl fmt::Display for FrameReport {
         }
         writeln!(
             f,
-            "  {} pixels in a shadow, {} with a shadow tap too close to call, {} seen through semi-transparent objects",
-            self.shadowed, self.uncertain, self.through_transparent
+            "  {} pixels in a shadow, {} with a shadow tap too close to call, {} seen through semi-transparent objects, {} a light's culling mask keeps it off",
+            self.shadowed, self.uncertain, self.through_transparent, self.culled
         )?;
         for m in &self.mismatches {
             writeln!(
@@ -898,7 +994,8 @@ fn deferred_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, lights: usize) ->
 
 /// A semi-transparent surface over a pixel's sub-pixel window: the range of what its
 /// ForwardBase draw adds (`rgb` times its source factor), its alpha (the destination keeps
-/// `1 − alpha`), and the range of what each light's ForwardAdd draw adds.
+/// `1 − alpha`), and the range of what each ForwardAdd draw adds (one per light that lights
+/// the object).
 #[derive(Clone, Debug)]
 struct Layer {
     base: (Vec3, Vec3),
@@ -929,6 +1026,7 @@ fn layer(frame: &FrameScene, object: &FrameObject, geos: &[Geometry]) -> Layer {
     let adds = frame
         .lights
         .iter()
+        .filter(|l| l.lights(object))
         .map(|l| {
             let values: Vec<Vec3> = geos
                 .iter()
@@ -1058,12 +1156,9 @@ pub fn compare(
         shadowed: 0,
         uncertain: 0,
         through_transparent: 0,
+        culled: 0,
         mismatches: Vec::new(),
     };
-    // ForwardBase plus one ForwardAdd per light store into the forward target.
-    let forward_stores = 1 + frame.lights.len();
-    // The main light and each per-pixel light.
-    let deferred_lights = 1 + frame.lights.len();
     for (i, (x, y)) in frame.pixels().enumerate() {
         let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
         let (centre, centre_layers) = frame.cast_through(cx, cy);
@@ -1130,11 +1225,17 @@ pub fn compare(
         }
         let (lo, hi) = window_range(&values);
         let total = t.total();
-        for (k, add) in t.adds_lo.iter().enumerate() {
+        for (&k, add) in t.lights.iter().zip(&t.adds_lo) {
             if add.max_element() > 0.01 * total.max_element().max(1e-3) {
                 report.lit_by[k].1 += 1;
             }
         }
+        // ForwardBase plus one ForwardAdd per light that lights the object store into the
+        // forward target; deferred, the main light and those lights store into RT3 (the
+        // stencil keeps the others' draws off the object's pixels).
+        let forward_stores = 1 + t.lights.len();
+        let deferred_lights = 1 + t.lights.len();
+        report.culled += usize::from(culled_light_matters(frame, object, &hit.geometry, total));
         let fi = forward_interval(&t, lo, hi, hdr, forward_stores);
         let di = deferred_interval(&t, lo, hi, hdr, deferred_lights);
         // Forward against deferred: the deferred interval around what the forward value says

@@ -60,6 +60,9 @@ pub struct FrameObject {
     /// The one texel of each lightmap: baked, its directional map, realtime, its directional
     /// map ([`NO_LIGHTMAPS`] for an object without lightmap keywords).
     pub lightmaps: [[u8; 4]; 4],
+    /// The object's layer (0–31, Unity's `GameObject.layer`; 0 is `Default`): the lights whose
+    /// [`FrameLight::culling_mask`] leaves it out do not light it.
+    pub layer: u32,
     /// Object-to-world transform (rotation, uniform scale and translation).
     pub model: Mat4,
     /// The triangle list, three vertices per triangle.
@@ -136,6 +139,10 @@ pub struct FrameLight {
     pub params: LightParams,
     /// Its shadow, if it casts one (spot and point lights).
     pub shadow: Option<ShadowSpec>,
+    /// The layers it lights, one bit per layer (Unity's `Light.cullingMask`; every bit set:
+    /// `Everything`). The mask decides what the light illuminates; every opaque object casts
+    /// into its shadow map regardless.
+    pub culling_mask: u32,
 }
 
 impl FrameLight {
@@ -154,7 +161,28 @@ impl FrameLight {
             params: light.params()?,
             light,
             shadow: None,
+            culling_mask: u32::MAX,
         })
+    }
+
+    /// The light leaving out the objects on `layers` (its culling mask without their bits).
+    pub fn excluding(mut self, layers: &[u32]) -> FrameLight {
+        for layer in layers {
+            self.culling_mask &= !(1u32 << layer);
+        }
+        self
+    }
+
+    /// Whether the light lights `object` (its culling mask has the object's layer).
+    ///
+    /// ```
+    /// # use wgsl_variants_gpu::check::frame::FrameScene;
+    /// let frame = FrameScene::new();
+    /// let glowing = &frame.objects[2];
+    /// assert!(frame.lights[0].lights(glowing) && !frame.lights[2].lights(glowing));
+    /// ```
+    pub fn lights(&self, object: &FrameObject) -> bool {
+        self.culling_mask & (1u32 << object.layer) != 0
     }
 
     /// The light casting `shadow`.
@@ -217,6 +245,14 @@ pub struct FrameScene {
     /// ([`FrameScene::with_brdf`]; default BRDF1).
     pub brdf: Brdf,
 }
+
+/// The layer of the frame's glowing sphere, which the light culling masks of the cookie sun
+/// (drawn full screen deferred) and the cool point light (drawn as its volume) leave out.
+pub const LAYER_SHELTERED: u32 = 8;
+
+/// The layer of the frame's glass sphere, which the warm point light's culling mask leaves
+/// out (a semi-transparent object: its ForwardAdd draw for that light is skipped).
+pub const LAYER_GLASS: u32 = 9;
 
 /// The view depths where the frame's shadows start to fade and where they are gone (the
 /// shadow distance, [`FRAME_SPLITS`]'s last): the view's centre lies at depth 7.5, so the
@@ -447,7 +483,8 @@ impl FrameScene {
                 bias: 0.0,
                 soft: false,
                 split_spheres: false,
-            }),
+            })
+            .excluding(&[LAYER_GLASS]),
             light(
                 "cookie sun",
                 LightType::DirectionalCookie,
@@ -465,12 +502,14 @@ impl FrameScene {
                 bias: 0.004,
                 soft: true,
                 split_spheres: true,
-            }),
+            })
+            .excluding(&[LAYER_SHELTERED]),
             light(
                 "cool point (cube cookie)",
                 LightType::PointCookie,
                 Light::point(Vec3::new(2.3, 1.4, 0.4), 3.0, Vec3::new(0.25, 0.6, 1.3)),
-            ),
+            )
+            .excluding(&[LAYER_SHELTERED]),
             light(
                 "spot (soft shadow)",
                 LightType::Spot,
@@ -512,6 +551,7 @@ impl FrameScene {
                     NO_LIGHTMAPS[2],
                     NO_LIGHTMAPS[3],
                 ],
+                layer: 0,
                 model: Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0)),
                 vertices: floor_mesh(),
             },
@@ -539,6 +579,7 @@ impl FrameScene {
                     FLAT,
                 ],
                 lightmaps: NO_LIGHTMAPS,
+                layer: 0,
                 model: placed(Vec3::new(-1.7, 1.0 + lift, 0.2), 1.0, 0.0),
                 vertices: sphere(12, 24),
             },
@@ -569,6 +610,7 @@ impl FrameScene {
                     FLAT,
                 ],
                 lightmaps: NO_LIGHTMAPS,
+                layer: LAYER_SHELTERED,
                 model: placed(Vec3::new(1.6, 0.75 + lift, 1.2), 0.75, 0.0),
                 vertices: sphere(12, 24),
             },
@@ -604,6 +646,7 @@ impl FrameScene {
                     [120, 150, 210, 110],
                     NO_LIGHTMAPS[3],
                 ],
+                layer: 0,
                 model: placed(Vec3::new(0.3, 0.6 + lift, -1.6), 0.6, 35.0),
                 vertices: cube_mesh(),
             },
@@ -630,6 +673,7 @@ impl FrameScene {
                     FLAT,
                 ],
                 lightmaps: NO_LIGHTMAPS,
+                layer: 0,
                 model: placed(Vec3::new(2.6, 0.45 + lift, -0.9), 0.45, -20.0),
                 vertices: cube_mesh(),
             },
@@ -649,6 +693,7 @@ impl FrameScene {
                 },
                 texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
                 lightmaps: NO_LIGHTMAPS,
+                layer: LAYER_GLASS,
                 model: placed(Vec3::new(-0.5, 1.3, 1.6), 0.55, 0.0),
                 vertices: sphere(12, 24),
             },
@@ -666,6 +711,7 @@ impl FrameScene {
                 },
                 texels: [WHITE, WHITE, FLAT, WHITE, WHITE, WHITE, WHITE, FLAT],
                 lightmaps: NO_LIGHTMAPS,
+                layer: 0,
                 model: placed(Vec3::new(0.6, 1.0, 0.7), 0.45, 25.0),
                 vertices: cube_mesh(),
             },

@@ -44,8 +44,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::{
-    ADD, Drawer, FrameScene, FrameShadows, PathImage, forward_draws, forward_part, gbuffer_targets,
-    lighting_draws, rt3_format,
+    ADD, Drawer, FrameScene, FrameShadows, LayerStencil, PathImage, deferred_depth_format,
+    forward_draws, forward_part, gbuffer_draws, gbuffer_targets, lighting_draws, rt3_format,
 };
 use crate::check::gbuffer::rt3_blend;
 use crate::render::resident::{
@@ -283,9 +283,11 @@ impl ResidentFrame {
             .iter()
             .map(|t| GpuTexture::new(ctx, label, w, h, t.format.wgpu_format()))
             .collect::<Result<Vec<_>, _>>()?;
-        let depth = GpuTexture::new(ctx, label, w, h, DEPTH_FORMAT)?;
+        let stencil = LayerStencil::new(frame)?;
+        // The G-buffer pass's stencil marks stay in the attachment the Lighting pass tests.
+        let depth = GpuTexture::new(ctx, label, w, h, deferred_depth_format(&stencil))?;
         let mut drawer = Drawer::new(lib, frame, hdr);
-        let gbuffer_draws = drawer.opaque("Deferred", None)?;
+        let gbuffer_draws = gbuffer_draws(&mut drawer, &stencil)?;
         let gbuffer = prepare(
             ctx,
             &ResidentPass {
@@ -311,7 +313,8 @@ impl ResidentFrame {
             4,
             Resource::Uniform(frame.deferred_camera()),
         )]);
-        let (lights, volumes) = lighting_draws(&mut drawer, frame, shadows, hdr, &shared)?;
+        let (lights, volumes) =
+            lighting_draws(&mut drawer, frame, shadows, hdr, &shared, &stencil)?;
         let inputs = vec![
             ((0, 0), &rts[0]),
             ((0, 1), &rts[1]),
