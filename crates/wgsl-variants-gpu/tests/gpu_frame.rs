@@ -40,10 +40,11 @@ fn frame_passes(hdr: bool, brdf: Brdf) {
     // Forward: the depth pre-pass, the two directional lights' masks, ForwardBase, ForwardAdd
     // (the cookie sun and the cool point light leave out the glowing sphere).
     assert_eq!(report.forward_draws, 5 + 2 + 5 + 5 * 4 - 2 + transparent);
-    // Deferred: the G-buffer, the masks, five lights, and the final pass in LDR.
+    // Deferred: the G-buffer, the masks, five lights (the three volumes each after its
+    // stencil pre-pass), and the final pass in LDR.
     assert_eq!(
         report.deferred_draws,
-        5 + 2 + 5 + usize::from(!hdr) + transparent
+        5 + 2 + 5 + 3 + usize::from(!hdr) + transparent
     );
     // The culling masks keep two lights off the glowing sphere, where both would show.
     assert!(report.culled > 50, "{report}");

@@ -57,14 +57,19 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const DEPTH_STENCIL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32FloatStencil8;
 
 /// How a draw tests and writes the stencil bits of a pass with [`DEPTH_STENCIL_FORMAT`]
-/// (both faces alike; a failing stencil or depth test keeps the stored value).
+/// (both faces alike).
 ///
-/// The fragment passes where `(reference & read_mask) <compare> (stored & read_mask)`; where
-/// it passes both tests, `pass_op` updates the bits of `write_mask`.
+/// The fragment passes where `(reference & read_mask) <compare> (stored & read_mask)`; the
+/// operation of its outcome (stencil test failed, depth test failed, both passed) updates the
+/// bits of `write_mask`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct StencilTest {
     /// The comparison of the reference with the stored value, both masked by `read_mask`.
     pub compare: wgpu::CompareFunction,
+    /// What a fragment failing the stencil test does to the stored bits.
+    pub fail_op: wgpu::StencilOperation,
+    /// What a fragment passing the stencil test and failing the depth test does.
+    pub depth_fail_op: wgpu::StencilOperation,
     /// What a fragment passing both tests does to the stored bits.
     pub pass_op: wgpu::StencilOperation,
     /// The bits the comparison reads.
@@ -88,6 +93,8 @@ impl StencilTest {
     pub const fn mark(bits: u32) -> StencilTest {
         StencilTest {
             compare: wgpu::CompareFunction::Always,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
             pass_op: wgpu::StencilOperation::Replace,
             read_mask: 0xff,
             write_mask: 0xff,
@@ -105,6 +112,8 @@ impl StencilTest {
     pub const fn none_of(bits: u32) -> StencilTest {
         StencilTest {
             compare: wgpu::CompareFunction::Equal,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
             pass_op: wgpu::StencilOperation::Keep,
             read_mask: bits,
             write_mask: 0,
@@ -122,6 +131,8 @@ impl StencilTest {
     pub const fn set(bits: u32) -> StencilTest {
         StencilTest {
             compare: wgpu::CompareFunction::Always,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
             pass_op: wgpu::StencilOperation::Replace,
             read_mask: 0xff,
             write_mask: bits,
@@ -129,12 +140,49 @@ impl StencilTest {
         }
     }
 
+    /// Sets `bits` where the depth test fails (the other bits stay): the stencil pre-pass of
+    /// a light volume (Unity's `Internal-StencilWrite`), whose front faces fail where the
+    /// scene lies in front of the volume.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::set_where_depth_fails(0x80);
+    /// assert_eq!(t.depth_fail_op, wgpu::StencilOperation::Replace);
+    /// assert_eq!(t.pass_op, wgpu::StencilOperation::Keep);
+    /// ```
+    pub const fn set_where_depth_fails(bits: u32) -> StencilTest {
+        StencilTest {
+            depth_fail_op: wgpu::StencilOperation::Replace,
+            pass_op: wgpu::StencilOperation::Keep,
+            ..StencilTest::set(bits)
+        }
+    }
+
+    /// The same test, also clearing `bits` on every fragment it rasterizes, whatever the
+    /// outcome: a light volume's draw leaving the stencil as its pre-pass found it.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::none_of(0b1000_0011).clearing(0b1000_0000);
+    /// assert_eq!((t.read_mask, t.write_mask), (0b1000_0011, 0b1000_0000));
+    /// assert_eq!(t.fail_op, wgpu::StencilOperation::Zero);
+    /// ```
+    pub const fn clearing(self, bits: u32) -> StencilTest {
+        StencilTest {
+            fail_op: wgpu::StencilOperation::Zero,
+            depth_fail_op: wgpu::StencilOperation::Zero,
+            pass_op: wgpu::StencilOperation::Zero,
+            write_mask: bits,
+            ..self
+        }
+    }
+
     /// The pipeline's stencil state (everything but the reference).
     fn state(&self) -> wgpu::StencilState {
         let face = wgpu::StencilFaceState {
             compare: self.compare,
-            fail_op: wgpu::StencilOperation::Keep,
-            depth_fail_op: wgpu::StencilOperation::Keep,
+            fail_op: self.fail_op,
+            depth_fail_op: self.depth_fail_op,
             pass_op: self.pass_op,
         };
         wgpu::StencilState {
@@ -604,7 +652,13 @@ pub(crate) fn prepare_draws(
             .chain(&draw.resources);
         let mut resources = GpuResources::upload_pooled(ctx, dl, all, &mut pool)?;
         let (pipeline, used) = &pipelines[index];
-        for (slot, view) in views.iter().filter(|(slot, _)| used.contains(slot)) {
+        // A draw that brings its own resource for a slot keeps it (the stencil pre-pass's
+        // camera where the Lighting draws read the G-buffer).
+        let inputs: Vec<&(Slot, wgpu::TextureView)> = views
+            .iter()
+            .filter(|(slot, _)| used.contains(slot) && !resources.contains(*slot))
+            .collect();
+        for (slot, view) in inputs {
             resources.insert_view(dl, *slot, view.clone())?;
         }
         let groups = bind(ctx, dl, pipeline, used, &resources)?;

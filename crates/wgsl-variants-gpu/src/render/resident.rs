@@ -53,7 +53,8 @@ impl GpuTexture {
                 format,
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             })
         })?;
@@ -106,6 +107,9 @@ pub(crate) enum DepthUse {
     /// Loaded and never written: a later pass testing against an earlier pass's depth, which
     /// it may also bind as a texture at the same time (both uses only read).
     ReadOnly,
+    /// Depth as [`DepthUse::ReadOnly`]; the stencil loaded, written by the draws and stored
+    /// (the Lighting pass: its volumes' stencil pre-passes mark what the lights then clear).
+    ReadDepthWriteStencil,
 }
 
 /// One colour attachment of a [`ResidentPass`].
@@ -130,6 +134,11 @@ pub(crate) struct ResidentPass<'a> {
     pub(crate) depth: Option<(&'a GpuTexture, DepthUse)>,
     /// Textures bound at their slots for every draw that uses the slot.
     pub(crate) inputs: Vec<(Slot, &'a GpuTexture)>,
+    /// After the pass, the depth aspect of the depth attachment copied into this `R32Float`
+    /// texture: what a later pass samples while it writes the attachment's stencil (WebGPU
+    /// tracks a texture's uses as a whole, so a pass cannot sample the depth of the texture
+    /// whose stencil it writes).
+    pub(crate) copy_depth_to: Option<&'a GpuTexture>,
     /// The draws, in order (their own resources are uploaded once by [`prepare`]).
     pub(crate) draws: &'a [Draw],
 }
@@ -143,6 +152,17 @@ pub(crate) struct PreparedPass {
     /// Whether the depth attachment has a stencil aspect.
     stencil: bool,
     draws: PreparedDraws,
+    /// The depth copy after the pass: the attachment, a staging buffer and the target.
+    depth_copy: Option<DepthCopy>,
+}
+
+/// [`ResidentPass::copy_depth_to`], prepared: depth aspect → buffer → `R32Float` texture.
+#[derive(Debug)]
+struct DepthCopy {
+    depth: wgpu::Texture,
+    buffer: wgpu::Buffer,
+    bytes_per_row: u32,
+    target: wgpu::Texture,
 }
 
 /// Checks `pass` and prepares its draws ([`GpuError::Validation`] for a colour attachment
@@ -172,6 +192,33 @@ pub(crate) fn prepare(ctx: &GpuContext, pass: &ResidentPass<'_>) -> Result<Prepa
         .collect();
     let depth_format = pass.depth.map(|(t, _)| t.format());
     let draws = prepare_draws(ctx, &targets, depth_format, pass.draws, &views)?;
+    let depth_copy = match (pass.depth, pass.copy_depth_to) {
+        (Some((depth, _)), Some(target)) => {
+            let (w, h) = depth.size();
+            let bytes_per_row = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+            let buffer = ctx.scoped(pass.label, || {
+                ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(pass.label),
+                    size: u64::from(bytes_per_row) * u64::from(h),
+                    usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            })?;
+            Some(DepthCopy {
+                depth: depth.texture.clone(),
+                buffer,
+                bytes_per_row,
+                target: target.texture.clone(),
+            })
+        }
+        (None, Some(_)) => {
+            return Err(GpuError::Validation {
+                label: pass.label.to_owned(),
+                message: String::from("a depth copy needs a depth attachment"),
+            });
+        }
+        _ => None,
+    };
     Ok(PreparedPass {
         label: pass.label.to_owned(),
         colors: pass
@@ -188,6 +235,7 @@ pub(crate) fn prepare(ctx: &GpuContext, pass: &ResidentPass<'_>) -> Result<Prepa
         depth: pass.depth.map(|(t, use_)| (t.view.clone(), use_)),
         stencil: depth_format.is_some_and(|f| f.has_stencil_aspect()),
         draws,
+        depth_copy,
     })
 }
 
@@ -235,12 +283,18 @@ impl PreparedPass {
                         store: wgpu::StoreOp::Store,
                     }),
                     // Likewise the stencil: cleared to 0 and marked, or only tested.
-                    stencil_ops: (*use_ == DepthUse::Clear && self.stencil).then_some(
-                        wgpu::Operations {
+                    stencil_ops: match use_ {
+                        _ if !self.stencil => None,
+                        DepthUse::Clear => Some(wgpu::Operations {
                             load: wgpu::LoadOp::Clear(0),
                             store: wgpu::StoreOp::Store,
-                        },
-                    ),
+                        }),
+                        DepthUse::ReadDepthWriteStencil => Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Load,
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        DepthUse::ReadOnly => None,
+                    },
                 });
         let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&self.label),
@@ -251,5 +305,40 @@ impl PreparedPass {
             multiview_mask: None,
         });
         self.draws.record(&mut rp);
+        drop(rp);
+        if let Some(copy) = &self.depth_copy {
+            let size = copy.depth.size();
+            let layout = wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(copy.bytes_per_row),
+                rows_per_image: Some(size.height),
+            };
+            encoder.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &copy.depth,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::DepthOnly,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &copy.buffer,
+                    layout,
+                },
+                size,
+            );
+            encoder.copy_buffer_to_texture(
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &copy.buffer,
+                    layout,
+                },
+                wgpu::TexelCopyTextureInfo {
+                    texture: &copy.target,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                size,
+            );
+        }
     }
 }

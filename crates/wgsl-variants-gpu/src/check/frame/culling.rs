@@ -13,6 +13,10 @@ use crate::{CheckError, GpuError};
 /// The most layers the lights together may leave out in the deferred path.
 pub const MAX_CULLED_LAYERS: usize = 4;
 
+/// The stencil bit a light volume's pre-pass sets where the surface lies in front of the
+/// volume, and the light's draw clears again (above the four layer bits).
+pub const VOLUME_STENCIL_BIT: u32 = 1 << 7;
+
 /// Which stencil bit stands for which culled layer: bit `i` for the `i`-th layer (ascending)
 /// that some light's culling mask leaves out.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -5,8 +5,11 @@
 //!   directional light), then `standard/ForwardAdd` per object and per-pixel light, blended
 //!   One / One with `ZTest LEqual` and no depth writes;
 //! - **deferred**: `standard/Deferred` per object into RT0–RT3 and the depth buffer, then
-//!   `deferred_shading/Lighting` once per light (the main light first, `DIRECTIONAL`) from the
-//!   G-buffer and the depth, blended onto RT3, then (LDR) `deferred_final/Final`;
+//!   `deferred_shading/Lighting` once per light (the main light first, `DIRECTIONAL`; point
+//!   and spot lights as their volumes after a stencil pre-pass) from the G-buffer and the
+//!   depth, blended onto RT3, then (LDR) `deferred_final/Final`;
+//!
+//! with each light's culling mask ([`culling`]: skipped draws forward, stencil bits deferred)
 //!
 //! in HDR (`Rgba16Float`, `UNITY_HDR_ON`) and LDR (`Rgba8Unorm` forward, the 10-bit `exp2(−c)`
 //! RT3 and the final pass deferred), and compares every pixel of both with a CPU reference
@@ -40,7 +43,7 @@ use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
 
-pub use culling::{LayerStencil, MAX_CULLED_LAYERS};
+pub use culling::{LayerStencil, MAX_CULLED_LAYERS, VOLUME_STENCIL_BIT};
 pub use scene::{
     FRAME_HEIGHT, FRAME_WIDTH, FrameLight, FrameObject, FrameScene, Hit, LAYER_GLASS,
     LAYER_SHELTERED,
@@ -52,13 +55,13 @@ use super::compare::pixel;
 use super::deferred::final_pass;
 use super::gbuffer::rt3_blend;
 use super::rig::shadowed;
-use super::scene::{brdf_lut_resource, texture};
+use super::scene::{brdf_lut_resource, push_mat4, texture};
 use super::skybox::{sky_draw, stored_range, view_direction};
 use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
-use crate::light_volume::{LightDraw, light_draw};
+use crate::light_volume::{LightDraw, LightVolume, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass,
-    GpuContext, GpuError, Resource, StencilTest, TargetFormat, render_pass,
+    GpuContext, GpuError, Resource, StencilTest, TargetFormat, VertexBuffer, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
@@ -420,18 +423,32 @@ fn gbuffer_draws(drawer: &mut Drawer<'_>, stencil: &LayerStencil) -> Result<Vec<
         .collect())
 }
 
-/// The depth buffer format of the deferred path's G-buffer and Lighting passes: with the
-/// stencil when some light leaves a layer out.
-fn deferred_depth_format(stencil: &LayerStencil) -> wgpu::TextureFormat {
-    if stencil.any() {
-        DEPTH_STENCIL_FORMAT
-    } else {
-        crate::DEPTH_FORMAT
-    }
+/// The stencil pre-pass of a light drawn as `volume` (`stencil_write/StencilWrite`, Unity's
+/// `Internal-StencilWrite`): its front faces, depth test LessEqual without writes, setting
+/// [`VOLUME_STENCIL_BIT`] where the depth test fails — where the surface lies in front of the
+/// volume.
+fn stencil_pre_pass(
+    drawer: &mut Drawer<'_>,
+    frame: &FrameScene,
+    volume: &LightVolume,
+) -> Result<Draw, GpuError> {
+    let (label, wgsl) = drawer.text("stencil_write", "StencilWrite", Vec::new())?;
+    let mut camera = Vec::new();
+    push_mat4(&mut camera, frame.view_proj);
+    Ok(Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+        .depth_only()
+        .with_mesh(VertexBuffer::from_f32(&[(0, 3)], &volume.positions))
+        .with_resources(vec![BoundResource::new(0, 0, Resource::Uniform(camera))])
+        .with_cull(wgpu::Face::Back)
+        .with_depth(DepthTest {
+            compare: wgpu::CompareFunction::LessEqual,
+            write: false,
+        })
+        .with_stencil(StencilTest::set_where_depth_fails(VOLUME_STENCIL_BIT)))
 }
 
 /// The Lighting pass's draws, one per light (the main light first, full screen; the others
-/// as their volumes where [`light_draw`] allows, else full screen; with the light's shadow
+/// as their volumes, each after its stencil pre-pass, where [`light_draw`] allows, else full screen; with the light's shadow
 /// keywords and `shadows`' maps; passing only where the stencil holds none of the bits of the
 /// layers the light leaves out), each with `shared` (the G-buffer's bindings and the camera,
 /// however the caller binds them), and how many are volumes.
@@ -481,15 +498,20 @@ fn lighting_draws(
             .with_shared(shared)
             .with_resources(resources);
         volumes += usize::from(volume.is_some());
-        let draw = match volume {
-            Some(v) => over_volume(draw, "vs_volume", &v),
-            None => draw,
-        };
-        draws.push(if bits == 0 {
-            draw
-        } else {
-            draw.with_stencil(StencilTest::none_of(bits))
-        });
+        match volume {
+            Some(v) => {
+                // Unity's stencil pre-pass: the volume's front faces mark the pixels whose
+                // surface lies in front of the volume; the light skips them and clears them.
+                draws.push(stencil_pre_pass(drawer, frame, &v)?);
+                let test = StencilTest::none_of(bits | VOLUME_STENCIL_BIT);
+                draws.push(
+                    over_volume(draw, "vs_volume", &v)
+                        .with_stencil(test.clearing(VOLUME_STENCIL_BIT)),
+                );
+            }
+            None if bits != 0 => draws.push(draw.with_stencil(StencilTest::none_of(bits))),
+            None => draws.push(draw),
+        }
     }
     Ok((draws, volumes))
 }
@@ -511,7 +533,7 @@ pub fn render_deferred(
     let stencil = LayerStencil::new(frame)?;
     let mut gbuffer = DrawPass::new("frame: G-buffer", w, h, gbuffer_targets(hdr));
     gbuffer.depth = true;
-    gbuffer.depth_format = deferred_depth_format(&stencil);
+    gbuffer.depth_format = DEPTH_STENCIL_FORMAT;
     let mut drawer = Drawer::new(lib, frame, hdr);
     gbuffer.draws = gbuffer_draws(&mut drawer, &stencil)?;
     let out = render_pass(ctx, &gbuffer)?;

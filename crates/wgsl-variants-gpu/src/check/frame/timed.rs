@@ -44,8 +44,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::{
-    ADD, Drawer, FrameScene, FrameShadows, LayerStencil, PathImage, deferred_depth_format,
-    forward_draws, forward_part, gbuffer_draws, gbuffer_targets, lighting_draws, rt3_format,
+    ADD, Drawer, FrameScene, FrameShadows, LayerStencil, PathImage, forward_draws, forward_part,
+    gbuffer_draws, gbuffer_targets, lighting_draws, rt3_format,
 };
 use crate::check::gbuffer::rt3_blend;
 use crate::render::resident::{
@@ -53,7 +53,8 @@ use crate::render::resident::{
 };
 use crate::render::timing::PassTimer;
 use crate::{
-    BoundResource, DEPTH_FORMAT, Draw, GpuContext, GpuError, PassSpan, Resource, TargetFormat,
+    BoundResource, DEPTH_FORMAT, DEPTH_STENCIL_FORMAT, Draw, GpuContext, GpuError, PassSpan,
+    Resource, TargetFormat,
 };
 use wgsl_variants::Library;
 
@@ -183,6 +184,7 @@ fn forward_part_pass(
             }],
             depth: Some((depth, DepthUse::ReadOnly)),
             inputs: Vec::new(),
+            copy_depth_to: None,
             draws,
         },
     )
@@ -240,6 +242,7 @@ impl ResidentFrame {
                 }],
                 depth: Some((&depth, DepthUse::Clear)),
                 inputs: Vec::new(),
+                copy_depth_to: None,
                 draws: &base,
             },
         )?;
@@ -254,6 +257,7 @@ impl ResidentFrame {
                 }],
                 depth: Some((&depth, DepthUse::ReadOnly)),
                 inputs: Vec::new(),
+                copy_depth_to: None,
                 draws: &add,
             },
         )?;
@@ -284,8 +288,10 @@ impl ResidentFrame {
             .map(|t| GpuTexture::new(ctx, label, w, h, t.format.wgpu_format()))
             .collect::<Result<Vec<_>, _>>()?;
         let stencil = LayerStencil::new(frame)?;
-        // The G-buffer pass's stencil marks stay in the attachment the Lighting pass tests.
-        let depth = GpuTexture::new(ctx, label, w, h, deferred_depth_format(&stencil))?;
+        // The G-buffer pass's stencil marks stay in the attachment the Lighting pass tests and
+        // its volumes' pre-passes write; the lights sample a copy of its depth.
+        let depth = GpuTexture::new(ctx, label, w, h, DEPTH_STENCIL_FORMAT)?;
+        let depth_copy = GpuTexture::new(ctx, label, w, h, wgpu::TextureFormat::R32Float)?;
         let mut drawer = Drawer::new(lib, frame, hdr);
         let gbuffer_draws = gbuffer_draws(&mut drawer, &stencil)?;
         let gbuffer = prepare(
@@ -303,6 +309,7 @@ impl ResidentFrame {
                     .collect(),
                 depth: Some((&depth, DepthUse::Clear)),
                 inputs: Vec::new(),
+                copy_depth_to: Some(&depth_copy),
                 draws: &gbuffer_draws,
             },
         )?;
@@ -319,7 +326,7 @@ impl ResidentFrame {
             ((0, 0), &rts[0]),
             ((0, 1), &rts[1]),
             ((0, 2), &rts[2]),
-            ((0, 3), &depth),
+            ((0, 3), &depth_copy),
         ];
         let lighting = prepare(
             ctx,
@@ -330,12 +337,13 @@ impl ResidentFrame {
                     clear: None,
                     blend: Some(rt3_blend(hdr)),
                 }],
-                depth: Some((&depth, DepthUse::ReadOnly)),
+                depth: Some((&depth, DepthUse::ReadDepthWriteStencil)),
                 inputs,
+                copy_depth_to: None,
                 draws: &lights,
             },
         )?;
-        let counter = Counter::new(ctx, &lights, &depth, &rts)?;
+        let counter = Counter::new(ctx, &lights, (&depth, &depth_copy), &rts)?;
         let mut passes = vec![gbuffer, lighting];
         let mut rts = rts;
         let (output, format) = if hdr {
@@ -355,6 +363,7 @@ impl ResidentFrame {
                     }],
                     depth: None,
                     inputs: vec![((0, 0), &rts[3])],
+                    copy_depth_to: None,
                     draws: &draw,
                 },
             )?);
@@ -499,22 +508,28 @@ impl ResidentFrame {
 
 impl Counter {
     /// The count pass over `lights` (the Lighting draws, their shader swapped for
-    /// [`COUNT_WGSL`]) against `depth`, and the formula's bytes from the formats of `rts`
-    /// (RT0–RT3) and `depth`.
+    /// [`COUNT_WGSL`]; the volumes' stencil pre-passes as they are) against the depth-stencil
+    /// attachment `depth`, and the formula's bytes from the formats of `rts` (RT0–RT3) and of
+    /// the depth the lights sample (`sampled`).
     fn new(
         ctx: &GpuContext,
         lights: &[Draw],
-        depth: &GpuTexture,
+        (depth, sampled): (&GpuTexture, &GpuTexture),
         rts: &[GpuTexture],
     ) -> Result<Counter, GpuError> {
         let label = "lighting fragments";
         let wgsl: Arc<str> = Arc::from(COUNT_WGSL);
         let draws: Vec<Draw> = lights
             .iter()
-            .map(|d| Draw {
-                label: format!("count {}", d.label),
-                wgsl: Arc::clone(&wgsl),
-                ..d.clone()
+            .map(|d| {
+                if d.color_writes.is_empty() {
+                    return d.clone();
+                }
+                Draw {
+                    label: format!("count {}", d.label),
+                    wgsl: Arc::clone(&wgsl),
+                    ..d.clone()
+                }
             })
             .collect();
         let size = depth.size();
@@ -534,14 +549,15 @@ impl Counter {
                     clear: Some([0.0; 4]),
                     blend: Some(ADD),
                 }],
-                depth: Some((depth, DepthUse::ReadOnly)),
+                depth: Some((depth, DepthUse::ReadDepthWriteStencil)),
                 inputs: Vec::new(),
+                copy_depth_to: None,
                 draws: &draws,
             },
         )?;
         let rt3 = rts[3].texel_bytes();
         let bytes_read =
-            rts[..3].iter().map(GpuTexture::texel_bytes).sum::<u64>() + depth.texel_bytes() + rt3;
+            rts[..3].iter().map(GpuTexture::texel_bytes).sum::<u64>() + sampled.texel_bytes() + rt3;
         Ok(Counter {
             pass,
             target,
