@@ -55,7 +55,7 @@ r = json.load(open(sys.argv[1]))
 for p in r.get("passes", []):
     print(f"{p['shader']}/{p['pass']}: {p['variants_run']} variants ({p['distinct_shaders']} distinct), "
           f"{p['pixels_compared']} texels, {p['mismatches']} mismatches")
-print(f"adapter: {r.get('adapter')}; {r.get('seconds', 0):.0f} s of checking in the shards")
+print(f"adapter: {r.get('adapter')}")
 PY
 echo "merged report: $out ($(($(date +%s) - start)) s in all)"
 exit "$status"

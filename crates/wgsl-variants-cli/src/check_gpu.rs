@@ -79,7 +79,10 @@ pub fn run(ctx: &Context, args: &CheckGpuArgs) -> Result<ExitCode, Failed> {
     let report = check::run(&ctx.lib, &options).map_err(|e| match e {
         GpuError::Timeout { .. } => Failed(format!(
             "error: {e}\n  = help: a hang, or a slow first draw on a busy software adapter: \
-             rerun that selection, and raise `--timeout` if it passes slowly"
+             rerun that selection, and raise `--timeout` if it passes slowly; on lavapipe a \
+             process keeps most of a megabyte per variant it compiled, so run a large \
+             `--full` as `--shard K/N` processes and `wgsl-variants merge` their `--json` \
+             reports (the repository's scripts/check-gpu-full.sh)"
         )),
         e => Failed(format!("error: {e}")),
     })?;
