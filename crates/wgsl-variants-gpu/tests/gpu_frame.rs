@@ -46,7 +46,8 @@ fn frame_passes(hdr: bool, brdf: Brdf) {
         report.deferred_draws,
         5 + 2 + 5 + 3 + usize::from(!hdr) + transparent
     );
-    // The culling masks keep two lights off the glowing sphere, where both would show.
+    // The culling masks keep three lights (the main light one of them) off the glowing
+    // sphere, where each would show.
     assert!(report.culled > 50, "{report}");
     // The semi-transparent objects cover opaque objects and the background.
     assert!(report.through_transparent > 100, "{report}");
@@ -76,7 +77,7 @@ fn the_ldr_frame_is_the_same_forward_and_deferred() {
 /// directional light's screen-space shadow, with the floor's lightmap decoded with the wrong
 /// range (RGBM's gamma-space 5 for its linear 34.49), with the glass sphere more opaque
 /// (alpha 0.45 → 0.55), with the sky turned the wrong way, or with every light lighting every
-/// layer (the culling masks ignored) fails against the reference of the true frame, on both
+/// layer (the culling masks ignored; or only the main light's) fails against the reference of the true frame, on both
 /// paths.
 #[test]
 fn a_light_too_bright_or_missing_is_caught() {
@@ -117,6 +118,8 @@ fn a_light_too_bright_or_missing_is_caught() {
     for light in &mut unmasked.lights {
         light.culling_mask = u32::MAX;
     }
+    let mut main_unmasked = truth.clone();
+    main_unmasked.main_culling_mask = u32::MAX;
     let truth_shadows = render_shadows(&ctx, &lib, &truth).expect("shadows");
     for (what, wrong, modes) in [
         ("main light 10 % brighter", &main, &[true, false][..]),
@@ -130,6 +133,11 @@ fn a_light_too_bright_or_missing_is_caught() {
         ("glass alpha 0.55", &opaque_glass, &[true, false]),
         ("sky turned the wrong way", &sky_turned, &[true, false]),
         ("culling masks ignored", &unmasked, &[true, false]),
+        (
+            "the main light's culling mask ignored",
+            &main_unmasked,
+            &[true, false],
+        ),
     ] {
         for &hdr in modes {
             let shadows = render_shadows(&ctx, &lib, wrong).expect("shadows");

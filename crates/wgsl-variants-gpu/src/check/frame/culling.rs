@@ -40,9 +40,12 @@ impl LayerStencil {
     /// assert_eq!(stencil.light_bits(&frame.lights[2]), 0b01);
     /// assert_eq!(stencil.object_bits(&frame.objects[2]), 0b01);
     /// assert_eq!(stencil.object_bits(&frame.objects[0]), 0);
+    /// // The main light leaves it out too.
+    /// assert_eq!(stencil.mask_bits(frame.main_culling_mask), 0b01);
     /// ```
     pub fn new(frame: &FrameScene) -> Result<LayerStencil, GpuError> {
-        let culled = frame.lights.iter().fold(0u32, |c, l| c | !l.culling_mask);
+        let masks = frame.lights.iter().map(|l| l.culling_mask);
+        let culled = masks.fold(!frame.main_culling_mask, |c, m| c | !m);
         let layers: Vec<u32> = (0..32).filter(|l| culled & (1 << l) != 0).collect();
         if layers.len() > MAX_CULLED_LAYERS {
             return Err(CheckError::TooManyCulledLayers { layers }.into());
@@ -67,7 +70,13 @@ impl LayerStencil {
 
     /// The bits of the layers `light` leaves out: its draw passes where none is set.
     pub fn light_bits(&self, light: &FrameLight) -> u32 {
-        self.bits(|layer| light.culling_mask & (1 << layer) == 0)
+        self.mask_bits(light.culling_mask)
+    }
+
+    /// The bits of the layers a light with `culling_mask` leaves out (the main light's is
+    /// [`FrameScene::main_culling_mask`]).
+    pub fn mask_bits(&self, culling_mask: u32) -> u32 {
+        self.bits(|layer| culling_mask & (1 << layer) == 0)
     }
 
     fn bits(&self, take: impl Fn(u32) -> bool) -> u32 {
@@ -88,12 +97,13 @@ mod tests {
         for light in &mut frame.lights {
             light.culling_mask = u32::MAX;
         }
+        frame.main_culling_mask = u32::MAX;
         frame.lights[0].culling_mask = !0b1111;
         frame.lights[1].culling_mask = !0b0110;
         let four = LayerStencil::new(&frame).expect("four layers");
         assert_eq!(four.layers(), [0, 1, 2, 3]);
         assert_eq!(four.light_bits(&frame.lights[1]), 0b0110);
-        frame.lights[2].culling_mask = !(1 << 20);
+        frame.main_culling_mask = !(1 << 20);
         match LayerStencil::new(&frame) {
             Err(GpuError::Check(e)) => match *e {
                 CheckError::TooManyCulledLayers { layers } => {

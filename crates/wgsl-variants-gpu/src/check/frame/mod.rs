@@ -65,10 +65,11 @@ use crate::{
 };
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::brdf::{Dots, diffuse_and_specular_from_metallic};
-use wgsl_variants_shaders::reference::light::{Cookies, LightParams, LightType};
+use wgsl_variants_shaders::reference::cube::CubeFaces;
+use wgsl_variants_shaders::reference::light::{Cookie2d, Cookies, LightParams, LightType};
 use wgsl_variants_shaders::reference::surface::{
-    Geometry, Keywords, RenderingMode, shade_deferred, shade_forward, shade_forward_add, surface,
-    view_and_reflection,
+    Geometry, Keywords, RenderingMode, Scene, Texels, shade_deferred, shade_forward,
+    shade_forward_add, surface, view_and_reflection,
 };
 use wgsl_variants_shaders::reference::tolerance::{
     f16_store_error, gbuffer_light_bound, ldr_chain_range, unorm_store_error, window_offsets,
@@ -467,7 +468,7 @@ fn lighting_draws(
         frame.main_light,
         None,
         shadows.main.as_ref(),
-        0,
+        stencil.mask_bits(frame.main_culling_mask),
     );
     let lights = frame.lights.iter().zip(&shadows.lights).map(|(l, s)| {
         let bits = stencil.light_bits(l);
@@ -652,6 +653,9 @@ struct Terms {
     c0: Vec3,
     /// The main light's direct term.
     main: Vec3,
+    /// Whether the main light lights the object (its culling mask holds the object's layer):
+    /// one Lighting store more.
+    main_lit: bool,
     /// [`gbuffer_light_bound`] of the main light and each per-pixel light in `lights`.
     bounds: Vec<Vec3>,
 }
@@ -666,6 +670,71 @@ impl Terms {
     }
 }
 
+/// One object as the reference shades it in the frame: its keywords (without the
+/// G-buffer's), texels and the frame's cookies, for ForwardBase's and each light's ForwardAdd
+/// formula.
+struct Shading<'a> {
+    frame: &'a FrameScene,
+    object: &'a FrameObject,
+    kw: Keywords,
+    tex: Texels,
+    cookie: Cookie2d,
+    cube: &'a CubeFaces,
+}
+
+impl<'a> Shading<'a> {
+    fn new(frame: &'a FrameScene, object: &'a FrameObject) -> Self {
+        let (cookie, cube) = frame.cookies();
+        Shading {
+            frame,
+            object,
+            kw: Keywords {
+                hdr: false,
+                reflection_buffers: false,
+                ..object.keywords
+            },
+            tex: object.reference_texels(),
+            cookie,
+            cube,
+        }
+    }
+
+    fn cookies(&self) -> Option<Cookies<'_>> {
+        Some(Cookies {
+            texture: &self.cookie,
+            cube: self.cube,
+        })
+    }
+
+    /// ForwardBase's rgba at `geo`, the main light's shadow factor `factor` (a black main
+    /// light where its culling mask leaves the object out).
+    fn base(&self, geo: &Geometry, factor: f32) -> Vec4 {
+        let scene = self.frame.scene_for(self.object).with_main_shadow(factor);
+        self.base_in(geo, &scene)
+    }
+
+    /// ForwardBase's rgba at `geo` with `scene`'s lighting.
+    fn base_in(&self, geo: &Geometry, scene: &Scene) -> Vec4 {
+        shade_forward(&self.kw, &self.object.material, &self.tex, geo, scene).unwrap_or(Vec4::ZERO)
+    }
+
+    /// ForwardAdd's rgba at `geo` of `light` as `params` describe it (its own parameters, or
+    /// shadowed).
+    fn add(&self, geo: &Geometry, light: &FrameLight, params: &LightParams) -> Vec4 {
+        shade_forward_add(
+            &self.kw,
+            &self.object.material,
+            &self.tex,
+            geo,
+            self.frame.scene.camera_position,
+            params,
+            light.light_type,
+            self.cookies(),
+        )
+        .unwrap_or(Vec4::ZERO)
+    }
+}
+
 /// The reference terms of `object` at `geo`, the lights shadowed by `shadows`; the lights
 /// whose culling mask leaves the object out add nothing, and draw nothing.
 fn terms(
@@ -674,26 +743,13 @@ fn terms(
     object: &FrameObject,
     geo: &Geometry,
 ) -> Terms {
-    let kw = Keywords {
-        hdr: false,
-        reflection_buffers: false,
-        ..object.keywords
-    };
-    let tex = object.reference_texels();
-    let mat = &object.material;
+    let shading = Shading::new(frame, object);
+    let (kw, mat, tex) = (&shading.kw, &object.material, &shading.tex);
     let camera = frame.scene.camera_position;
-    let (cookie, cube) = frame.cookies();
-    let cookies = Some(Cookies {
-        texture: &cookie,
-        cube,
-    });
     let p = geo.world_position;
     // The frame's cutout object is kept everywhere (its alpha is above the cutoff).
     let main_factor = shadows.main.as_ref().map_or((1.0, 1.0), |s| s.received(p));
-    let base_with = |f: f32| {
-        shade_forward(&kw, mat, &tex, geo, &frame.scene.with_main_shadow(f))
-            .map_or(Vec3::ZERO, |c| c.truncate())
-    };
+    let base_with = |f: f32| shading.base(geo, f).truncate();
     let (base, base_lo) = (base_with(main_factor.1), base_with(main_factor.0));
     // One factor per light (a light without a shadow, or without a map, keeps all of it).
     let factors: Vec<(f32, f32)> = (0..frame.lights.len())
@@ -705,19 +761,8 @@ fn terms(
                 .map_or((1.0, 1.0), |s| s.received(p))
         })
         .collect();
-    let add = |l: &FrameLight, factor: f32| {
-        shade_forward_add(
-            &kw,
-            mat,
-            &tex,
-            geo,
-            camera,
-            &shadowed(&l.params, factor),
-            l.light_type,
-            cookies,
-        )
-        .map_or(Vec3::ZERO, |c| c.truncate())
-    };
+    let add =
+        |l: &FrameLight, factor: f32| shading.add(geo, l, &shadowed(&l.params, factor)).truncate();
     let lights: Vec<usize> = (0..frame.lights.len())
         .filter(|&i| frame.lights[i].lights(object))
         .collect();
@@ -729,14 +774,14 @@ fn terms(
         .iter()
         .map(|&i| add(&frame.lights[i], factors[i].0.min(factors[i].1)))
         .collect();
-    let hdr_kw = Keywords { hdr: true, ..kw };
-    let c0 = shade_deferred(&hdr_kw, mat, &tex, geo, &frame.scene)
+    let hdr_kw = Keywords { hdr: true, ..*kw };
+    let c0 = shade_deferred(&hdr_kw, mat, tex, geo, &frame.scene)
         .map_or(Vec3::ZERO, |g| g.rt3.truncate());
-    let s = surface(&kw, mat, &tex, geo);
+    let s = surface(kw, mat, tex, geo);
     let (diffuse, spec, _) = diffuse_and_specular_from_metallic(s.albedo, s.metallic);
     let (v, _) = view_and_reflection(camera, p, s.normal);
     let bound = |params: &LightParams, t: LightType| {
-        let (l, attenuation) = params.sample(t, p, cookies);
+        let (l, attenuation) = params.sample(t, p, shading.cookies());
         gbuffer_light_bound(
             kw.brdf,
             diffuse,
@@ -746,16 +791,21 @@ fn terms(
             params.color * attenuation,
         )
     };
-    let mut bounds = vec![bound(
-        &shadowed(&frame.main_light, main_factor.1),
-        LightType::Directional,
-    )];
+    let main_lit = frame.main_lights(object);
+    let mut bounds = Vec::with_capacity(1 + lights.len());
+    if main_lit {
+        bounds.push(bound(
+            &shadowed(&frame.main_light, main_factor.1),
+            LightType::Directional,
+        ));
+    }
     bounds.extend(lights.iter().map(|&i| {
         let (l, f) = (&frame.lights[i], factors[i]);
         bound(&shadowed(&l.params, f.0.max(f.1)), l.light_type)
     }));
     Terms {
         main: base - c0,
+        main_lit,
         base,
         base_lo,
         lights,
@@ -766,35 +816,27 @@ fn terms(
     }
 }
 
-/// Whether a light whose culling mask leaves `object` out would add more than 1 % of `total`
-/// at `geo` (unshadowed): the pixel shows that the mask is honoured.
+/// Whether a light whose culling mask leaves `object` out (the main light included) would
+/// add more than 1 % of `total` at `geo` (unshadowed): the pixel shows that the mask is
+/// honoured.
 fn culled_light_matters(
     frame: &FrameScene,
     object: &FrameObject,
     geo: &Geometry,
     total: Vec3,
 ) -> bool {
-    let kw = object.keywords;
-    let tex = object.reference_texels();
-    let (cookie, cube) = frame.cookies();
-    let cookies = Some(Cookies {
-        texture: &cookie,
-        cube,
-    });
-    frame.lights.iter().filter(|l| !l.lights(object)).any(|l| {
-        let add = shade_forward_add(
-            &kw,
-            &object.material,
-            &tex,
-            geo,
-            frame.scene.camera_position,
-            &l.params,
-            l.light_type,
-            cookies,
-        )
-        .map_or(Vec3::ZERO, |c| c.truncate());
-        add.max_element() > 0.01 * total.max_element().max(1e-3)
-    })
+    let shading = Shading::new(frame, object);
+    let matters = |add: Vec3| add.max_element() > 0.01 * total.max_element().max(1e-3);
+    let main = || {
+        let dark = frame.scene.with_main_shadow(0.0);
+        (shading.base_in(geo, &frame.scene) - shading.base_in(geo, &dark)).truncate()
+    };
+    (!frame.main_lights(object) && matters(main()))
+        || frame
+            .lights
+            .iter()
+            .filter(|l| !l.lights(object))
+            .any(|l| matters(shading.add(geo, l, &l.params).truncate()))
 }
 
 /// The reference colour of pixel `(x, y)` (before a target clamps it): what the ray through its
@@ -996,7 +1038,7 @@ fn forward_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, stores: usize) -> 
 fn deferred_interval(t: &Terms, lo: Vec3, hi: Vec3, hdr: bool, lights: usize) -> Interval {
     let bounds: Vec3 = t.bounds.iter().copied().sum::<Vec3>();
     if hdr {
-        let mut steps = vec![t.main];
+        let mut steps: Vec<Vec3> = t.main_lit.then_some(t.main).into_iter().collect();
         steps.extend(t.adds.iter().copied());
         let e = f16_chain(t.c0, &steps) + bounds;
         Interval {
@@ -1029,22 +1071,13 @@ struct Layer {
 /// first): the forward formulas without shadows, scaled by the blend's source factors
 /// ([`transparent_blend`]).
 fn layer(frame: &FrameScene, object: &FrameObject, geos: &[Geometry]) -> Layer {
-    let kw = object.keywords;
-    let tex = object.reference_texels();
-    let (cookie, cube) = frame.cookies();
-    let cookies = Some(Cookies {
-        texture: &cookie,
-        cube,
-    });
+    let shading = Shading::new(frame, object);
     // Fade scales the source by its alpha; Transparent's shader premultiplied it.
-    let scaled = |c: Vec4| match kw.rendering {
+    let scaled = |c: Vec4| match shading.kw.rendering {
         RenderingMode::Fade => c.truncate() * c.w,
         _ => c.truncate(),
     };
-    let base: Vec<Vec4> = geos
-        .iter()
-        .map(|g| shade_forward(&kw, &object.material, &tex, g, &frame.scene).unwrap_or(Vec4::ZERO))
-        .collect();
+    let base: Vec<Vec4> = geos.iter().map(|g| shading.base(g, 1.0)).collect();
     let adds = frame
         .lights
         .iter()
@@ -1052,19 +1085,7 @@ fn layer(frame: &FrameScene, object: &FrameObject, geos: &[Geometry]) -> Layer {
         .map(|l| {
             let values: Vec<Vec3> = geos
                 .iter()
-                .map(|g| {
-                    let c = shade_forward_add(
-                        &kw,
-                        &object.material,
-                        &tex,
-                        g,
-                        frame.scene.camera_position,
-                        &l.params,
-                        l.light_type,
-                        cookies,
-                    );
-                    scaled(c.unwrap_or(Vec4::ZERO))
-                })
+                .map(|g| scaled(shading.add(g, l, &l.params)))
                 .collect();
             window_range(&values)
         })
@@ -1253,10 +1274,10 @@ pub fn compare(
             }
         }
         // ForwardBase plus one ForwardAdd per light that lights the object store into the
-        // forward target; deferred, the main light and those lights store into RT3 (the
-        // stencil keeps the others' draws off the object's pixels).
+        // forward target; deferred, the main light (where it lights the object) and those
+        // lights store into RT3 (the stencil keeps the others' draws off the object's pixels).
         let forward_stores = 1 + t.lights.len();
-        let deferred_lights = 1 + t.lights.len();
+        let deferred_lights = usize::from(t.main_lit) + t.lights.len();
         report.culled += usize::from(culled_light_matters(frame, object, &hit.geometry, total));
         let fi = forward_interval(&t, lo, hi, hdr, forward_stores);
         let di = deferred_interval(&t, lo, hi, hdr, deferred_lights);

@@ -219,6 +219,11 @@ pub struct FrameScene {
     /// The main light's shadow (`SHADOWS_SCREEN`: ForwardBase and the deferred path's first
     /// Lighting draw read its screen-space mask).
     pub main_shadow: Option<ShadowSpec>,
+    /// The layers the main light lights, one bit per layer (as [`FrameLight::culling_mask`]):
+    /// an object it leaves out keeps its ForwardBase draw with a black main light (ambient,
+    /// probes, lightmaps and emission stay), and the deferred path's main-light draw skips
+    /// its pixels through the stencil ([`FrameScene::main_lights`]).
+    pub main_culling_mask: u32,
     /// The view depths that cut the camera's view into the directional shadows' four
     /// cascades ([`FRAME_SPLITS`]; the last is the shadow distance, where the fade ends).
     pub cascade_splits: Vec<f32>,
@@ -246,8 +251,9 @@ pub struct FrameScene {
     pub brdf: Brdf,
 }
 
-/// The layer of the frame's glowing sphere, which the light culling masks of the cookie sun
-/// (drawn full screen deferred) and the cool point light (drawn as its volume) leave out.
+/// The layer of the frame's glowing sphere, which the light culling masks of the main light
+/// and the cookie sun (drawn full screen deferred) and of the cool point light (drawn as its
+/// volume) leave out.
 pub const LAYER_SHELTERED: u32 = 8;
 
 /// The layer of the frame's glass sphere, which the warm point light's culling mask leaves
@@ -737,6 +743,7 @@ impl FrameScene {
             scene,
             main_light,
             main_light_source,
+            main_culling_mask: !(1 << LAYER_SHELTERED),
             main_shadow: Some(ShadowSpec {
                 strength: 1.0,
                 bias: 0.004,
@@ -818,11 +825,34 @@ impl FrameScene {
         self
     }
 
+    /// Whether the main light lights `object` (its culling mask has the object's layer).
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::check::frame::{FrameScene, LAYER_SHELTERED};
+    /// let frame = FrameScene::new();
+    /// let glowing = frame.objects.iter().find(|o| o.layer == LAYER_SHELTERED).unwrap();
+    /// assert!(!frame.main_lights(glowing) && frame.main_lights(&frame.objects[0]));
+    /// assert_eq!(frame.scene_for(glowing).light_color, glam::Vec3::ZERO);
+    /// ```
+    pub fn main_lights(&self, object: &FrameObject) -> bool {
+        self.main_culling_mask & (1u32 << object.layer) != 0
+    }
+
+    /// The per-frame lighting `object` is drawn with: [`FrameScene::scene`], with a black main
+    /// light where the main light's culling mask leaves the object out.
+    pub fn scene_for(&self, object: &FrameObject) -> Scene {
+        if self.main_lights(object) {
+            self.scene
+        } else {
+            self.scene.with_main_shadow(0.0)
+        }
+    }
+
     /// The standard shader's resources for drawing `object`.
     pub fn object_resources(&self, object: &FrameObject) -> Vec<BoundResource> {
         StandardBindings {
             view_proj: self.view_proj,
-            scene: &self.scene,
+            scene: &self.scene_for(object),
             material: &object.material,
             detail_st: Vec4::new(1.0, 1.0, 0.0, 0.0),
             maps: &object.maps(),
