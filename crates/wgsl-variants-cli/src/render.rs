@@ -1,12 +1,13 @@
 //! `wgsl-variants render`: the GPU check's test scene as PNG pictures (G-buffer contents, the
-//! light in RT3, the final frame), or with `--frame` the whole built-in frame forward,
-//! deferred and as the CPU reference, with the differences.
+//! light in RT3, the final frame), or with `--frame [builtin|urp]` a whole frame (Unity's
+//! built-in paths or URP's) forward, deferred and as the CPU reference, with the differences.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::frame::FrameScene;
+use wgsl_variants_gpu::check::urp_frame::UrpFrame;
 use wgsl_variants_gpu::check::{TestScene, pictures};
 
 use super::context::{Context, Failed};
@@ -29,10 +30,18 @@ pub struct RenderArgs {
         conflicts_with = "frame"
     )]
     keywords: Option<Vec<String>>,
-    /// Render the whole frame (five objects, five lights, cookies and shadows) forward and deferred, HDR and LDR,
-    /// and the CPU reference, with the forward − deferred differences (docs/shading.md §12).
-    #[arg(long)]
-    frame: bool,
+    /// Render a whole frame forward and deferred and as the CPU reference, with the
+    /// forward − deferred differences: `builtin` (the default; five objects, five lights,
+    /// cookies and shadows, HDR and LDR; docs/shading.md §12) or `urp` (URP Lit's forward
+    /// and deferred paths, HDR; docs/urp.md §12).
+    #[arg(
+        long,
+        value_enum,
+        value_name = "FRAME",
+        num_args = 0..=1,
+        default_missing_value = "builtin"
+    )]
+    frame: Option<Frame>,
     /// Folder to write the PNG files into (created if missing).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -44,15 +53,33 @@ pub struct RenderArgs {
     adapter: Option<String>,
 }
 
+/// Which frame `--frame` renders.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Frame {
+    /// Unity's built-in forward and deferred paths.
+    Builtin,
+    /// URP's forward and deferred paths.
+    Urp,
+}
+
 pub fn run(ctx: &Context, args: &RenderArgs) -> Result<ExitCode, Failed> {
-    if args.frame {
+    if let Some(frame) = args.frame {
         let gpu = GpuContext::new(args.adapter.as_deref())?;
-        let pictures = pictures::frame_pictures(&gpu, &ctx.lib, &FrameScene::new())?;
+        let (pictures, what) = match frame {
+            Frame::Builtin => (
+                pictures::frame_pictures(&gpu, &ctx.lib, &FrameScene::new())?,
+                "the frame",
+            ),
+            Frame::Urp => (
+                pictures::urp_frame_pictures(&gpu, &ctx.lib, &UrpFrame::new())?,
+                "URP's frame",
+            ),
+        };
         return write(
             ctx,
             args,
             &pictures,
-            &format!("the frame on {}", gpu.adapter_name()),
+            &format!("{what} on {}", gpu.adapter_name()),
         );
     }
     let shader = args.shader.as_deref().unwrap_or("standard");

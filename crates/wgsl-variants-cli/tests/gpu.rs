@@ -242,6 +242,53 @@ fn render_frame_writes_the_seven_pictures() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// `render --frame urp` writes URP's frame: the reference, forward, deferred and their
+/// difference; a frame that does not exist is a usage error naming the ones that do.
+#[test]
+fn render_frame_urp_writes_the_four_pictures() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args([
+            "render", "--frame", "urp", "--json", "--scale", "1", "--out",
+        ])
+        .arg(tmp.path())
+        .output()
+        .expect("run render");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let written: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = written
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "urp_frame_reference",
+            "urp_frame_forward",
+            "urp_frame_deferred",
+            "urp_frame_difference"
+        ]
+    );
+    for name in names {
+        let image = image::open(tmp.path().join(format!("{name}.png"))).unwrap();
+        assert_eq!((image.width(), image.height()), (64, 48), "{name}");
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_wgsl-variants"))
+        .args(["render", "--frame", "hdrp", "--out"])
+        .arg(tmp.path())
+        .output()
+        .expect("run render");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("builtin") && stderr.contains("urp"),
+        "{stderr}"
+    );
+}
+
 /// `render standard ForwardBase --keywords SHADOWS_SCREEN` binds the main light's screen-space
 /// mask (the check's directional light's), and the shadow darkens some pixels.
 #[test]

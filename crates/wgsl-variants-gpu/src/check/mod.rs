@@ -34,6 +34,7 @@
 //! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
+//! | [`urp_frame`] | URP's frame (five objects, a main light and three additional lights on rendering layers) through `UniversalForward` and through `UniversalGBuffer` + `stencil_deferred` (the punctual lights as their volumes after URP's stencil volume pass), every pixel against the reference and forward against deferred (the `gpu_urp_frame` test; `render --frame urp`) |
 //! | [`skybox`] | `skybox/Cubemap` (its one variant) through a wide view over five faces, their edges and a corner, HDR and LDR |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
 //! | [`kernels`] | compute shaders importing `deferred/gbuffer`, `deferred/ldr`, `deferred/probe` |
@@ -86,6 +87,7 @@ mod standard;
 pub mod urp;
 pub mod urp_caster;
 pub mod urp_forward;
+pub mod urp_frame;
 pub mod urp_lighting;
 mod volume_draw;
 pub mod volumes;

@@ -14,6 +14,7 @@ use super::scene::TestScene;
 use super::standard::{StandardOutput, standard_job};
 use super::urp::{DEFAULT_SEED, UrpColorPass, UrpScene};
 use super::urp_forward::UrpForwardScene;
+use super::urp_frame::{self, UrpFrame};
 use super::urp_lighting::{light_gbuffer, render_urp_gbuffer};
 use crate::{CheckError, GpuContext, GpuError, TargetFormat, render};
 use wgsl_variants::Library;
@@ -147,6 +148,69 @@ pub fn frame_pictures(
         ));
     }
     Ok(pictures)
+}
+
+/// URP's frame ([`super::urp_frame`]) as pictures: the CPU reference, forward and deferred
+/// (HDR, clamped to 1) and their difference (×16).
+pub fn urp_frame_pictures(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<Vec<Picture>, GpuError> {
+    let g = &frame.geometry;
+    let (w, h) = (g.width, g.height);
+    let reference = g
+        .pixels()
+        .map(|(x, y)| Ok(urp_frame::reference_rgb(frame, x, y)?.unwrap_or(Vec3::ZERO)))
+        .collect::<Result<Vec<Vec3>, GpuError>>()?;
+    let forward = urp_frame::render_urp_forward(ctx, lib, frame)?;
+    let deferred = urp_frame::render_urp_deferred(ctx, lib, frame)?;
+    let read = |bytes: &[u8], i: usize| {
+        let c = TargetFormat::Rg11b10Ufloat.decode_pixel_f32(&bytes[i * 4..i * 4 + 4]);
+        Vec3::new(c[0], c[1], c[2])
+    };
+    Ok(vec![
+        Picture::from_fn(
+            "urp_frame_reference",
+            "the CPU reference: each pixel's ray, lit by URP's forward formulas (clamped to 1)",
+            w,
+            h,
+            |i| rgb(reference[i].extend(1.0).to_array()),
+        ),
+        Picture::from_fn(
+            "urp_frame_forward",
+            &format!(
+                "forward: UniversalForward per object, {} draws (clamped to 1)",
+                forward.draws
+            ),
+            w,
+            h,
+            |i| rgb(read(&forward.bytes, i).extend(1.0).to_array()),
+        ),
+        Picture::from_fn(
+            "urp_frame_deferred",
+            &format!(
+                "deferred: UniversalGBuffer + StencilDeferred per light, {} draws (clamped to 1)",
+                deferred.draws
+            ),
+            w,
+            h,
+            |i| rgb(read(&deferred.lit, i).extend(1.0).to_array()),
+        ),
+        Picture::from_fn(
+            "urp_frame_difference",
+            "|forward − deferred| × 16",
+            w,
+            h,
+            |i| {
+                rgb(
+                    ((read(&forward.bytes, i) - read(&deferred.lit, i)).abs() * 16.0)
+                        .extend(1.0)
+                        .to_array(),
+                )
+            },
+        ),
+    ])
 }
 
 /// A picture written as a PNG file (one entry of what `render --json` prints).

@@ -21,7 +21,7 @@
 use std::collections::HashMap;
 use std::time::Instant;
 
-use glam::{Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 
 use super::compare::format_name;
 use super::coverage::{add_partners, keyword_coverage, space_size};
@@ -200,40 +200,10 @@ impl UrpScene {
         let s = &self.scene;
         let l = &self.lighting;
         let m = &self.material;
-        let mut camera = Vec::new();
-        push_mat4(&mut camera, s.view_proj);
-        push_vec4(&mut camera, l.camera_position.extend(1.0));
-        let mut lighting = Vec::new();
-        for v in [
-            l.sh_r,
-            l.sh_g,
-            l.sh_b,
-            l.main_light_dir.extend(0.0),
-            l.main_light_color.extend(1.0),
-            Vec4::new(l.shadow_attenuation, l.shadow_strength, 0.0, 0.0),
-            l.subtractive_shadow_color.extend(0.0),
-            l.glossy_environment_color.extend(0.0),
-            l.probes_occlusion,
-        ] {
-            push_vec4(&mut lighting, v);
-        }
-        let mut material = Vec::new();
-        for v in [
-            m.base_color,
-            m.spec_color.extend(0.0),
-            m.emission_color.extend(0.0),
-            Vec4::new(m.metallic, m.smoothness, m.cutoff, m.bump_scale),
-            Vec4::new(m.occlusion_strength, 0.0, 0.0, 0.0),
-        ] {
-            push_vec4(&mut material, v);
-        }
-        let mut object = Vec::new();
-        push_mat4(&mut object, s.model);
-        push_mat4(&mut object, s.normal_matrix);
-        push_vec4(&mut object, LIGHTMAP_ST);
-        for word in [RENDERING_LAYERS, 0, 0, 0] {
-            object.extend(word.to_le_bytes());
-        }
+        let camera = camera_uniform(s.view_proj, l);
+        let lighting = lighting_uniform(l);
+        let material = material_uniform(m);
+        let object = object_uniform(s.model, s.normal_matrix, LIGHTMAP_ST, RENDERING_LAYERS);
         let nearest_repeat = Resource::SamplerAddressed {
             nearest: true,
             address_mode: wgpu::AddressMode::Repeat,
@@ -290,6 +260,66 @@ impl UrpScene {
         job.vertex_count = 6;
         job
     }
+}
+
+/// `wgsl/universal/bindings.wgsl`'s `Camera`: view-projection and the camera's position.
+pub(crate) fn camera_uniform(view_proj: Mat4, l: &UrpLighting) -> Vec<u8> {
+    let mut out = Vec::new();
+    push_mat4(&mut out, view_proj);
+    push_vec4(&mut out, l.camera_position.extend(1.0));
+    out
+}
+
+/// `wgsl/universal/bindings.wgsl`'s `Lighting`.
+pub(crate) fn lighting_uniform(l: &UrpLighting) -> Vec<u8> {
+    let mut out = Vec::new();
+    for v in [
+        l.sh_r,
+        l.sh_g,
+        l.sh_b,
+        l.main_light_dir.extend(0.0),
+        l.main_light_color.extend(1.0),
+        Vec4::new(l.shadow_attenuation, l.shadow_strength, 0.0, 0.0),
+        l.subtractive_shadow_color.extend(0.0),
+        l.glossy_environment_color.extend(0.0),
+        l.probes_occlusion,
+    ] {
+        push_vec4(&mut out, v);
+    }
+    out
+}
+
+/// `wgsl/universal/bindings.wgsl`'s `Material`.
+pub(crate) fn material_uniform(m: &UrpMaterial) -> Vec<u8> {
+    let mut out = Vec::new();
+    for v in [
+        m.base_color,
+        m.spec_color.extend(0.0),
+        m.emission_color.extend(0.0),
+        Vec4::new(m.metallic, m.smoothness, m.cutoff, m.bump_scale),
+        Vec4::new(m.occlusion_strength, 0.0, 0.0, 0.0),
+    ] {
+        push_vec4(&mut out, v);
+    }
+    out
+}
+
+/// `wgsl/universal/bindings.wgsl`'s `Object`: model and normal matrices, `unity_LightmapST`,
+/// the mesh's rendering-layer mask.
+pub(crate) fn object_uniform(
+    model: Mat4,
+    normal_matrix: Mat4,
+    lightmap_st: Vec4,
+    rendering_layers: u32,
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    push_mat4(&mut out, model);
+    push_mat4(&mut out, normal_matrix);
+    push_vec4(&mut out, lightmap_st);
+    for word in [rendering_layers, 0, 0, 0] {
+        out.extend(word.to_le_bytes());
+    }
+    out
 }
 
 /// The colour targets of a `UniversalGBuffer` variant with these keywords, named for reports,

@@ -463,7 +463,7 @@ pub(crate) fn main_light_shadow<'r>(
 }
 
 /// URP's lighting blend: `One One` on colour (GBuffer3 += light), `Zero One` on alpha.
-fn add_blend() -> wgpu::BlendState {
+pub(crate) fn add_blend() -> wgpu::BlendState {
     wgpu::BlendState {
         color: wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::One,

@@ -110,14 +110,28 @@ impl StencilTest {
     /// assert_eq!((t.reference, t.read_mask, t.write_mask), (0, 0b0010, 0));
     /// ```
     pub const fn none_of(bits: u32) -> StencilTest {
+        StencilTest::equal(0, bits)
+    }
+
+    /// Draws only where the stored bits under `read_mask` equal `value` (`(stored & read_mask)
+    /// == value`), writing nothing: URP's lighting passes testing the material type the
+    /// G-buffer pass stamped.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::StencilTest;
+    /// let t = StencilTest::equal(0x20, 0x60);
+    /// assert_eq!((t.reference, t.read_mask, t.write_mask), (0x20, 0x60, 0));
+    /// assert_eq!(t.compare, wgpu::CompareFunction::Equal);
+    /// ```
+    pub const fn equal(value: u32, read_mask: u32) -> StencilTest {
         StencilTest {
             compare: wgpu::CompareFunction::Equal,
             fail_op: wgpu::StencilOperation::Keep,
             depth_fail_op: wgpu::StencilOperation::Keep,
             pass_op: wgpu::StencilOperation::Keep,
-            read_mask: bits,
+            read_mask,
             write_mask: 0,
-            reference: 0,
+            reference: value,
         }
     }
 

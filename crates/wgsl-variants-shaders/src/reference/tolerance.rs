@@ -527,6 +527,51 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
     }
 }
 
+/// Whether a URP texel read back at a pixel is acceptable for the reference texels `window`
+/// takes over the pixel's sub-pixel window ([`window_offsets`]): [`urp_texel_within`] one of
+/// them, or, for octahedral normals (whose 12-bit codes move by several steps across the
+/// window of a curved, normal-mapped surface), both codes within the window's range of codes
+/// widened by [`OCT_CODE_STEP`] and the smoothness within 1 LSB of the first's.
+///
+/// ```
+/// use wgsl_variants_shaders::reference::tolerance::urp_texel_within_window;
+/// use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
+/// let oct = |x: u32| UrpTexel::OctNormal { bytes: [x as u8, 16, 0], smoothness: 0.5 };
+/// let window = [oct(100), oct(104)];
+/// assert!(urp_texel_within_window([102, 16, 0, 128], &window));
+/// assert!(urp_texel_within_window([105, 16, 0, 128], &window));
+/// assert!(!urp_texel_within_window([106, 16, 0, 128], &window));
+/// ```
+pub fn urp_texel_within_window(got: [u8; 4], window: &[super::urp::gbuffer::UrpTexel]) -> bool {
+    use super::urp::gbuffer::UrpTexel;
+    if window.iter().any(|e| urp_texel_within(got, e)) {
+        return true;
+    }
+    let codes = |b: [u8; 3]| {
+        [
+            u32::from(b[0]) | (u32::from(b[2] & 15) << 8),
+            u32::from(b[1]) | (u32::from(b[2] >> 4) << 8),
+        ]
+    };
+    let mut hull = [(u32::MAX, 0u32); 2];
+    for e in window {
+        let UrpTexel::OctNormal { bytes, .. } = e else {
+            return false;
+        };
+        for (h, c) in hull.iter_mut().zip(codes(*bytes)) {
+            *h = (h.0.min(c), h.1.max(c));
+        }
+    }
+    let Some(UrpTexel::OctNormal { smoothness, .. }) = window.first() else {
+        return false;
+    };
+    let in_hull = hull
+        .iter()
+        .zip(codes([got[0], got[1], got[2]]))
+        .all(|(&(lo, hi), c)| c + OCT_CODE_STEP >= lo && c <= hi + OCT_CODE_STEP);
+    in_hull && unorm_within(u32::from(got[3]), *smoothness, 8)
+}
+
 /// How far from a pixel's centre (in pixels, along x and along y) the rasterizer may evaluate
 /// the attributes it interpolates for that pixel.
 ///
@@ -538,6 +583,37 @@ pub fn urp_texel_within(got: [u8; 4], expected: &super::urp::gbuffer::UrpTexel) 
 /// ([`window_range`]); a pixel whose window reaches another object is an edge pixel
 /// and is left out (counted).
 pub const SUBPIXEL_WINDOW: f32 = 1.0 / 16.0;
+
+/// What storing any value of `[lo, hi]` (per channel) into an `Rg11b10Ufloat` target may
+/// give: from [`UFLOAT_ULP`] steps below the conversion of `lo` to as many above the
+/// conversion of `hi`, decoded (steps stop at 0 and at +∞; negative values store 0). A chain
+/// of stores — URP's lights blended One/One onto GBuffer3 one after another — applies it once
+/// per store.
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants_shaders::reference::tolerance::rg11b10_store_range;
+/// let (lo, hi) = rg11b10_store_range(Vec3::splat(1.0), Vec3::splat(1.0));
+/// // One step of the 11-bit r and g (6 mantissa bits) and of the 10-bit b (5) either way.
+/// assert_eq!((lo.x, hi.x), (1.0 - 1.0 / 128.0, 1.0 + 1.0 / 64.0));
+/// assert_eq!((lo.z, hi.z), (1.0 - 1.0 / 64.0, 1.0 + 1.0 / 32.0));
+/// assert_eq!(rg11b10_store_range(Vec3::splat(-1.0), Vec3::ZERO).0, Vec3::ZERO);
+/// ```
+pub fn rg11b10_store_range(lo: Vec3, hi: Vec3) -> (Vec3, Vec3) {
+    use super::urp::ufloat::UFloat;
+    let step = UFLOAT_ULP as u16;
+    let mut out = (lo, hi);
+    for (k, format) in [UFloat::F11, UFloat::F11, UFloat::F10]
+        .into_iter()
+        .enumerate()
+    {
+        let below = format.encode(lo[k]).saturating_sub(step);
+        let above = (format.encode(hi[k]) + step).min(format.infinity_bits());
+        out.0[k] = format.decode(below);
+        out.1[k] = format.decode(above);
+    }
+    out
+}
 
 /// The pixel-space offsets of a pixel's [`SUBPIXEL_WINDOW`] where a reference is evaluated:
 /// the centre, then the eight points `±SUBPIXEL_WINDOW` away along each axis and diagonal.

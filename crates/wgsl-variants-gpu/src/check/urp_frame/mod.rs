@@ -1,0 +1,734 @@
+//! URP's frame end to end (docs/urp.md §12): one scene ([`UrpFrame`]: the built-in frame's
+//! camera and opaque objects with URP Lit materials, a main light and three additional lights
+//! on rendering layers) drawn both ways URP draws it, into the HDR camera target
+//! (`Rg11b10Ufloat`):
+//!
+//! - **forward** ([`render_urp_forward`]): `universal_lit/UniversalForward` per object, every
+//!   light per pixel (`_ADDITIONAL_LIGHTS`, `_LIGHT_LAYERS`);
+//! - **deferred** ([`render_urp_deferred`]): `universal_lit/UniversalGBuffer` per object
+//!   (octahedral normals, rendering layers; each object stamps the Lit material type into the
+//!   stencil), then `stencil_deferred`'s `DirectionalLit` for the main light, full screen,
+//!   passing only where the stencil holds the Lit material type, and `PunctualLit` per
+//!   additional light over its volume after URP's stencil volume pass (full screen where the
+//!   volume crosses the near plane), blended One/One onto GBuffer3.
+//!
+//! [`compare`] holds every pixel both ways: forward against
+//! [`wgsl_variants_shaders::reference::urp::forward::shade_forward`] over the pixel's
+//! sub-pixel window; the G-buffer's texels against
+//! [`wgsl_variants_shaders::reference::urp::gbuffer::shade_gbuffer`]; GBuffer3 after the
+//! lights against [`stencil_deferred_light`] on the G-buffer as read back (the chain of stores
+//! through [`rg11b10_store_range`]); and forward against deferred within what the G-buffer's
+//! quantization changes in the reference's light ([`UrpFrameReport`]).
+
+mod scene;
+
+use std::fmt;
+use std::sync::Arc;
+
+use glam::Vec3;
+
+pub use scene::{
+    DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameLight, UrpFrameObject,
+};
+
+use super::camera::deferred_camera;
+use super::scene::{push_mat4, texture};
+use super::urp::urp_targets;
+use super::urp_lighting::{
+    STENCIL_LIGHT, STENCIL_LIT, STENCIL_MATERIAL_MASK, STENCIL_UNLIT, add_blend,
+};
+use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
+use crate::light_volume::{LightDraw, light_draw};
+use crate::{
+    BoundResource, CheckError, ColorTarget, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass,
+    GpuContext, GpuError, Resource, StencilTest, TargetFormat, VertexBuffer, render_pass,
+};
+use wgsl_variants::Library;
+use wgsl_variants_shaders::reference::light::world_from_depth;
+use wgsl_variants_shaders::reference::surface::Geometry;
+use wgsl_variants_shaders::reference::tolerance::{
+    rg11b10_store_range, urp_texel_within_window, window_offsets, window_range,
+};
+use wgsl_variants_shaders::reference::urp::forward::{
+    MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward,
+};
+use wgsl_variants_shaders::reference::urp::gbuffer::{UrpGBufferOutput, UrpTexel, shade_gbuffer};
+use wgsl_variants_shaders::reference::urp::lighting::{
+    UrpGBufferTexel, UrpLightKind, UrpLightParams, stencil_deferred_light,
+};
+use wgsl_variants_shaders::reference::urp::ufloat::unpack_rg11b10;
+
+/// The forward pass's own keywords in the frame: every additional light per pixel, the
+/// lights' rendering layers honoured.
+pub const FORWARD_KEYWORDS: [&str; 2] = ["_ADDITIONAL_LIGHTS", "_LIGHT_LAYERS"];
+
+/// The G-buffer pass's own keywords in the frame: octahedral normals and the rendering-layers
+/// target the lighting passes read for `_LIGHT_LAYERS`.
+pub const GBUFFER_KEYWORDS: [&str; 2] = ["_GBUFFER_NORMALS_OCT", "_WRITE_RENDERING_LAYERS"];
+
+/// The camera target's format in both paths (URP's default HDR colour format; GBuffer3).
+const TARGET: TargetFormat = TargetFormat::Rg11b10Ufloat;
+
+/// The forward path's image: the camera target's bytes and the draws that made it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpForwardImage {
+    /// The `Rg11b10Ufloat` camera target, row by row.
+    pub bytes: Vec<u8>,
+    /// Draws made.
+    pub draws: usize,
+}
+
+/// The deferred path's images: the G-buffer pass's targets and depth, and GBuffer3 after the
+/// lights.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpDeferredImage {
+    /// GBuffer0–3 and the rendering layers, as the G-buffer pass left them.
+    pub gbuffer: Vec<Vec<u8>>,
+    /// The G-buffer pass's depth, one `f32` per pixel.
+    pub depth: Vec<f32>,
+    /// GBuffer3 after every light (`Rg11b10Ufloat`): the frame.
+    pub lit: Vec<u8>,
+    /// Draws made (the harness's depth and stencil hand-over not counted).
+    pub draws: usize,
+    /// Additional lights drawn as their volumes (each after its stencil volume pass).
+    pub volumes: usize,
+}
+
+/// A variant's label and composed text.
+fn text(
+    lib: &Library,
+    shader: &str,
+    pass: &str,
+    names: &[&str],
+) -> Result<(String, Arc<str>), GpuError> {
+    let variant = lib
+        .variant(shader, pass, names)
+        .map_err(|e| CheckError::lookup(format!("{shader}/{pass} {names:?}"), e))?;
+    Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
+}
+
+/// Object `o`'s draw of a `universal_lit` pass with the pass's own keywords `extra`.
+fn object_draw(
+    lib: &Library,
+    frame: &UrpFrame,
+    o: usize,
+    pass: &str,
+    extra: &[&str],
+) -> Result<Draw, GpuError> {
+    let object = &frame.geometry.objects[o];
+    let mut names = frame.objects[o].keywords.to_vec();
+    names.extend(extra);
+    let (label, wgsl) = text(lib, "universal_lit", pass, &names)?;
+    Ok(Draw::fullscreen(
+        &format!("{} {label}", object.name),
+        &wgsl,
+        "vs_main",
+        "fs_main",
+    )
+    .with_mesh(object.mesh())
+    .with_resources(frame.object_resources(o)?)
+    .with_depth(DepthTest::OPAQUE))
+}
+
+/// Renders the forward path: `UniversalForward` per object into the camera target.
+pub fn render_urp_forward(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<UrpForwardImage, GpuError> {
+    let g = &frame.geometry;
+    let mut pass = DrawPass::new(
+        "URP frame: forward",
+        g.width,
+        g.height,
+        vec![ColorTarget::new(TARGET)],
+    );
+    pass.depth = true;
+    for o in 0..g.objects.len() {
+        pass.draws.push(object_draw(
+            lib,
+            frame,
+            o,
+            "UniversalForward",
+            &FORWARD_KEYWORDS,
+        )?);
+    }
+    let draws = pass.draws.len();
+    Ok(UrpForwardImage {
+        bytes: render_pass(ctx, &pass)?.targets.remove(0),
+        draws,
+    })
+}
+
+/// URP's stencil volume pass (`StencilDeferred.shader`, "Stencil Volume"; docs/urp.md §9): a
+/// punctual light's volume, both faces, depth test LessEqual without writes; where the
+/// material type is not Unlit, each face whose depth test fails inverts StencilLight, so the
+/// pixels whose surface lies inside the volume end up marked.
+const VOLUME_MARK: StencilTest = StencilTest {
+    compare: wgpu::CompareFunction::NotEqual,
+    fail_op: wgpu::StencilOperation::Keep,
+    depth_fail_op: wgpu::StencilOperation::Invert,
+    pass_op: wgpu::StencilOperation::Keep,
+    read_mask: STENCIL_MATERIAL_MASK,
+    write_mask: STENCIL_LIGHT,
+    reference: STENCIL_UNLIT,
+};
+
+/// The punctual Lit pass over its volume: passes where StencilLight and the Lit material type
+/// are set, and zeroes StencilLight there.
+const VOLUME_LIGHT: StencilTest = StencilTest {
+    compare: wgpu::CompareFunction::Equal,
+    fail_op: wgpu::StencilOperation::Keep,
+    depth_fail_op: wgpu::StencilOperation::Keep,
+    pass_op: wgpu::StencilOperation::Zero,
+    read_mask: STENCIL_LIGHT | STENCIL_MATERIAL_MASK,
+    write_mask: STENCIL_LIGHT,
+    reference: STENCIL_LIGHT | STENCIL_LIT,
+};
+
+/// The draws of the lighting pass after the depth and stencil hand-over, and how many lights
+/// were drawn as volumes: the main light (`DirectionalLit`, `_DEFERRED_MAIN_LIGHT`) full
+/// screen where the stencil holds the Lit material type; each additional light
+/// (`PunctualLit`) as its volume after URP's stencil volume pass, or full screen like the main
+/// light where its volume crosses the near plane ([`light_draw`]).
+fn light_draws(
+    lib: &Library,
+    frame: &UrpFrame,
+    shared: &Arc<[BoundResource]>,
+) -> Result<(Vec<Draw>, usize), GpuError> {
+    let lit = StencilTest::equal(STENCIL_LIT, STENCIL_MATERIAL_MASK);
+    let common = ["_GBUFFER_NORMALS_OCT", "_LIGHT_LAYERS"];
+    let light_resource = |binding, light: &UrpLightParams| {
+        vec![BoundResource::new(
+            0,
+            binding,
+            Resource::Uniform(light.uniform()),
+        )]
+    };
+    let mut names = vec!["_DIRECTIONAL", "_DEFERRED_MAIN_LIGHT"];
+    names.extend(common);
+    let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
+    let mut draws = vec![
+        Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+            .with_shared(shared)
+            .with_resources(light_resource(7, &frame.main_light))
+            .with_stencil(lit),
+    ];
+    let (mark_label, mark_wgsl) = text(lib, "stencil_write", "StencilWrite", &[])?;
+    let mut camera = Vec::new();
+    push_mat4(&mut camera, frame.geometry.view_proj);
+    let mut volumes = 0;
+    for l in &frame.lights {
+        let mut names = vec![match l.params.kind {
+            UrpLightKind::Spot => "_SPOT",
+            _ => "_POINT",
+        }];
+        names.extend(common);
+        let (label, wgsl) = text(lib, "stencil_deferred", "PunctualLit", &names)?;
+        let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+            .with_shared(shared)
+            .with_resources(light_resource(5, &l.params));
+        let volume =
+            light_draw(&l.light, frame.geometry.view_proj).map_err(|e| GpuError::Validation {
+                label: label.clone(),
+                message: e.to_string(),
+            })?;
+        match volume {
+            LightDraw::Volume(v) => {
+                volumes += 1;
+                draws.push(
+                    Draw::fullscreen(&mark_label, &mark_wgsl, "vs_main", "fs_main")
+                        .depth_only()
+                        .with_mesh(VertexBuffer::from_f32(&[(0, 3)], &v.positions))
+                        .with_resources(vec![BoundResource::new(
+                            0,
+                            0,
+                            Resource::Uniform(camera.clone()),
+                        )])
+                        .with_depth(DepthTest {
+                            compare: wgpu::CompareFunction::LessEqual,
+                            write: false,
+                        })
+                        .with_stencil(VOLUME_MARK),
+                );
+                draws.push(over_volume(draw, "vs_volume", &v).with_stencil(VOLUME_LIGHT));
+            }
+            LightDraw::FullScreen(_) => draws.push(draw.with_stencil(lit)),
+        }
+    }
+    Ok((draws, volumes))
+}
+
+/// Renders the deferred path: the G-buffer pass (each object stamping the Lit material type
+/// into the stencil, as URP's G-buffer pass does), then the lighting pass over GBuffer3.
+pub fn render_urp_deferred(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<UrpDeferredImage, GpuError> {
+    let g = &frame.geometry;
+    let (w, h) = (g.width, g.height);
+    let targets = urp_targets(&GBUFFER_KEYWORDS)
+        .into_iter()
+        .map(|(_, t)| t.with_clear([0.0; 4]))
+        .collect();
+    let mut gbuffer = DrawPass::new("URP frame: G-buffer", w, h, targets);
+    gbuffer.depth = true;
+    gbuffer.depth_format = DEPTH_STENCIL_FORMAT;
+    // URP's G-buffer pass: `Ref` the material type, `WriteMask` the material bits, `Pass
+    // Replace`.
+    let stamp = StencilTest {
+        write_mask: STENCIL_MATERIAL_MASK,
+        ..StencilTest::set(STENCIL_LIT)
+    };
+    for o in 0..g.objects.len() {
+        gbuffer.draws.push(
+            object_draw(lib, frame, o, "UniversalGBuffer", &GBUFFER_KEYWORDS)?.with_stencil(stamp),
+        );
+    }
+    let out = render_pass(ctx, &gbuffer)?;
+    let depth = out.depth.unwrap_or_default();
+    let marks = out.stencil.unwrap_or_default();
+    let targets = out.targets;
+
+    // The lighting pass gets the G-buffer's depth and stencil marks through fill draws (this
+    // harness reads each pass back), then draws each light.
+    let mut lighting = DrawPass::new(
+        "URP frame: lighting",
+        w,
+        h,
+        vec![
+            ColorTarget::new(TARGET)
+                .with_blend(add_blend())
+                .with_initial(targets[3].clone()),
+        ],
+    );
+    lighting.depth = true;
+    lighting.depth_format = DEPTH_STENCIL_FORMAT;
+    let depth_texture = Resource::Texture2d {
+        format: wgpu::TextureFormat::R32Float,
+        width: w,
+        height: h,
+        data: depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
+    };
+    lighting.draws.push(depth_fill_draw(depth_texture.clone()));
+    lighting.draws.push(stencil_fill_draw(
+        Resource::Texture2d {
+            format: wgpu::TextureFormat::R8Uint,
+            width: w,
+            height: h,
+            data: marks,
+        },
+        STENCIL_LIT,
+    ));
+    let shared: Arc<[BoundResource]> = Arc::from(vec![
+        BoundResource::new(
+            0,
+            0,
+            texture(TargetFormat::Rgba8UnormSrgb, w, h, &targets[0]),
+        ),
+        BoundResource::new(0, 1, texture(TargetFormat::Rgba8Unorm, w, h, &targets[1])),
+        BoundResource::new(0, 2, texture(TargetFormat::Rgba8Unorm, w, h, &targets[2])),
+        BoundResource::new(0, 3, depth_texture),
+        BoundResource::new(
+            0,
+            4,
+            Resource::Uniform(deferred_camera(g.view_proj, g.scene.camera_position)),
+        ),
+        BoundResource::new(0, 6, texture(TargetFormat::R32Uint, w, h, &targets[4])),
+    ]);
+    let (light_draws, volumes) = light_draws(lib, frame, &shared)?;
+    lighting.draws.extend(light_draws);
+    let draws = gbuffer.draws.len() + lighting.draws.len() - 2;
+    let lit = render_pass(ctx, &lighting)?.targets.remove(0);
+    Ok(UrpDeferredImage {
+        gbuffer: targets,
+        depth,
+        lit,
+        draws,
+        volumes,
+    })
+}
+
+/// Which of the four judgements a pixel failed.
+pub const JUDGEMENTS: [&str; 4] = [
+    "forward vs reference",
+    "G-buffer vs reference",
+    "deferred lighting vs reference",
+    "forward vs deferred",
+];
+
+/// One compared pixel out of tolerance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpFrameMismatch {
+    /// Pixel `(x, y)`.
+    pub pixel: [u32; 2],
+    /// The object the pixel sees (`background` for none).
+    pub object: &'static str,
+    /// Index into [`JUDGEMENTS`].
+    pub judgement: usize,
+    /// The allowed interval (or, for a G-buffer texel, the reference's texels at the centre).
+    pub expected: String,
+    /// What the GPU wrote.
+    pub got: String,
+}
+
+/// The result of comparing the two paths' images with the reference.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpFrameReport {
+    /// Draws of the forward path.
+    pub forward_draws: usize,
+    /// Draws of the deferred path.
+    pub deferred_draws: usize,
+    /// Additional lights the deferred path drew as their volumes.
+    pub volumes: usize,
+    /// Pixels whose whole sub-pixel window sees one object, compared.
+    pub compared: usize,
+    /// Pixels seeing no object (both paths must leave them black).
+    pub background: usize,
+    /// Pixels left out: their window crosses a silhouette.
+    pub edges: usize,
+    /// Failures per judgement ([`JUDGEMENTS`]).
+    pub failures: [usize; 4],
+    /// Per additional light: pixels where it adds more than 1 % of the light.
+    pub lit_by: Vec<(&'static str, usize)>,
+    /// Pixels where a light that the rendering layers keep off would add more than 1 %.
+    pub layer_culled: usize,
+    /// The first mismatches, in pixel order (at most 20).
+    pub mismatches: Vec<UrpFrameMismatch>,
+}
+
+impl UrpFrameReport {
+    /// Whether every judgement held at every pixel.
+    pub fn passed(&self) -> bool {
+        self.failures.iter().all(|&f| f == 0)
+    }
+
+    fn fail(
+        &mut self,
+        pixel: [u32; 2],
+        object: &'static str,
+        judgement: usize,
+        expected: String,
+        got: String,
+    ) {
+        self.failures[judgement] += 1;
+        if self.mismatches.len() < 20 {
+            self.mismatches.push(UrpFrameMismatch {
+                pixel,
+                object,
+                judgement,
+                expected,
+                got,
+            });
+        }
+    }
+}
+
+impl fmt::Display for UrpFrameReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "URP frame: {} pixels compared, {} background, {} silhouette pixels left out; forward {} draws, deferred {} draws ({} light volumes)",
+            self.compared,
+            self.background,
+            self.edges,
+            self.forward_draws,
+            self.deferred_draws,
+            self.volumes
+        )?;
+        for (name, failures) in JUDGEMENTS.iter().zip(self.failures) {
+            writeln!(f, "  {name}: {failures} failures")?;
+        }
+        let lit: Vec<String> = self
+            .lit_by
+            .iter()
+            .map(|(name, n)| format!("{name} {n}"))
+            .collect();
+        writeln!(
+            f,
+            "  pixels lit by: {}; {} pixels a light's rendering layers keep it off",
+            lit.join(", "),
+            self.layer_culled
+        )?;
+        for m in &self.mismatches {
+            writeln!(
+                f,
+                "  ({}, {}) {}: {}: expected {}, got {}",
+                m.pixel[0], m.pixel[1], m.object, JUDGEMENTS[m.judgement], m.expected, m.got
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Renders the frame both ways and compares every pixel.
+pub fn check_urp_frame(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<UrpFrameReport, GpuError> {
+    let forward = render_urp_forward(ctx, lib, frame)?;
+    let deferred = render_urp_deferred(ctx, lib, frame)?;
+    compare(frame, &forward, &deferred)
+}
+
+/// What `UniversalForward` writes for object `o` at `geo` (black where it discards).
+fn forward_reference(
+    frame: &UrpFrame,
+    lights: &UrpForwardLights,
+    o: usize,
+    geo: &Geometry,
+) -> Vec3 {
+    let mut names = frame.objects[o].keywords.to_vec();
+    names.extend(FORWARD_KEYWORDS);
+    let k = UrpForwardKeywords::from_names(&names)
+        .expect("the URP frame's keywords are UniversalForward's");
+    shade_forward(
+        &k,
+        &frame.objects[o].material,
+        &frame.texels(o),
+        &frame.pixel(o, *geo),
+        &frame.lighting,
+        frame.environment(),
+        MainLightShadow::NONE,
+        lights,
+        Vec3::ZERO,
+    )
+    .unwrap_or(Vec3::ZERO)
+}
+
+/// The reference colour of pixel `(x, y)`: what the ray through its centre sees, lit by URP's
+/// forward formulas; `None` on the background.
+///
+/// # Errors
+/// As [`UrpFrame::forward_lights`].
+pub fn reference_rgb(frame: &UrpFrame, x: u32, y: u32) -> Result<Option<Vec3>, GpuError> {
+    let lights = frame.forward_lights()?;
+    let hit = frame.geometry.cast(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    Ok(hit.map(|h| forward_reference(frame, &lights, h.object, &h.geometry)))
+}
+
+/// The texel `i` of a target of four-byte pixels.
+fn word(bytes: &[u8], i: usize) -> [u8; 4] {
+    [
+        bytes[i * 4],
+        bytes[i * 4 + 1],
+        bytes[i * 4 + 2],
+        bytes[i * 4 + 3],
+    ]
+}
+
+/// `[lo, hi]` as text.
+fn interval(lo: Vec3, hi: Vec3) -> String {
+    format!("[{lo:.4}, {hi:.4}]")
+}
+
+/// Whether `v` lies in `[lo, hi]` on every channel.
+fn inside(v: Vec3, lo: Vec3, hi: Vec3) -> bool {
+    v.cmpge(lo).all() && v.cmple(hi).all()
+}
+
+/// The G-buffer texel the lighting pass would read if the G-buffer held the reference's exact
+/// values.
+fn exact_texel(
+    out: &UrpGBufferOutput,
+    flags: wgsl_variants_shaders::reference::urp::flags::MaterialFlags,
+) -> UrpGBufferTexel {
+    UrpGBufferTexel {
+        albedo: out.gbuffer0.truncate(),
+        flags,
+        specular: out.gbuffer1.truncate(),
+        normal: out.normal,
+        smoothness: out.smoothness,
+    }
+}
+
+/// Compares the two paths' images of `frame` with the reference, pixel by pixel.
+///
+/// # Errors
+/// [`GpuError::Check`] when a G-buffer texel's flags byte has reserved bits set (the lighting
+/// reference cannot read it).
+pub fn compare(
+    frame: &UrpFrame,
+    forward: &UrpForwardImage,
+    deferred: &UrpDeferredImage,
+) -> Result<UrpFrameReport, GpuError> {
+    let g = &frame.geometry;
+    let lights = frame.forward_lights()?;
+    let env = frame.environment();
+    let camera = frame.lighting.camera_position;
+    let inv_view_proj = g.view_proj.inverse();
+    let mut report = UrpFrameReport {
+        forward_draws: forward.draws,
+        deferred_draws: deferred.draws,
+        volumes: deferred.volumes,
+        compared: 0,
+        background: 0,
+        edges: 0,
+        failures: [0; 4],
+        lit_by: frame.lights.iter().map(|l| (l.name, 0)).collect(),
+        layer_culled: 0,
+        mismatches: Vec::new(),
+    };
+    let mut every_light: Vec<&UrpLightParams> = vec![&frame.main_light];
+    every_light.extend(frame.lights.iter().map(|l| &l.params));
+    for (i, (x, y)) in g.pixels().enumerate() {
+        let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+        let hits: Vec<_> = window_offsets()
+            .iter()
+            .map(|&(dx, dy)| g.cast(cx + f64::from(dx), cy + f64::from(dy)))
+            .collect();
+        if !hits
+            .iter()
+            .all(|h| h.map(|h| h.object) == hits[0].map(|h| h.object))
+        {
+            report.edges += 1;
+            continue;
+        }
+        let f_got = unpack_rg11b10(u32::from_le_bytes(word(&forward.bytes, i)));
+        let d_got = unpack_rg11b10(u32::from_le_bytes(word(&deferred.lit, i)));
+        let Some(hit) = hits[0] else {
+            report.background += 1;
+            // Nothing drawn: both targets keep their clear colour (the stencil keeps the
+            // lights off).
+            if f_got != Vec3::ZERO {
+                report.fail(
+                    [x, y],
+                    "background",
+                    0,
+                    "0".to_owned(),
+                    format!("{f_got:.4}"),
+                );
+            }
+            if d_got != Vec3::ZERO {
+                report.fail(
+                    [x, y],
+                    "background",
+                    2,
+                    "0".to_owned(),
+                    format!("{d_got:.4}"),
+                );
+            }
+            continue;
+        };
+        report.compared += 1;
+        let o = hit.object;
+        let name = g.objects[o].name;
+        let geos: Vec<Geometry> = hits.iter().flatten().map(|h| h.geometry).collect();
+        let material = &frame.objects[o].material;
+        let tex = frame.texels(o);
+
+        // Forward: the reference over the window, stored once.
+        let values: Vec<Vec3> = geos
+            .iter()
+            .map(|geo| forward_reference(frame, &lights, o, geo))
+            .collect();
+        let (lo, hi) = window_range(&values);
+        let (f_lo, f_hi) = rg11b10_store_range(lo, hi);
+        if !inside(f_got, f_lo, f_hi) {
+            report.fail([x, y], name, 0, interval(f_lo, f_hi), format!("{f_got:.4}"));
+        }
+
+        // The G-buffer: each target's texel against the reference at some window point.
+        let gk = frame.surface_keywords(o, &GBUFFER_KEYWORDS);
+        let outputs: Vec<UrpGBufferOutput> = geos
+            .iter()
+            .filter_map(|geo| {
+                shade_gbuffer(
+                    &gk,
+                    material,
+                    &tex,
+                    &frame.pixel(o, *geo),
+                    &frame.lighting,
+                    env,
+                )
+            })
+            .collect();
+        let expected: Vec<_> = outputs.iter().map(|out| out.texels(&gk)).collect();
+        for (t, target) in deferred.gbuffer.iter().enumerate() {
+            let got = word(target, i);
+            let window: Vec<UrpTexel> = expected.iter().map(|e| e[t]).collect();
+            if !urp_texel_within_window(got, &window) {
+                let centre = expected.first().map(|e| format!("{:?}", e[t]));
+                report.fail(
+                    [x, y],
+                    name,
+                    1,
+                    format!(
+                        "target {t}: {}",
+                        centre.unwrap_or_else(|| "discarded".to_owned())
+                    ),
+                    format!("{got:?}"),
+                );
+            }
+        }
+
+        // The lighting: GBuffer3 as stored plus each light on the texel as read back, at the
+        // position rebuilt from depth, stored after each light.
+        let texel = UrpGBufferTexel::decode(
+            word(&deferred.gbuffer[0], i),
+            word(&deferred.gbuffer[1], i),
+            word(&deferred.gbuffer[2], i),
+            true,
+        )
+        .map_err(|e| CheckError::UnknownToReference {
+            variant: "the URP frame's G-buffer".to_owned(),
+            message: format!("texel ({x}, {y}): {e}"),
+        })?;
+        let layers = u32::from_le_bytes(word(&deferred.gbuffer[4], i));
+        let stored = unpack_rg11b10(u32::from_le_bytes(word(&deferred.gbuffer[3], i)));
+        let p = world_from_depth(inv_view_proj, x, y, g.width, g.height, deferred.depth[i]);
+        let light_at = |t: &UrpGBufferTexel, p: Vec3, l: &UrpLightParams| {
+            stencil_deferred_light(t, p, camera, l, 1.0, Some(layers))
+        };
+        let (mut d_lo, mut d_hi) = (stored, stored);
+        let mut decoded_light = Vec3::ZERO;
+        for l in &every_light {
+            let add = light_at(&texel, p, l);
+            decoded_light += add;
+            (d_lo, d_hi) = rg11b10_store_range(d_lo + add, d_hi + add);
+        }
+        if !inside(d_got, d_lo, d_hi) {
+            report.fail([x, y], name, 2, interval(d_lo, d_hi), format!("{d_got:.4}"));
+        }
+
+        // Forward against deferred: what the G-buffer's quantization changes in the
+        // reference's light (the exact surface at the centre against the texel as read back),
+        // plus both intervals' widths.
+        let Some(centre) = outputs.first() else {
+            continue;
+        };
+        let exact = exact_texel(centre, gk.flags());
+        let q_point = hit.geometry.world_position;
+        let exact_light: Vec3 = every_light
+            .iter()
+            .map(|l| light_at(&exact, q_point, l))
+            .sum();
+        let quantization = (centre.gbuffer3 + exact_light - stored - decoded_light).abs();
+        let allowance = quantization + (f_hi - f_lo) + (d_hi - d_lo);
+        if !inside(d_got, f_got - allowance, f_got + allowance) {
+            report.fail(
+                [x, y],
+                name,
+                3,
+                interval(f_got - allowance, f_got + allowance),
+                format!("{d_got:.4}"),
+            );
+        }
+
+        // What the pixel shows: which additional light reaches it, and where a light's layers
+        // keep it off.
+        let total = values[0].max_element().max(1e-3);
+        for (k, l) in frame.lights.iter().enumerate() {
+            let unmasked = stencil_deferred_light(&exact, q_point, camera, &l.params, 1.0, None);
+            let matters = unmasked.max_element() > 0.01 * total;
+            if l.params.lights_layers(frame.objects[o].rendering_layers) {
+                report.lit_by[k].1 += usize::from(matters);
+            } else {
+                report.layer_culled += usize::from(matters);
+            }
+        }
+    }
+    Ok(report)
+}

@@ -1,0 +1,302 @@
+//! The URP frame's scene: the built-in frame's camera and opaque objects ([`FrameScene`]) with
+//! URP Lit materials, URP's per-frame lighting, a main light and three additional lights on
+//! rendering layers (docs/urp.md §12).
+
+use glam::{Vec3, Vec4};
+
+use super::super::frame::{FrameObject, FrameScene};
+use super::super::scene::cube_resource;
+use super::super::urp::{camera_uniform, lighting_uniform, material_uniform, object_uniform};
+use crate::{BoundResource, CheckError, GpuError, Resource};
+use wgsl_variants_shaders::reference::cube::CubeFaces;
+use wgsl_variants_shaders::reference::light::{Light, LightError};
+use wgsl_variants_shaders::reference::urp::forward::UrpForwardLights;
+use wgsl_variants_shaders::reference::urp::gbuffer::{
+    UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels,
+};
+use wgsl_variants_shaders::reference::urp::lighting::{UrpLight, UrpLightParams};
+
+/// URP's default rendering layer ("Light Layer default", bit 0): every object's but the
+/// glowing sphere's, and the one layer of the warm point light's mask.
+pub const DEFAULT_LAYER: u32 = 1;
+
+/// The glowing sphere's rendering-layer mask: layer 1 only, which the masks of the main light,
+/// the cool point light and the spot hold and the warm point light's does not.
+pub const SHELTERED_LAYERS: u32 = 1 << 1;
+
+/// The layer mask of every light but the warm point light: the default layer and the
+/// sheltered one.
+pub const EVERY_LAYER: u32 = DEFAULT_LAYER | SHELTERED_LAYERS;
+
+/// One opaque object of the URP frame: the geometry of the built-in frame's object of the same
+/// index, with a URP Lit material.
+#[derive(Clone, Debug)]
+pub struct UrpFrameObject {
+    /// The material keywords (the passes' own keywords are added per pass).
+    pub keywords: &'static [&'static str],
+    /// URP Lit's properties.
+    pub material: UrpMaterial,
+    /// The mesh's rendering-layer mask (`_LIGHT_LAYERS`).
+    pub rendering_layers: u32,
+}
+
+/// One additional (point or spot) light of the URP frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UrpFrameLight {
+    /// A name for reports.
+    pub name: &'static str,
+    /// The light as a renderer describes it.
+    pub light: Light,
+    /// What the passes read (direction, attenuation, angles, layer mask).
+    pub params: UrpLightParams,
+}
+
+/// The URP frame: geometry and camera from the built-in frame (its opaque objects, no sky and
+/// no semi-transparent objects), URP Lit materials, the per-frame lighting, the main light
+/// and the additional lights.
+#[derive(Clone, Debug)]
+pub struct UrpFrame {
+    /// Camera, size and the opaque objects' meshes ([`FrameScene::cast`] finds what a pixel
+    /// sees).
+    pub geometry: FrameScene,
+    /// One URP object per [`FrameScene::objects`] entry.
+    pub objects: Vec<UrpFrameObject>,
+    /// The per-frame lighting: ambient SH, the main light's direction and colour, the
+    /// environment colour.
+    pub lighting: UrpLighting,
+    /// The main light as `StencilDeferred`'s `DirectionalLit` reads it.
+    pub main_light: UrpLightParams,
+    /// The additional lights (at most eight: URP's per-object limit in the forward path).
+    pub lights: Vec<UrpFrameLight>,
+}
+
+/// Materials of the five objects: floor, metal sphere, glowing sphere, box, cutout box.
+fn materials() -> Vec<UrpFrameObject> {
+    let lit = |keywords, material, rendering_layers| UrpFrameObject {
+        keywords,
+        material,
+        rendering_layers,
+    };
+    vec![
+        lit(
+            &[],
+            UrpMaterial {
+                base_color: Vec4::new(0.7, 0.7, 0.65, 1.0),
+                smoothness: 0.35,
+                ..UrpMaterial::default()
+            },
+            DEFAULT_LAYER,
+        ),
+        lit(
+            &["_NORMALMAP", "_METALLICSPECGLOSSMAP"],
+            UrpMaterial {
+                smoothness: 0.9,
+                bump_scale: 0.8,
+                ..UrpMaterial::default()
+            },
+            DEFAULT_LAYER,
+        ),
+        lit(
+            &["_EMISSION", "_OCCLUSIONMAP"],
+            UrpMaterial {
+                base_color: Vec4::new(0.9, 0.95, 1.0, 1.0),
+                emission_color: Vec3::new(0.3, 0.2, 0.05),
+                smoothness: 0.6,
+                occlusion_strength: 0.7,
+                ..UrpMaterial::default()
+            },
+            SHELTERED_LAYERS,
+        ),
+        lit(
+            &["_SPECULAR_SETUP"],
+            UrpMaterial {
+                base_color: Vec4::new(0.8, 0.7, 0.9, 1.0),
+                spec_color: Vec3::new(0.25, 0.2, 0.15),
+                smoothness: 0.8,
+                ..UrpMaterial::default()
+            },
+            DEFAULT_LAYER,
+        ),
+        lit(
+            &["_ALPHATEST_ON", "_NORMALMAP"],
+            UrpMaterial {
+                base_color: Vec4::new(0.5, 0.8, 0.6, 1.0),
+                smoothness: 0.5,
+                ..UrpMaterial::default()
+            },
+            DEFAULT_LAYER,
+        ),
+    ]
+}
+
+impl UrpFrame {
+    /// The frame the checks and pictures use, at the built-in frame's size.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::check::urp_frame::UrpFrame;
+    /// let frame = UrpFrame::new();
+    /// assert_eq!(frame.objects.len(), frame.geometry.objects.len());
+    /// assert_eq!(frame.lights.len(), 3);
+    /// ```
+    pub fn new() -> UrpFrame {
+        UrpFrame::sized(
+            super::super::frame::FRAME_WIDTH,
+            super::super::frame::FRAME_HEIGHT,
+        )
+    }
+
+    /// The frame at `width × height` pixels.
+    pub fn sized(width: u32, height: u32) -> UrpFrame {
+        let mut geometry = FrameScene::sized(width, height);
+        geometry.transparent.clear();
+        geometry.sky = None;
+        let s = &geometry.scene;
+        let lighting = UrpLighting {
+            camera_position: s.camera_position,
+            sh_r: s.sh_r,
+            sh_g: s.sh_g,
+            sh_b: s.sh_b,
+            main_light_dir: s.light_dir,
+            main_light_color: s.light_color,
+            // The G-buffer pass reads these for mixed lighting only (none in this frame).
+            shadow_attenuation: 1.0,
+            shadow_strength: 1.0,
+            subtractive_shadow_color: Vec3::ZERO,
+            glossy_environment_color: Vec3::new(0.3, 0.25, 0.2),
+            probes_occlusion: Vec4::ONE,
+        };
+        let params = |light: Light, inner: f32, mask: u32| {
+            UrpLight::new(light, inner, mask)
+                .params()
+                .expect("the URP frame's lights are valid")
+        };
+        let main_light = params(
+            Light::directional(-s.light_dir, s.light_color),
+            0.0,
+            EVERY_LAYER,
+        );
+        // The built-in frame's point and spot lights (its cookie sun is a directional light,
+        // which URP's additional lights in the forward path are not).
+        let from = |name: &'static str, i: usize, inner: f32, mask: u32| {
+            let light = geometry.lights[i].light;
+            UrpFrameLight {
+                name,
+                light,
+                params: params(light, inner, mask),
+            }
+        };
+        let lights = vec![
+            from("warm point (default layer only)", 0, 0.0, DEFAULT_LAYER),
+            from("cool point", 2, 0.0, EVERY_LAYER),
+            from("spot", 3, 36.0, EVERY_LAYER),
+        ];
+        UrpFrame {
+            objects: materials(),
+            geometry,
+            lighting,
+            main_light,
+            lights,
+        }
+    }
+
+    /// The additional lights as the forward pass reads them.
+    ///
+    /// # Errors
+    /// [`GpuError::Check`] when the lights are more than URP's eight or one is directional.
+    pub fn forward_lights(&self) -> Result<UrpForwardLights, GpuError> {
+        let additional = self.lights.iter().map(|l| l.params).collect();
+        UrpForwardLights::new(self.main_light.layer_mask, additional).map_err(|e: LightError| {
+            GpuError::from(CheckError::UnknownToReference {
+                variant: "the URP frame".to_owned(),
+                message: e.to_string(),
+            })
+        })
+    }
+
+    /// The environment cube (the built-in frame's first probe cube; faces of one colour each).
+    pub fn environment(&self) -> &CubeFaces {
+        &self.geometry.scene.cubes[0]
+    }
+
+    /// Object `o`'s material keywords as the reference reads them.
+    pub fn surface_keywords(&self, o: usize, pass_keywords: &[&str]) -> UrpKeywords {
+        let mut names: Vec<&str> = self.objects[o].keywords.to_vec();
+        names.extend(pass_keywords);
+        UrpKeywords::from_names(&names).expect("the URP frame's keywords are URP Lit's")
+    }
+
+    /// Object `o`'s texels: the built-in object's one texel per map.
+    pub fn texels(&self, o: usize) -> UrpTexels {
+        let t = self.geometry.objects[o].reference_texels();
+        UrpTexels {
+            base_map: t.main_tex,
+            bump_map: t.normal_map,
+            metallic_gloss_map: t.metallic_map,
+            occlusion_map: t.occlusion_map,
+            emission_map: t.emission_map,
+            ..UrpTexels::default()
+        }
+    }
+
+    /// The per-pixel inputs of object `o` at `geometry`.
+    pub fn pixel(
+        &self,
+        o: usize,
+        geometry: wgsl_variants_shaders::reference::surface::Geometry,
+    ) -> UrpPixel {
+        UrpPixel {
+            geometry,
+            depth: 0.0,
+            rendering_layers: self.objects[o].rendering_layers,
+        }
+    }
+
+    /// Every binding of `wgsl/universal/bindings.wgsl` for object `o` (a variant binds those
+    /// it uses), plus the forward pass's `forward_lights` (group 0, binding 4).
+    ///
+    /// # Errors
+    /// As [`UrpFrame::forward_lights`].
+    pub fn object_resources(&self, o: usize) -> Result<Vec<BoundResource>, GpuError> {
+        let object: &FrameObject = &self.geometry.objects[o];
+        let urp = &self.objects[o];
+        let camera = camera_uniform(self.geometry.view_proj, &self.lighting);
+        let lighting = lighting_uniform(&self.lighting);
+        let material = material_uniform(&urp.material);
+        // One lightmap texel: any scale and offset read it.
+        let uniform = object_uniform(
+            object.model,
+            object.normal_matrix(),
+            Vec4::new(1.0, 1.0, 0.0, 0.0),
+            urp.rendering_layers,
+        );
+        let maps = object.maps();
+        Ok(vec![
+            BoundResource::new(0, 0, Resource::Uniform(camera)),
+            BoundResource::new(0, 1, Resource::Uniform(lighting)),
+            BoundResource::new(0, 2, cube_resource(self.environment())),
+            BoundResource::new(0, 3, Resource::Sampler { nearest: true }),
+            BoundResource::new(0, 4, Resource::Uniform(self.forward_lights()?.uniform())),
+            BoundResource::new(1, 0, Resource::Uniform(material)),
+            BoundResource::new(
+                1,
+                1,
+                Resource::SamplerAddressed {
+                    nearest: true,
+                    address_mode: wgpu::AddressMode::Repeat,
+                },
+            ),
+            BoundResource::new(1, 2, maps.main_tex.resource()),
+            BoundResource::new(1, 3, maps.normal_map.resource()),
+            BoundResource::new(1, 4, maps.metallic_map.resource()),
+            BoundResource::new(1, 5, maps.occlusion_map.resource()),
+            BoundResource::new(1, 6, maps.emission_map.resource()),
+            BoundResource::new(2, 0, Resource::Uniform(uniform)),
+        ])
+    }
+}
+
+impl Default for UrpFrame {
+    fn default() -> Self {
+        UrpFrame::new()
+    }
+}

@@ -1,0 +1,92 @@
+//! URP's frame forward (`UniversalForward`) and deferred (`UniversalGBuffer`, then
+//! `stencil_deferred`'s lights through the material-type stencil), every pixel against the CPU
+//! reference and forward against deferred (docs/urp.md §12).
+//!
+//! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
+
+mod common;
+
+use wgsl_variants_gpu::GpuContext;
+use wgsl_variants_gpu::check::urp_frame::{
+    UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward,
+};
+use wgsl_variants_shaders::reference::light::LightShape;
+
+/// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
+fn context() -> Option<GpuContext> {
+    common::gpu::or_skip(
+        GpuContext::new(common::gpu::adapter_filter().as_deref()),
+        "GPU context",
+    )
+}
+
+#[test]
+fn the_urp_frame_matches_the_reference_both_ways() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
+    let frame = UrpFrame::new();
+    let report = check_urp_frame(&ctx, &lib, &frame).expect("the URP frame renders");
+    println!("{report}");
+    assert!(report.passed(), "{report}");
+    // Most of the frame is surface, not silhouette.
+    assert!(report.compared > 2000, "{report}");
+    assert!(report.edges < report.compared / 5, "{report}");
+    // Forward: one draw per object. Deferred: one per object, then the main light, and the
+    // three additional lights as their volumes, each after its stencil volume pass.
+    assert_eq!(report.forward_draws, 5, "{report}");
+    assert_eq!(report.volumes, 3, "{report}");
+    assert_eq!(report.deferred_draws, 5 + 1 + 2 * 3, "{report}");
+    // Every additional light shows, and the warm point light's layers keep it off the
+    // glowing sphere where it would show.
+    for (name, lit) in &report.lit_by {
+        assert!(*lit > 50, "{name} lights {lit} pixels\n{report}");
+    }
+    assert!(report.layer_culled > 20, "{report}");
+}
+
+/// The frame rendered with a fault, compared with the reference of the true frame: a light
+/// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
+/// on every layer) — each fails on both paths; a light volume too small fails deferred only.
+#[test]
+fn a_wrong_light_is_caught_both_ways() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
+    let truth = UrpFrame::new();
+    let mut brighter = truth.clone();
+    brighter.lights[2].params.color *= 1.25;
+    let mut no_main = truth.clone();
+    no_main.main_light.color = glam::Vec3::ZERO;
+    no_main.lighting.main_light_color = glam::Vec3::ZERO;
+    let mut unlayered = truth.clone();
+    unlayered.lights[0].params.layer_mask = u32::MAX;
+    for (what, wrong) in [
+        ("spot 25 % brighter", &brighter),
+        ("no main light", &no_main),
+        ("rendering layers ignored", &unlayered),
+    ] {
+        let forward = render_urp_forward(&ctx, &lib, wrong).expect("forward");
+        let deferred = render_urp_deferred(&ctx, &lib, wrong).expect("deferred");
+        let report = compare(&truth, &forward, &deferred).expect("compare");
+        assert!(
+            report.failures[0] > 0 && report.failures[2] > 0,
+            "{what}: not caught\n{report}"
+        );
+    }
+    // The warm point light's volume built for half its range: the deferred path's light stops
+    // at the volume, the forward path is right.
+    let mut small = truth.clone();
+    if let LightShape::Point { range, .. } = &mut small.lights[0].light.shape {
+        *range *= 0.5;
+    }
+    let forward = render_urp_forward(&ctx, &lib, &small).expect("forward");
+    let deferred = render_urp_deferred(&ctx, &lib, &small).expect("deferred");
+    let report = compare(&truth, &forward, &deferred).expect("compare");
+    assert!(
+        report.failures[0] == 0 && report.failures[2] > 0 && report.failures[3] > 0,
+        "a light volume half its size: not caught\n{report}"
+    );
+}
