@@ -8,7 +8,7 @@ mod common;
 
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::urp_frame::{
-    UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward,
+    UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward, render_urp_shadow,
 };
 use wgsl_variants_shaders::reference::light::LightShape;
 
@@ -44,11 +44,14 @@ fn the_urp_frame_matches_the_reference_both_ways() {
         assert!(*lit > 50, "{name} lights {lit} pixels\n{report}");
     }
     assert!(report.layer_culled > 20, "{report}");
+    // The main light's shadow falls on the surfaces in view, mostly clear of its edges.
+    assert!(report.shadowed > 50, "{report}");
+    assert!(report.uncertain < report.compared / 20, "{report}");
 }
 
 /// The frame rendered with a fault, compared with the reference of the true frame: a light
 /// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
-/// on every layer) — each fails on both paths; a light volume too small fails deferred only.
+/// on every layer), the main light's shadow missing — each fails on both paths; a light volume too small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
     let Some(ctx) = context() else {
@@ -56,6 +59,7 @@ fn a_wrong_light_is_caught_both_ways() {
     };
     let lib = wgsl_variants_shaders::library().expect("bundled library");
     let truth = UrpFrame::new();
+    let truth_shadow = render_urp_shadow(&ctx, &lib, &truth).expect("shadow");
     let mut brighter = truth.clone();
     brighter.lights[2].params.color *= 1.25;
     let mut no_main = truth.clone();
@@ -63,14 +67,18 @@ fn a_wrong_light_is_caught_both_ways() {
     no_main.lighting.main_light_color = glam::Vec3::ZERO;
     let mut unlayered = truth.clone();
     unlayered.lights[0].params.layer_mask = u32::MAX;
+    let mut unshadowed = truth.clone();
+    unshadowed.main_shadow = None;
     for (what, wrong) in [
         ("spot 25 % brighter", &brighter),
         ("no main light", &no_main),
         ("rendering layers ignored", &unlayered),
+        ("no main-light shadow", &unshadowed),
     ] {
-        let forward = render_urp_forward(&ctx, &lib, wrong).expect("forward");
-        let deferred = render_urp_deferred(&ctx, &lib, wrong).expect("deferred");
-        let report = compare(&truth, &forward, &deferred).expect("compare");
+        let shadow = render_urp_shadow(&ctx, &lib, wrong).expect("shadow");
+        let forward = render_urp_forward(&ctx, &lib, wrong, shadow.as_ref()).expect("forward");
+        let deferred = render_urp_deferred(&ctx, &lib, wrong, shadow.as_ref()).expect("deferred");
+        let report = compare(&truth, truth_shadow.as_ref(), &forward, &deferred).expect("compare");
         assert!(
             report.failures[0] > 0 && report.failures[2] > 0,
             "{what}: not caught\n{report}"
@@ -82,9 +90,10 @@ fn a_wrong_light_is_caught_both_ways() {
     if let LightShape::Point { range, .. } = &mut small.lights[0].light.shape {
         *range *= 0.5;
     }
-    let forward = render_urp_forward(&ctx, &lib, &small).expect("forward");
-    let deferred = render_urp_deferred(&ctx, &lib, &small).expect("deferred");
-    let report = compare(&truth, &forward, &deferred).expect("compare");
+    let forward = render_urp_forward(&ctx, &lib, &small, truth_shadow.as_ref()).expect("forward");
+    let deferred =
+        render_urp_deferred(&ctx, &lib, &small, truth_shadow.as_ref()).expect("deferred");
+    let report = compare(&truth, truth_shadow.as_ref(), &forward, &deferred).expect("compare");
     assert!(
         report.failures[0] == 0 && report.failures[2] > 0 && report.failures[3] > 0,
         "a light volume half its size: not caught\n{report}"

@@ -159,12 +159,14 @@ pub fn urp_frame_pictures(
 ) -> Result<Vec<Picture>, GpuError> {
     let g = &frame.geometry;
     let (w, h) = (g.width, g.height);
+    let shadow = urp_frame::render_urp_shadow(ctx, lib, frame)?;
+    let shadow = shadow.as_ref();
     let reference = g
         .pixels()
-        .map(|(x, y)| Ok(urp_frame::reference_rgb(frame, x, y)?.unwrap_or(Vec3::ZERO)))
+        .map(|(x, y)| Ok(urp_frame::reference_rgb(frame, shadow, x, y)?.unwrap_or(Vec3::ZERO)))
         .collect::<Result<Vec<Vec3>, GpuError>>()?;
-    let forward = urp_frame::render_urp_forward(ctx, lib, frame)?;
-    let deferred = urp_frame::render_urp_deferred(ctx, lib, frame)?;
+    let forward = urp_frame::render_urp_forward(ctx, lib, frame, shadow)?;
+    let deferred = urp_frame::render_urp_deferred(ctx, lib, frame, shadow)?;
     let read = |bytes: &[u8], i: usize| {
         let c = TargetFormat::Rg11b10Ufloat.decode_pixel_f32(&bytes[i * 4..i * 4 + 4]);
         Vec3::new(c[0], c[1], c[2])

@@ -1,7 +1,7 @@
 //! URP's frame end to end (docs/urp.md §12): one scene ([`UrpFrame`]: the built-in frame's
-//! camera and opaque objects with URP Lit materials, a main light and three additional lights
-//! on rendering layers) drawn both ways URP draws it, into the HDR camera target
-//! (`Rg11b10Ufloat`):
+//! camera and opaque objects with URP Lit materials, a main light with its soft shadow and
+//! three additional lights on rendering layers) drawn both ways URP draws it, into the HDR
+//! camera target (`Rg11b10Ufloat`), after the main light's map ([`render_urp_shadow`]):
 //!
 //! - **forward** ([`render_urp_forward`]): `universal_lit/UniversalForward` per object, every
 //!   light per pixel (`_ADDITIONAL_LIGHTS`, `_LIGHT_LAYERS`);
@@ -21,6 +21,7 @@
 //! quantization changes in the reference's light ([`UrpFrameReport`]).
 
 mod scene;
+mod shadow;
 
 use std::fmt;
 use std::sync::Arc;
@@ -30,6 +31,7 @@ use glam::Vec3;
 pub use scene::{
     DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameLight, UrpFrameObject,
 };
+pub use shadow::{MAIN_SHADOW_MAP_SIZE, UrpFrameShadow, UrpShadowSpec, render_urp_shadow};
 
 use super::camera::deferred_camera;
 use super::scene::{push_mat4, texture};
@@ -107,17 +109,24 @@ fn text(
     Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
 }
 
-/// Object `o`'s draw of a `universal_lit` pass with the pass's own keywords `extra`.
+/// Object `o`'s draw of a `universal_lit` pass with the pass's own keywords `extra`, and the
+/// main light's `shadow` (the forward pass's receivers).
 fn object_draw(
     lib: &Library,
     frame: &UrpFrame,
     o: usize,
     pass: &str,
     extra: &[&str],
+    shadow: Option<&UrpFrameShadow>,
 ) -> Result<Draw, GpuError> {
     let object = &frame.geometry.objects[o];
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(extra);
+    let mut resources = frame.object_resources(o)?;
+    if let Some(s) = shadow {
+        names.extend(s.keywords());
+        resources.extend(s.resources());
+    }
     let (label, wgsl) = text(lib, "universal_lit", pass, &names)?;
     Ok(Draw::fullscreen(
         &format!("{} {label}", object.name),
@@ -126,15 +135,17 @@ fn object_draw(
         "fs_main",
     )
     .with_mesh(object.mesh())
-    .with_resources(frame.object_resources(o)?)
+    .with_resources(resources)
     .with_depth(DepthTest::OPAQUE))
 }
 
-/// Renders the forward path: `UniversalForward` per object into the camera target.
+/// Renders the forward path: `UniversalForward` per object into the camera target, reading
+/// the main light's `shadow` ([`render_urp_shadow`]).
 pub fn render_urp_forward(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
+    shadow: Option<&UrpFrameShadow>,
 ) -> Result<UrpForwardImage, GpuError> {
     let g = &frame.geometry;
     let mut pass = DrawPass::new(
@@ -151,6 +162,7 @@ pub fn render_urp_forward(
             o,
             "UniversalForward",
             &FORWARD_KEYWORDS,
+            shadow,
         )?);
     }
     let draws = pass.draws.len();
@@ -194,6 +206,7 @@ const VOLUME_LIGHT: StencilTest = StencilTest {
 fn light_draws(
     lib: &Library,
     frame: &UrpFrame,
+    shadow: Option<&UrpFrameShadow>,
     shared: &Arc<[BoundResource]>,
 ) -> Result<(Vec<Draw>, usize), GpuError> {
     let lit = StencilTest::equal(STENCIL_LIT, STENCIL_MATERIAL_MASK);
@@ -207,11 +220,16 @@ fn light_draws(
     };
     let mut names = vec!["_DIRECTIONAL", "_DEFERRED_MAIN_LIGHT"];
     names.extend(common);
+    let mut main_resources = light_resource(7, &frame.main_light);
+    if let Some(s) = shadow {
+        names.extend(s.keywords());
+        main_resources.extend(s.resources());
+    }
     let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
     let mut draws = vec![
         Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
             .with_shared(shared)
-            .with_resources(light_resource(7, &frame.main_light))
+            .with_resources(main_resources)
             .with_stencil(lit),
     ];
     let (mark_label, mark_wgsl) = text(lib, "stencil_write", "StencilWrite", &[])?;
@@ -260,11 +278,13 @@ fn light_draws(
 }
 
 /// Renders the deferred path: the G-buffer pass (each object stamping the Lit material type
-/// into the stencil, as URP's G-buffer pass does), then the lighting pass over GBuffer3.
+/// into the stencil, as URP's G-buffer pass does), then the lighting pass over GBuffer3, the
+/// main light reading its `shadow` ([`render_urp_shadow`]).
 pub fn render_urp_deferred(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
+    shadow: Option<&UrpFrameShadow>,
 ) -> Result<UrpDeferredImage, GpuError> {
     let g = &frame.geometry;
     let (w, h) = (g.width, g.height);
@@ -283,7 +303,8 @@ pub fn render_urp_deferred(
     };
     for o in 0..g.objects.len() {
         gbuffer.draws.push(
-            object_draw(lib, frame, o, "UniversalGBuffer", &GBUFFER_KEYWORDS)?.with_stencil(stamp),
+            object_draw(lib, frame, o, "UniversalGBuffer", &GBUFFER_KEYWORDS, None)?
+                .with_stencil(stamp),
         );
     }
     let out = render_pass(ctx, &gbuffer)?;
@@ -337,7 +358,7 @@ pub fn render_urp_deferred(
         ),
         BoundResource::new(0, 6, texture(TargetFormat::R32Uint, w, h, &targets[4])),
     ]);
-    let (light_draws, volumes) = light_draws(lib, frame, &shared)?;
+    let (light_draws, volumes) = light_draws(lib, frame, shadow, &shared)?;
     lighting.draws.extend(light_draws);
     let draws = gbuffer.draws.len() + lighting.draws.len() - 2;
     let lit = render_pass(ctx, &lighting)?.targets.remove(0);
@@ -394,6 +415,11 @@ pub struct UrpFrameReport {
     pub lit_by: Vec<(&'static str, usize)>,
     /// Pixels where a light that the rendering layers keep off would add more than 1 %.
     pub layer_culled: usize,
+    /// Compared pixels in the main light's shadow (some of its light blocked).
+    pub shadowed: usize,
+    /// Of those, pixels with a shadow tap within a hair of flipping (compared within the
+    /// interval of both outcomes).
+    pub uncertain: usize,
     /// The first mismatches, in pixel order (at most 20).
     pub mismatches: Vec<UrpFrameMismatch>,
 }
@@ -447,9 +473,11 @@ impl fmt::Display for UrpFrameReport {
             .collect();
         writeln!(
             f,
-            "  pixels lit by: {}; {} pixels a light's rendering layers keep it off",
+            "  pixels lit by: {}; {} pixels a light's rendering layers keep it off; {} in the main light's shadow ({} with a tap too close to call)",
             lit.join(", "),
-            self.layer_culled
+            self.layer_culled,
+            self.shadowed,
+            self.uncertain
         )?;
         for m in &self.mismatches {
             writeln!(
@@ -468,20 +496,26 @@ pub fn check_urp_frame(
     lib: &Library,
     frame: &UrpFrame,
 ) -> Result<UrpFrameReport, GpuError> {
-    let forward = render_urp_forward(ctx, lib, frame)?;
-    let deferred = render_urp_deferred(ctx, lib, frame)?;
-    compare(frame, &forward, &deferred)
+    let shadow = render_urp_shadow(ctx, lib, frame)?;
+    let forward = render_urp_forward(ctx, lib, frame, shadow.as_ref())?;
+    let deferred = render_urp_deferred(ctx, lib, frame, shadow.as_ref())?;
+    compare(frame, shadow.as_ref(), &forward, &deferred)
 }
 
-/// What `UniversalForward` writes for object `o` at `geo` (black where it discards).
+/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow`
+/// (black where it discards).
 fn forward_reference(
     frame: &UrpFrame,
     lights: &UrpForwardLights,
     o: usize,
     geo: &Geometry,
+    shadow: Option<MainLightShadow>,
 ) -> Vec3 {
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(FORWARD_KEYWORDS);
+    if shadow.is_some() {
+        names.push("_MAIN_LIGHT_SHADOWS");
+    }
     let k = UrpForwardKeywords::from_names(&names)
         .expect("the URP frame's keywords are UniversalForward's");
     shade_forward(
@@ -491,7 +525,7 @@ fn forward_reference(
         &frame.pixel(o, *geo),
         &frame.lighting,
         frame.environment(),
-        MainLightShadow::NONE,
+        shadow.unwrap_or(MainLightShadow::NONE),
         lights,
         Vec3::ZERO,
     )
@@ -499,14 +533,23 @@ fn forward_reference(
 }
 
 /// The reference colour of pixel `(x, y)`: what the ray through its centre sees, lit by URP's
-/// forward formulas; `None` on the background.
+/// forward formulas and shadowed by `shadow` (the upper end of an uncertain tap); `None` on
+/// the background.
 ///
 /// # Errors
 /// As [`UrpFrame::forward_lights`].
-pub fn reference_rgb(frame: &UrpFrame, x: u32, y: u32) -> Result<Option<Vec3>, GpuError> {
+pub fn reference_rgb(
+    frame: &UrpFrame,
+    shadow: Option<&UrpFrameShadow>,
+    x: u32,
+    y: u32,
+) -> Result<Option<Vec3>, GpuError> {
     let lights = frame.forward_lights()?;
     let hit = frame.geometry.cast(f64::from(x) + 0.5, f64::from(y) + 0.5);
-    Ok(hit.map(|h| forward_reference(frame, &lights, h.object, &h.geometry)))
+    Ok(hit.map(|h| {
+        let s = shadow.map(|s| s.at(h.geometry.world_position)[1]);
+        forward_reference(frame, &lights, h.object, &h.geometry, s)
+    }))
 }
 
 /// The texel `i` of a target of four-byte pixels.
@@ -551,6 +594,7 @@ fn exact_texel(
 /// reference cannot read it).
 pub fn compare(
     frame: &UrpFrame,
+    shadow: Option<&UrpFrameShadow>,
     forward: &UrpForwardImage,
     deferred: &UrpDeferredImage,
 ) -> Result<UrpFrameReport, GpuError> {
@@ -569,6 +613,8 @@ pub fn compare(
         failures: [0; 4],
         lit_by: frame.lights.iter().map(|l| (l.name, 0)).collect(),
         layer_culled: 0,
+        shadowed: 0,
+        uncertain: 0,
         mismatches: Vec::new(),
     };
     let mut every_light: Vec<&UrpLightParams> = vec![&frame.main_light];
@@ -619,11 +665,20 @@ pub fn compare(
         let material = &frame.objects[o].material;
         let tex = frame.texels(o);
 
-        // Forward: the reference over the window, stored once.
+        // Forward: the reference over the window (both ends of an uncertain shadow tap), stored
+        // once.
+        let shadows_at = |p: Vec3| shadow.map(|s| s.at(p));
         let values: Vec<Vec3> = geos
             .iter()
-            .map(|geo| forward_reference(frame, &lights, o, geo))
+            .flat_map(|geo| {
+                let s = shadows_at(geo.world_position);
+                [0, 1].map(|k| forward_reference(frame, &lights, o, geo, s.map(|s| s[k])))
+            })
             .collect();
+        if let Some([lo, hi]) = shadows_at(hit.geometry.world_position) {
+            report.shadowed += usize::from(lo.attenuation < 1.0);
+            report.uncertain += usize::from(lo.attenuation != hi.attenuation);
+        }
         let (lo, hi) = window_range(&values);
         let (f_lo, f_hi) = rg11b10_store_range(lo, hi);
         if !inside(f_got, f_lo, f_hi) {
@@ -679,15 +734,18 @@ pub fn compare(
         let layers = u32::from_le_bytes(word(&deferred.gbuffer[4], i));
         let stored = unpack_rg11b10(u32::from_le_bytes(word(&deferred.gbuffer[3], i)));
         let p = world_from_depth(inv_view_proj, x, y, g.width, g.height, deferred.depth[i]);
-        let light_at = |t: &UrpGBufferTexel, p: Vec3, l: &UrpLightParams| {
-            stencil_deferred_light(t, p, camera, l, 1.0, Some(layers))
+        // The main light's shadow at a position: its attenuation's two ends (1 without one).
+        let main_shadow = |p: Vec3| shadows_at(p).map_or([1.0; 2], |s| s.map(|s| s.attenuation));
+        let light_at = |t: &UrpGBufferTexel, p: Vec3, i: usize, end: usize| {
+            let shadow = if i == 0 { main_shadow(p)[end] } else { 1.0 };
+            stencil_deferred_light(t, p, camera, every_light[i], shadow, Some(layers))
         };
         let (mut d_lo, mut d_hi) = (stored, stored);
         let mut decoded_light = Vec3::ZERO;
-        for l in &every_light {
-            let add = light_at(&texel, p, l);
-            decoded_light += add;
-            (d_lo, d_hi) = rg11b10_store_range(d_lo + add, d_hi + add);
+        for i in 0..every_light.len() {
+            let (lo, hi) = (light_at(&texel, p, i, 0), light_at(&texel, p, i, 1));
+            decoded_light += hi;
+            (d_lo, d_hi) = rg11b10_store_range(d_lo + lo.min(hi), d_hi + lo.max(hi));
         }
         if !inside(d_got, d_lo, d_hi) {
             report.fail([x, y], name, 2, interval(d_lo, d_hi), format!("{d_got:.4}"));
@@ -701,9 +759,8 @@ pub fn compare(
         };
         let exact = exact_texel(centre, gk.flags());
         let q_point = hit.geometry.world_position;
-        let exact_light: Vec3 = every_light
-            .iter()
-            .map(|l| light_at(&exact, q_point, l))
+        let exact_light: Vec3 = (0..every_light.len())
+            .map(|i| light_at(&exact, q_point, i, 1))
             .sum();
         let quantization = (centre.gbuffer3 + exact_light - stored - decoded_light).abs();
         let allowance = quantization + (f_hi - f_lo) + (d_hi - d_lo);

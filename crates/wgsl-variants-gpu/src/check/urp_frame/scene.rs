@@ -2,11 +2,12 @@
 //! URP Lit materials, URP's per-frame lighting, a main light and three additional lights on
 //! rendering layers (docs/urp.md §12).
 
-use glam::{Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 
 use super::super::frame::{FrameObject, FrameScene};
 use super::super::scene::cube_resource;
 use super::super::urp::{camera_uniform, lighting_uniform, material_uniform, object_uniform};
+use super::shadow::UrpShadowSpec;
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
@@ -68,6 +69,8 @@ pub struct UrpFrame {
     pub main_light: UrpLightParams,
     /// The additional lights (at most eight: URP's per-object limit in the forward path).
     pub lights: Vec<UrpFrameLight>,
+    /// The main light's shadow (`_MAIN_LIGHT_SHADOWS`), or none.
+    pub main_shadow: Option<UrpShadowSpec>,
 }
 
 /// Materials of the five objects: floor, metal sphere, glowing sphere, box, cutout box.
@@ -190,12 +193,22 @@ impl UrpFrame {
             from("cool point", 2, 0.0, EVERY_LAYER),
             from("spot", 3, 36.0, EVERY_LAYER),
         ];
+        // A soft shadow from a 512² map over a 14-unit box around the part of the floor in
+        // view; URP's caster biases of about two texels.
+        let main_shadow = Some(UrpShadowSpec {
+            strength: 0.9,
+            soft: true,
+            bias: Vec2::new(-0.04, -0.06),
+            center: Vec3::new(0.4, 0.5, -1.0),
+            radius: 7.0,
+        });
         UrpFrame {
             objects: materials(),
             geometry,
             lighting,
             main_light,
             lights,
+            main_shadow,
         }
     }
 

@@ -1,0 +1,162 @@
+//! The URP frame's main-light shadow (`_MAIN_LIGHT_SHADOWS`, one cascade): every object drawn
+//! by `universal_lit/ShadowCaster` (URP's caster bias and near-plane pancaking; the cutout
+//! object's alpha test) into one `Depth16Unorm` map of an orthographic box around the scene,
+//! read back; both paths' receivers bind what was rendered and the reference reads the same
+//! map ([`shadow_factor`]). Whether the caster writes the right texels is the
+//! `universal_lit/ShadowCaster` check's business (`check::urp_caster`).
+
+use glam::{Vec2, Vec3, Vec4};
+
+use super::super::scene::{push_mat4, push_vec4};
+use super::super::screen_masks::map_resources;
+use super::super::shadows::{DEPTH, refused};
+use super::UrpFrame;
+use super::text;
+use crate::{BoundResource, Draw, DrawPass, GpuContext, GpuError, Resource, render_pass};
+use wgsl_variants::Library;
+use wgsl_variants_shaders::reference::light::Light;
+use wgsl_variants_shaders::reference::shadow::{
+    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
+};
+use wgsl_variants_shaders::reference::urp::forward::MainLightShadow;
+
+/// Edge length of the main light's map in texels.
+pub const MAIN_SHADOW_MAP_SIZE: u32 = 512;
+
+/// How the URP frame's main light casts its shadow.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UrpShadowSpec {
+    /// Strength in [0, 1]: the shadowed light keeps `1 − strength`.
+    pub strength: f32,
+    /// `_SHADOWS_SOFT`: the 3 × 3 tent instead of one tap.
+    pub soft: bool,
+    /// URP's `_ShadowBias` at the caster: (depth, normal), world units (negative: away from the
+    /// light, into the surface).
+    pub bias: Vec2,
+    /// The centre of the map's orthographic box.
+    pub center: Vec3,
+    /// Its half extent (the box reaches `radius` across the light and `2 · radius` along it on
+    /// either side of `center`).
+    pub radius: f32,
+}
+
+/// The main light's rendered shadow: what the receivers bind and the reference reads.
+#[derive(Clone, Debug)]
+pub struct UrpFrameShadow {
+    /// The map's parameters (the `Shadow` uniform; no receiver bias: URP biases the caster).
+    pub params: ShadowParams,
+    /// `_SHADOWS_SOFT`.
+    pub soft: bool,
+    /// The map, read back.
+    pub map: ShadowMap2d,
+    /// The map's `Depth16Unorm` codes, as rendered (for the receivers' bindings).
+    pub codes: Vec<u16>,
+}
+
+impl UrpFrameShadow {
+    /// The receivers' keywords: `_MAIN_LIGHT_SHADOWS`, and `_SHADOWS_SOFT` as specified.
+    pub fn keywords(&self) -> Vec<&'static str> {
+        let mut out = vec!["_MAIN_LIGHT_SHADOWS"];
+        if self.soft {
+            out.push("_SHADOWS_SOFT");
+        }
+        out
+    }
+
+    /// Bindings 10–12 of a receiver: the `Shadow` uniform, the map and its comparison
+    /// sampler.
+    pub fn resources(&self) -> Vec<BoundResource> {
+        let size = (MAIN_SHADOW_MAP_SIZE, MAIN_SHADOW_MAP_SIZE);
+        map_resources(&self.params.uniform(), &self.codes, size)
+    }
+
+    /// The main light's shadow at world position `p`: the interval of its attenuation (its
+    /// two ends differ where a tap lies within a hair of flipping).
+    pub fn at(&self, p: Vec3) -> [MainLightShadow; 2] {
+        let keywords = ShadowKeywords {
+            depth: true,
+            soft: self.soft,
+            ..ShadowKeywords::default()
+        };
+        let maps = ShadowMaps {
+            map: Some(&self.map),
+            cube: None,
+        };
+        let (lo, hi) = shadow_factor(&self.params, keywords, maps, p);
+        [lo, hi].map(|attenuation| MainLightShadow {
+            attenuation,
+            strength: self.params.strength,
+        })
+    }
+}
+
+/// Renders the main light's map of `frame` (`None` without [`UrpFrame::main_shadow`]).
+///
+/// # Errors
+/// A variant lookup or GPU error; [`GpuError::Check`] when the shadow's parameters are refused.
+pub fn render_urp_shadow(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<Option<UrpFrameShadow>, GpuError> {
+    let Some(spec) = frame.main_shadow else {
+        return Ok(None);
+    };
+    let refused = refused("universal_lit/ShadowCaster");
+    let g = &frame.geometry;
+    let light = Light::directional(
+        -frame.lighting.main_light_dir,
+        frame.lighting.main_light_color,
+    );
+    let params =
+        ShadowParams::for_directional(&light, spec.strength, 0.0, spec.center, spec.radius)
+            .map_err(&refused)?;
+    let size = MAIN_SHADOW_MAP_SIZE;
+    let mut pass = DrawPass::new("URP frame: main-light shadow map", size, size, Vec::new());
+    pass.depth = true;
+    pass.depth_format = DEPTH;
+    let mut camera = Vec::new();
+    push_mat4(&mut camera, params.world_to_shadow);
+    push_vec4(&mut camera, Vec4::ZERO);
+    let mut caster = Vec::new();
+    push_vec4(&mut caster, frame.lighting.main_light_dir.extend(0.0));
+    push_vec4(&mut caster, Vec4::new(0.0, 0.0, 0.0, 1.0));
+    push_vec4(&mut caster, spec.bias.extend(0.0).extend(0.0));
+    for (o, object) in g.objects.iter().enumerate() {
+        let names: Vec<&str> = frame.objects[o]
+            .keywords
+            .iter()
+            .copied()
+            .filter(|k| *k == "_ALPHATEST_ON")
+            .collect();
+        let (label, wgsl) = text(lib, "universal_lit", "ShadowCaster", &names)?;
+        let mut resources: Vec<BoundResource> = frame
+            .object_resources(o)?
+            .into_iter()
+            .filter(|r| !matches!((r.group, r.binding), (0, 0) | (0, 4)))
+            .collect();
+        resources.push(BoundResource::new(0, 0, Resource::Uniform(camera.clone())));
+        resources.push(BoundResource::new(0, 4, Resource::Uniform(caster.clone())));
+        pass.draws.push(
+            Draw::fullscreen(
+                &format!("{} {label}", object.name),
+                &wgsl,
+                "vs_main",
+                "fs_main",
+            )
+            .depth_only()
+            .with_mesh(object.mesh())
+            .with_resources(resources)
+            .with_depth(crate::DepthTest::OPAQUE),
+        );
+    }
+    let depth = render_pass(ctx, &pass)?.depth.unwrap_or_default();
+    let codes: Vec<u16> = depth.iter().map(|d| (d * 65535.0).round() as u16).collect();
+    let map = ShadowMap2d::from_depth16(size, size, &codes).map_err(&refused)?;
+    Ok(Some(UrpFrameShadow {
+        params,
+        soft: spec.soft,
+        map,
+        codes,
+    }))
+}
