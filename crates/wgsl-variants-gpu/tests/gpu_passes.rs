@@ -87,8 +87,11 @@ fn assert_pass(report: &CheckReport, shader: &str, pass: &str, variants: usize) 
     assert!(p.pixels_compared > 0 && p.draws > 0, "{report}");
 }
 
-/// Every variant of `standard/Deferred` (110592; many minutes on lavapipe with a cold shader
-/// cache, so CI runs [`deferred_covering_set_matches_the_reference`] instead).
+/// Every variant of `standard/Deferred` (110592; CI runs
+/// [`deferred_covering_set_matches_the_reference`] instead). In one process lavapipe keeps most
+/// of a megabyte per compiled variant, far past a small machine's memory, so there the whole
+/// space runs as shard processes (`scripts/check-gpu-full.sh`, docs/guide/gpu-proof.md) and
+/// this test with a sample (`WGSL_VARIANTS_GPU_SAMPLE=64`: every 64th variant).
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
 fn deferred_every_variant_matches_the_reference() {
@@ -137,8 +140,9 @@ fn forward_base_covering_set_matches_the_reference() {
     assert_eq!(p.pixels_compared, p.variants_run * 256);
 }
 
-/// Every variant of `standard/ForwardBase` (55296; many minutes on lavapipe with a cold shader
-/// cache, so CI runs [`forward_base_covering_set_matches_the_reference`] instead).
+/// Every variant of `standard/ForwardBase` (55296; CI runs
+/// [`forward_base_covering_set_matches_the_reference`] instead; on a small machine with lavapipe
+/// the whole space runs as shard processes, as for Deferred above).
 #[test]
 #[ignore = "the full space: cargo test --release -p wgsl-variants-gpu --test gpu_passes -- --ignored"]
 fn forward_base_every_variant_matches_the_reference() {
