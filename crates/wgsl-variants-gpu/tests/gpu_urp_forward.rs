@@ -121,8 +121,8 @@ fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows(
     // SubtractDirectMainLightFromLightmap); full strength instead changes shadowed texels.
     let Some(bad) = mismatching(
         "universal/lit_forward_pass.wgsl",
-        "return vec2f(shadow_mix(shadow.params.x, visibility), shadow.params.x);",
-        "return vec2f(shadow_mix(shadow.params.x, visibility), 1.0);",
+        "return vec2f(mix(realtime, 1.0, fade), shadow.params.x);",
+        "return vec2f(mix(realtime, 1.0, fade), 1.0);",
     ) else {
         return;
     };
@@ -134,6 +134,23 @@ fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows(
         ] {
             assert!(k.contains(needed), "{k}");
         }
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn an_ignored_shadow_fade_is_caught_only_where_the_main_light_is_shadowed() {
+    // URP's MainLightShadow lerps the realtime shadow towards 1 with the distance from the
+    // camera; the check's fade ramps across the shadowed texels.
+    let Some(bad) = mismatching(
+        "universal/lit_forward_pass.wgsl",
+        "return vec2f(mix(realtime, 1.0, fade), shadow.params.x);",
+        "return vec2f(realtime, shadow.params.x);",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
         assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
     }
 }

@@ -11,6 +11,7 @@ use wgsl_variants_gpu::check::urp_frame::{
     UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward, render_urp_shadow,
 };
 use wgsl_variants_shaders::reference::light::LightShape;
+use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
 
 /// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
 fn context() -> Option<GpuContext> {
@@ -51,7 +52,8 @@ fn the_urp_frame_matches_the_reference_both_ways() {
 
 /// The frame rendered with a fault, compared with the reference of the true frame: a light
 /// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
-/// on every layer), the main light's shadow missing — each fails on both paths; a light volume too small fails deferred only.
+/// on every layer), the main light's shadow missing or not fading with the distance — each
+/// fails on both paths; a light volume too small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
     let Some(ctx) = context() else {
@@ -69,11 +71,16 @@ fn a_wrong_light_is_caught_both_ways() {
     unlayered.lights[0].params.layer_mask = u32::MAX;
     let mut unshadowed = truth.clone();
     unshadowed.main_shadow = None;
+    let mut unfaded = truth.clone();
+    if let Some(spec) = &mut unfaded.main_shadow {
+        spec.fade = MainLightShadowFade::NONE;
+    }
     for (what, wrong) in [
         ("spot 25 % brighter", &brighter),
         ("no main light", &no_main),
         ("rendering layers ignored", &unlayered),
         ("no main-light shadow", &unshadowed),
+        ("the shadow's fade ignored", &unfaded),
     ] {
         let shadow = render_urp_shadow(&ctx, &lib, wrong).expect("shadow");
         let forward = render_urp_forward(&ctx, &lib, wrong, shadow.as_ref()).expect("forward");

@@ -107,6 +107,23 @@ fn an_ignored_receive_shadows_off_flag_is_caught_only_where_it_matters() {
 }
 
 #[test]
+fn an_ignored_shadow_fade_is_caught_only_in_the_main_lights_shadowed_variants() {
+    // URP's MainLightShadow lerps the realtime shadow towards 1 with the distance; the check's
+    // fade ramps across the pixels, so dropping it shows where the shadow falls.
+    let Some(bad) = mismatching(
+        "universal/stencil_deferred_pass.wgsl",
+        "return mix(realtime, 1.0, fade);",
+        "return realtime;",
+        "DirectionalLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
+    }
+}
+
+#[test]
 fn the_older_specular_setup_diffuse_is_caught_only_in_the_specular_setup() {
     // URP's BRDFDataFromGbuffer: diffuse = albedo · (1 − max(specular)); older URPs used
     // albedo · (1 − specular) per channel.

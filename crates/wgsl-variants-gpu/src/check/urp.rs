@@ -41,6 +41,7 @@ use wgsl_variants::{Library, Variant};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::quantize::{f16_bits_to_f32, f32_to_f16_bits};
 use wgsl_variants_shaders::reference::tolerance::urp_texel_within;
+use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
 use wgsl_variants_shaders::reference::urp::gbuffer::{
     UrpGBufferOutput, UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexel, UrpTexels,
     shade_gbuffer,
@@ -260,6 +261,34 @@ impl UrpScene {
         job.vertex_count = 6;
         job
     }
+}
+
+/// The main light's shadow fade of a check: a ramp over most of the camera distances of
+/// `positions` (the shadowed ones; from 10 % to 90 % of their range), so the nearest keep the
+/// realtime shadow, the farthest lose it and most lose part of it. No fade without positions.
+pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFade {
+    let (near, far) = positions
+        .iter()
+        .map(|p| p.distance(camera))
+        .fold((f32::INFINITY, 0.0f32), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    let span = far - near;
+    // No positions (or one distance): nothing to ramp across.
+    if span.is_nan() || span <= 0.0 {
+        return MainLightShadowFade::NONE;
+    }
+    MainLightShadowFade::between(near + 0.1 * span, near + 0.9 * span)
+}
+
+/// The bindings of the main light's shadow in URP's passes: the map (10-12) and the fade (13).
+pub(crate) fn main_shadow_resources(
+    shadow: &super::screen_masks::ScreenShadow,
+    fade: &MainLightShadowFade,
+) -> Vec<BoundResource> {
+    let mut out = super::screen_masks::shadow_map_resources(&shadow.params, &shadow.map_texels);
+    out.push(BoundResource::new(0, 13, Resource::Uniform(fade.uniform())));
+    out
 }
 
 /// `wgsl/universal/bindings.wgsl`'s `Camera`: view-projection and the camera's position.

@@ -19,15 +19,21 @@ use super::compare::format_name;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::PassReport;
 use super::rig::LightRig;
-use super::screen_masks::{ScreenShadow, shadow_map_resources};
+use super::screen_masks::ScreenShadow;
 use super::standard::CLEAR;
-use super::urp::{DEFAULT_SEED, RENDERING_LAYERS, UrpColorPass, UrpScene, check_color_entry};
-use super::urp_lighting::{MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, spot_inner_degrees};
+use super::urp::{
+    DEFAULT_SEED, RENDERING_LAYERS, UrpColorPass, UrpScene, check_color_entry, fade_across,
+    main_shadow_resources,
+};
+use super::urp_lighting::{
+    MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, shadowed, spot_inner_degrees,
+};
 use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
 use wgsl_variants_shaders::reference::light::{Light, LightError};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::urp::forward::{
-    MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward, vertex_lighting,
+    MainLightShadow, MainLightShadowFade, UrpForwardKeywords, UrpForwardLights, shade_forward,
+    vertex_lighting,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
 use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
@@ -44,6 +50,8 @@ pub struct UrpForwardScene {
     pub lights: UrpForwardLights,
     /// The main light's shadow map.
     pub shadow: ScreenShadow,
+    /// The main light's shadow fade ([`super::urp::fade_across`] the quad).
+    pub fade: MainLightShadowFade,
 }
 
 impl UrpForwardScene {
@@ -70,10 +78,18 @@ impl UrpForwardScene {
         let mut urp = urp.clone();
         urp.lighting.main_light_dir = main.direction;
         urp.lighting.main_light_color = main.color;
+        let positions: Vec<Vec3> = urp
+            .scene
+            .pixels()
+            .map(|(x, y)| urp.scene.world_position(x, y))
+            .collect();
+        let shadow = main_light_shadow(rig, "universal_lit/UniversalForward")?.clone();
+        let fade = fade_across(&shadowed(&shadow, &positions), urp.lighting.camera_position);
         Ok(UrpForwardScene {
             urp,
             lights,
-            shadow: main_light_shadow(rig, "universal_lit/UniversalForward")?.clone(),
+            shadow,
+            fade,
         })
     }
 
@@ -126,9 +142,13 @@ impl UrpForwardScene {
             },
             p,
         );
-        [lo, hi].map(|attenuation| MainLightShadow {
-            attenuation,
-            strength: self.shadow.params.strength,
+        let fade = self.fade.at(p, self.urp.lighting.camera_position);
+        [lo, hi].map(|attenuation| {
+            MainLightShadow {
+                attenuation,
+                strength: self.shadow.params.strength,
+            }
+            .faded(fade)
         })
     }
 
@@ -170,7 +190,8 @@ impl UrpColorPass for UrpForwardScene {
         &self.urp
     }
 
-    /// The URP scene's resources, the lights (0/4) and the main light's map (0/10-12).
+    /// The URP scene's resources, the lights (0/4), the main light's map (0/10-12) and its
+    /// fade (0/13).
     fn resources(&self) -> Vec<BoundResource> {
         let mut out = self.urp.resources();
         out.push(BoundResource::new(
@@ -178,10 +199,7 @@ impl UrpColorPass for UrpForwardScene {
             4,
             Resource::Uniform(self.lights.uniform()),
         ));
-        out.extend(shadow_map_resources(
-            &self.shadow.params,
-            &self.shadow.map_texels,
-        ));
+        out.extend(main_shadow_resources(&self.shadow, &self.fade));
         out
     }
 

@@ -21,6 +21,8 @@
 
 use std::time::Instant;
 
+use glam::Vec3;
+
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
 use super::coverage::{keyword_coverage, small_pass};
@@ -28,9 +30,9 @@ use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::rig::LightRig;
 use super::scene::{TestScene, texture};
-use super::screen_masks::{ScreenShadow, shadow_map_resources};
+use super::screen_masks::ScreenShadow;
 use super::shadows::within;
-use super::urp::UrpScene;
+use super::urp::{UrpScene, fade_across, main_shadow_resources};
 use super::volumes::{LightPipelineInput, StencilScheme, render_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -41,6 +43,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
+use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
@@ -218,6 +221,7 @@ pub fn check_stencil_deferred(
     let start = Instant::now();
     let (pass, choices) = small_pass(lib, "stencil_deferred", pass_name)?;
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
+    let fade = lighting_fade(rig, scene, main_shadow);
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -261,7 +265,7 @@ pub fn check_stencil_deferred(
                     &camera,
                     gbuffer,
                     (&light, k.main),
-                    main_shadow,
+                    (main_shadow, &fade),
                     gbuffer.targets[3].clone(),
                 )?;
                 report.draws += 1;
@@ -309,6 +313,13 @@ pub fn check_stencil_deferred(
                     } else {
                         (1.0, 1.0)
                     };
+                    // URP's MainLightShadow fades the realtime shadow with the distance.
+                    let f = if k.shadows {
+                        fade.at(p, scene.scene.camera_position)
+                    } else {
+                        0.0
+                    };
+                    let (lo, hi) = (lo * (1.0 - f) + f, hi * (1.0 - f) + f);
                     uncertain += usize::from(lo != hi && !texel.flags.receive_shadows_off);
                     shadowed += usize::from(hi < 1.0 && !texel.flags.receive_shadows_off);
                     let [want_lo, want_hi] = [lo, hi].map(|shadow| {
@@ -371,6 +382,7 @@ pub(crate) fn light_gbuffer(
     gbuffer: &UrpGBuffer,
 ) -> Result<Vec<u8>, GpuError> {
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
+    let fade = lighting_fade(rig, scene, main_shadow);
     let camera = rig.camera(scene);
     let lights = UrpLights::new(rig);
     let mut common = Vec::new();
@@ -409,7 +421,7 @@ pub(crate) fn light_gbuffer(
             &camera,
             gbuffer,
             (&light, main),
-            main_shadow,
+            (main_shadow, &fade),
             gbuffer3,
         )?;
     }
@@ -427,7 +439,7 @@ pub(crate) fn draw_light(
     camera: &LightingCamera<'_>,
     gbuffer: &UrpGBuffer,
     (light, main): (&UrpLightParams, bool),
-    main_shadow: &ScreenShadow,
+    main_shadow: (&ScreenShadow, &MainLightShadowFade),
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
@@ -439,11 +451,40 @@ pub(crate) fn draw_light(
             .with_initial(gbuffer3),
     ];
     job.resources = resources(scene, camera, gbuffer, light, main);
-    job.resources.extend(shadow_map_resources(
-        &main_shadow.params,
-        &main_shadow.map_texels,
-    ));
+    job.resources
+        .extend(main_shadow_resources(main_shadow.0, main_shadow.1));
     Ok(render(ctx, &job)?.remove(0))
+}
+
+/// The main light's shadow fade of the lighting checks: [`fade_across`] the positions the
+/// lighting pass rebuilds from the rig's depth where `shadow`'s map darkens the main light.
+pub(crate) fn lighting_fade(
+    rig: &LightRig,
+    scene: &TestScene,
+    shadow: &ScreenShadow,
+) -> MainLightShadowFade {
+    let positions: Vec<Vec3> = scene
+        .pixels()
+        .map(|(x, y)| rig.deferred_position(scene, x, y))
+        .collect();
+    fade_across(&shadowed(shadow, &positions), scene.scene.camera_position)
+}
+
+/// The positions among `positions` where `shadow`'s map (one tap) darkens the main light.
+pub(crate) fn shadowed(shadow: &ScreenShadow, positions: &[Vec3]) -> Vec<Vec3> {
+    let keywords = ShadowKeywords {
+        depth: true,
+        ..ShadowKeywords::default()
+    };
+    let maps = ShadowMaps {
+        map: Some(&shadow.map),
+        cube: None,
+    };
+    positions
+        .iter()
+        .copied()
+        .filter(|&p| shadow_factor(&shadow.params, keywords, maps, p).1 < 1.0)
+        .collect()
 }
 
 /// The main light's map: the rig's `DIRECTIONAL` light's of [`super::screen_shadows`].
@@ -653,6 +694,7 @@ pub fn compare_urp_volume(
         .map_err(|e| CheckError::lookup("stencil_write/StencilWrite", e))?;
     let camera = rig.camera(scene);
     let main_shadow = main_light_shadow(rig, &what)?;
+    let fade = lighting_fade(rig, scene, main_shadow);
     let initial = gbuffer.targets[3].clone();
     let full = draw_light(
         ctx,
@@ -661,7 +703,7 @@ pub fn compare_urp_volume(
         &camera,
         &gbuffer,
         (&light, false),
-        main_shadow,
+        (main_shadow, &fade),
         initial.clone(),
     )?;
     let input = LightPipelineInput {

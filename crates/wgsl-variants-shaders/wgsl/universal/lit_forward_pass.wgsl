@@ -8,7 +8,8 @@
 //   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
 //                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
 //              10 shadow (Shadow), 11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler
-//                (sampler_comparison) (the main light's map: _MAIN_LIGHT_SHADOWS without
+//                (sampler_comparison), 13 main_light_shadow_fade (vec4f: x URP's fade scale,
+//                y its bias) (the main light's map: _MAIN_LIGHT_SHADOWS without
 //                _RECEIVE_SHADOWS_OFF)
 //
 // Provides the entry points:
@@ -41,6 +42,7 @@ struct ForwardLights {
 @group(0) @binding(10) var<uniform> shadow: Shadow;
 @group(0) @binding(11) var shadow_map: texture_depth_2d;
 @group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
+@group(0) @binding(13) var<uniform> main_light_shadow_fade: vec4f;
 #endif
 
 // Whether a light with this rendering-layer mask lights the mesh (_LIGHT_LAYERS: any layer in
@@ -81,14 +83,17 @@ fn vs_main(in: UrpVertexInput) -> UrpVertexOutput {
     return out;
 }
 
-// The main light's realtime shadow at p: x the attenuation (URP's MainLightRealtimeShadow:
-// 1 − strength + strength · visibility; 1 without _MAIN_LIGHT_SHADOWS or with
-// _RECEIVE_SHADOWS_OFF), y the shadow's strength (0 where there is no shadow).
+// The main light's shadow at p: x the attenuation (URP's MainLightShadow: the realtime
+// shadow 1 − strength + strength · visibility, faded towards the baked one, 1 here, by
+// urp_main_light_shadow_fade; 1 without _MAIN_LIGHT_SHADOWS or with _RECEIVE_SHADOWS_OFF),
+// y the shadow's strength (0 where there is no shadow).
 fn urp_main_light_shadow(p: vec3f) -> vec2f {
 #if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
     let c = shadow_coords(shadow.world_to_shadow, p);
     let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - shadow.params.y);
-    return vec2f(shadow_mix(shadow.params.x, visibility), shadow.params.x);
+    let realtime = shadow_mix(shadow.params.x, visibility);
+    let fade = urp_main_light_shadow_fade(p, camera.position.xyz, main_light_shadow_fade.xy);
+    return vec2f(mix(realtime, 1.0, fade), shadow.params.x);
 #else
     return vec2f(1.0, 0.0);
 #endif

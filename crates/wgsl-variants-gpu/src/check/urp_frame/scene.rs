@@ -11,7 +11,7 @@ use super::shadow::UrpShadowSpec;
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
-use wgsl_variants_shaders::reference::urp::forward::UrpForwardLights;
+use wgsl_variants_shaders::reference::urp::forward::{MainLightShadowFade, UrpForwardLights};
 use wgsl_variants_shaders::reference::urp::gbuffer::{
     UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels,
 };
@@ -194,13 +194,15 @@ impl UrpFrame {
             from("spot", 3, 36.0, EVERY_LAYER),
         ];
         // A soft shadow from a 512² map over a 14-unit box around the part of the floor in
-        // view; URP's caster biases of about two texels.
+        // view; URP's caster biases of about two texels; faded out between 8 and 10 units
+        // from the camera (the far part of the floor).
         let main_shadow = Some(UrpShadowSpec {
             strength: 0.9,
             soft: true,
             bias: Vec2::new(-0.04, -0.06),
             center: Vec3::new(0.4, 0.5, -1.0),
             radius: 7.0,
+            fade: MainLightShadowFade::between(8.0, 10.0),
         });
         UrpFrame {
             objects: materials(),

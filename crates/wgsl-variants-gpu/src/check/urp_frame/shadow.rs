@@ -18,7 +18,7 @@ use wgsl_variants_shaders::reference::light::Light;
 use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
 };
-use wgsl_variants_shaders::reference::urp::forward::MainLightShadow;
+use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, MainLightShadowFade};
 
 /// Edge length of the main light's map in texels.
 pub const MAIN_SHADOW_MAP_SIZE: u32 = 512;
@@ -38,6 +38,9 @@ pub struct UrpShadowSpec {
     /// Its half extent (the box reaches `radius` across the light and `2 · radius` along it on
     /// either side of `center`).
     pub radius: f32,
+    /// How the realtime shadow fades with the distance from the camera (URP's
+    /// `_MainLightShadowParams.zw`).
+    pub fade: MainLightShadowFade,
 }
 
 /// The main light's rendered shadow: what the receivers bind and the reference reads.
@@ -51,6 +54,10 @@ pub struct UrpFrameShadow {
     pub map: ShadowMap2d,
     /// The map's `Depth16Unorm` codes, as rendered (for the receivers' bindings).
     pub codes: Vec<u16>,
+    /// The fade with the distance from the camera.
+    pub fade: MainLightShadowFade,
+    /// The camera the fade measures from.
+    pub camera: Vec3,
 }
 
 impl UrpFrameShadow {
@@ -63,15 +70,21 @@ impl UrpFrameShadow {
         out
     }
 
-    /// Bindings 10–12 of a receiver: the `Shadow` uniform, the map and its comparison
-    /// sampler.
+    /// Bindings 10–13 of a receiver: the `Shadow` uniform, the map, its comparison sampler
+    /// and the fade.
     pub fn resources(&self) -> Vec<BoundResource> {
         let size = (MAIN_SHADOW_MAP_SIZE, MAIN_SHADOW_MAP_SIZE);
-        map_resources(&self.params.uniform(), &self.codes, size)
+        let mut out = map_resources(&self.params.uniform(), &self.codes, size);
+        out.push(BoundResource::new(
+            0,
+            13,
+            Resource::Uniform(self.fade.uniform()),
+        ));
+        out
     }
 
-    /// The main light's shadow at world position `p`: the interval of its attenuation (its
-    /// two ends differ where a tap lies within a hair of flipping).
+    /// The main light's shadow at world position `p`, faded with the distance: the interval
+    /// of its attenuation (its two ends differ where a tap lies within a hair of flipping).
     pub fn at(&self, p: Vec3) -> [MainLightShadow; 2] {
         let keywords = ShadowKeywords {
             depth: true,
@@ -83,9 +96,13 @@ impl UrpFrameShadow {
             cube: None,
         };
         let (lo, hi) = shadow_factor(&self.params, keywords, maps, p);
-        [lo, hi].map(|attenuation| MainLightShadow {
-            attenuation,
-            strength: self.params.strength,
+        let fade = self.fade.at(p, self.camera);
+        [lo, hi].map(|attenuation| {
+            MainLightShadow {
+                attenuation,
+                strength: self.params.strength,
+            }
+            .faded(fade)
         })
     }
 }
@@ -158,5 +175,7 @@ pub fn render_urp_shadow(
         soft: spec.soft,
         map,
         codes,
+        fade: spec.fade,
+        camera: frame.lighting.camera_position,
     }))
 }

@@ -146,6 +146,77 @@ impl MainLightShadow {
         attenuation: 1.0,
         strength: 0.0,
     };
+
+    /// URP's `MixRealtimeAndBakedShadows` with no baked shadow (1; none of the frame's
+    /// variants read a shadowmask): the realtime attenuation lerped towards 1 by `fade`
+    /// ([`MainLightShadowFade::at`]), `a · (1 − fade) + fade` as the WGSL `mix` computes it.
+    ///
+    /// ```
+    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadow;
+    /// let s = MainLightShadow { attenuation: 0.2, strength: 0.8 };
+    /// assert_eq!(s.faded(0.0).attenuation, 0.2);
+    /// assert_eq!(s.faded(1.0).attenuation, 1.0);
+    /// assert!((s.faded(0.5).attenuation - 0.6).abs() < 1e-6);
+    /// ```
+    pub fn faded(self, fade: f32) -> MainLightShadow {
+        MainLightShadow {
+            attenuation: self.attenuation * (1.0 - fade) + fade,
+            ..self
+        }
+    }
+}
+
+/// URP's main-light shadow fade (`GetMainLightShadowFade`, `_MainLightShadowParams.zw`): a
+/// ramp in the squared distance from the camera, `saturate(|p − camera|² · scale + bias)`,
+/// which URP's host sets to reach 1 at the shadow distance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MainLightShadowFade {
+    /// `_MainLightShadowParams.z`.
+    pub scale: f32,
+    /// `_MainLightShadowParams.w`.
+    pub bias: f32,
+}
+
+impl MainLightShadowFade {
+    /// No fade anywhere (scale and bias 0).
+    pub const NONE: MainLightShadowFade = MainLightShadowFade {
+        scale: 0.0,
+        bias: 0.0,
+    };
+
+    /// The ramp from distance `start` (fade 0) to `end` (fade 1), linear in the squared
+    /// distance as URP's is.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+    /// let fade = MainLightShadowFade::between(2.0, 4.0);
+    /// assert_eq!(fade.at(Vec3::new(1.0, 0.0, 0.0), Vec3::ZERO), 0.0);
+    /// assert!((fade.at(Vec3::new(0.0, 10f32.sqrt(), 0.0), Vec3::ZERO) - 0.5).abs() < 1e-6);
+    /// assert_eq!(fade.at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO), 1.0);
+    /// ```
+    pub fn between(start: f32, end: f32) -> MainLightShadowFade {
+        let (a, b) = (start * start, end * end);
+        let scale = 1.0 / (b - a);
+        MainLightShadowFade {
+            scale,
+            bias: -a * scale,
+        }
+    }
+
+    /// How far the shadow has faded at `p` for a camera at `camera` (0 none, 1 gone).
+    pub fn at(&self, p: Vec3, camera: Vec3) -> f32 {
+        let d = p - camera;
+        (d.dot(d) * self.scale + self.bias).clamp(0.0, 1.0)
+    }
+
+    /// The WGSL `main_light_shadow_fade` uniform: `(scale, bias, 0, 0)`, little-endian.
+    pub fn uniform(&self) -> Vec<u8> {
+        [self.scale, self.bias, 0.0, 0.0]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect()
+    }
 }
 
 /// The lights of the forward pass besides the main light's direction and colour (which
