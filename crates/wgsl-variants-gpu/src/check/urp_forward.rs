@@ -50,7 +50,7 @@ pub struct UrpForwardScene {
     pub lights: UrpForwardLights,
     /// The main light's shadow map.
     pub shadow: ScreenShadow,
-    /// The main light's shadow fade ([`super::urp::fade_across`] the quad).
+    /// The main light's shadow fade (ramped across the pixels its map shadows).
     pub fade: MainLightShadowFade,
 }
 
