@@ -157,16 +157,18 @@ impl KeywordError {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ConstraintKind {
-    /// `#pragma require A B`: a variant with A on has B on.
+    /// `#pragma require A B`: a variant with A on has B on (`require A B C` with B and C
+    /// options of one set: one of them on).
     Require,
     /// `#pragma exclude A B`: no variant has both A and B on.
     Exclude,
 }
 
-/// One keyword constraint between two keywords of a pass, as declared by
-/// `#pragma require A B C` (A requires B, and A requires C) or `#pragma exclude A B C` (no two
-/// of A, B, C together). Unity users write these rules as stripping code; here the full
-/// space, the build set, the covering set and the audit all honour them.
+/// One keyword constraint of a pass, as declared by `#pragma require A B C` (A requires B, and
+/// A requires C; or, where B and C are options of one set, A requires one of them) or
+/// `#pragma exclude A B C` (no two of A, B, C together). Unity users write these rules as
+/// stripping code; here the full space, the build set, the covering set and the audit all
+/// honour them.
 ///
 /// ```
 /// use wgsl_variants::{Library, Space};
@@ -182,22 +184,42 @@ pub enum ConstraintKind {
 /// // Of the four variants, detail without the normal map is gone.
 /// assert_eq!(Space::full(pass).count(), 3u32.into());
 /// ```
+///
+/// Options of one set named after the first keyword are alternatives: soft shadows need one
+/// of the shadow modes, whichever it is.
+///
+/// ```
+/// use wgsl_variants::{Library, Space};
+/// let lib = Library::from_sources([(
+///     "s.wgsl",
+///     "#shader s\n#pass P\n#pragma multi_compile _ SHADOWS CASCADES\n\
+///      #pragma multi_compile _ SOFT\n#pragma require SOFT SHADOWS CASCADES\n#endpass",
+/// )])
+/// .unwrap();
+/// let pass = lib.pass("s", "P").unwrap();
+/// assert_eq!(pass.constraints.len(), 1);
+/// assert_eq!(pass.constraints[0].to_string(), "require SOFT SHADOWS CASCADES");
+/// // Of the six variants, soft without a shadow mode is gone.
+/// assert_eq!(Space::full(pass).count(), 5u32.into());
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Constraint {
     /// `require` or `exclude`.
     pub kind: ConstraintKind,
-    /// The two keywords: for `require`, the first needs the second.
-    pub keywords: [String; 2],
+    /// The keywords: for `require`, the first needs one of the others (options of one set,
+    /// usually just one); for `exclude`, the two that never meet.
+    pub keywords: Vec<String>,
     /// The pragma's location.
     #[serde(skip)]
     pub span: Span,
     /// (set, option) of each keyword.
     #[serde(skip)]
-    pub(crate) at: [(usize, usize); 2],
+    pub(crate) at: Vec<(usize, usize)>,
 }
 
 impl Constraint {
-    /// The keyword sets the constraint involves (one or two).
+    /// The keyword sets the constraint involves (one or two: a requirement's alternatives
+    /// share one set).
     pub fn sets(&self) -> [usize; 2] {
         [self.at[0].0, self.at[1].0]
     }
@@ -206,7 +228,7 @@ impl Constraint {
     pub fn holds(&self, options: &[u16]) -> bool {
         let on = |(set, option): (usize, usize)| options[set] as usize == option;
         match self.kind {
-            ConstraintKind::Require => !on(self.at[0]) || on(self.at[1]),
+            ConstraintKind::Require => !on(self.at[0]) || self.at[1..].iter().any(|&a| on(a)),
             ConstraintKind::Exclude => !(on(self.at[0]) && on(self.at[1])),
         }
     }
@@ -219,7 +241,7 @@ impl fmt::Display for Constraint {
             ConstraintKind::Require => "require",
             ConstraintKind::Exclude => "exclude",
         };
-        write!(f, "{kind} {} {}", self.keywords[0], self.keywords[1])
+        write!(f, "{kind} {}", self.keywords.join(" "))
     }
 }
 
@@ -227,7 +249,9 @@ impl fmt::Display for Constraint {
 pub(crate) type ConstraintDecl = (ConstraintKind, Vec<(Box<str>, Span)>, Span);
 
 /// Resolves constraint pragmas against a pass's keywords (`index`: keyword → (set, option)):
-/// `require A B C` is A→B and A→C; `exclude A B C` is every pair of A, B, C.
+/// `require A B C` is A→B and A→C, or one A→(B or C) where B and C share a set (each set
+/// named after A is one requirement, its options alternatives); `exclude A B C` is every pair
+/// of A, B, C.
 pub(crate) fn resolve_constraints(
     pass: &str,
     decls: &[ConstraintDecl],
@@ -259,17 +283,28 @@ pub(crate) fn resolve_constraints(
         if at.len() != names.len() {
             continue;
         }
-        let pairs: Vec<(usize, usize)> = match kind {
-            ConstraintKind::Require => (1..at.len()).map(|j| (0, j)).collect(),
+        // Each constraint as indices into `at`: the first keyword, then its partners.
+        let groups: Vec<Vec<usize>> = match kind {
+            ConstraintKind::Require => {
+                let mut groups: Vec<Vec<usize>> = Vec::new();
+                for j in 1..at.len() {
+                    let set = at[j].1.0;
+                    match groups.iter_mut().find(|g| at[g[1]].1.0 == set) {
+                        Some(g) => g.push(j),
+                        None => groups.push(vec![0, j]),
+                    }
+                }
+                groups
+            }
             ConstraintKind::Exclude => (0..at.len())
-                .flat_map(|i| (i + 1..at.len()).map(move |j| (i, j)))
+                .flat_map(|i| (i + 1..at.len()).map(move |j| vec![i, j]))
                 .collect(),
         };
-        out.extend(pairs.into_iter().map(|(i, j)| Constraint {
+        out.extend(groups.into_iter().map(|g| Constraint {
             kind: *kind,
-            keywords: [at[i].0.clone(), at[j].0.clone()],
+            keywords: g.iter().map(|&i| at[i].0.clone()).collect(),
             span: *span,
-            at: [at[i].1, at[j].1],
+            at: g.iter().map(|&i| at[i].1).collect(),
         }));
     }
     if errors.is_empty() {

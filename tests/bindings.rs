@@ -318,7 +318,7 @@ fn main() {
 
     use stencil_deferred_directionallit as dl;
     let err = dl::Key::new(dl::Keywords {
-        main_light_shadows: true,
+        main_light_shadows: dl::keywords::MainLightShadows::On,
         ..dl::Keywords::DEFAULT
     })
     .unwrap_err();
@@ -330,6 +330,28 @@ fn main() {
         }
     );
     assert!(err.to_string().contains("requires"));
+    // A requirement with alternatives: soft shadows need one of the two shadow modes.
+    let err = dl::Key::new(dl::Keywords {
+        deferred_main_light: true,
+        shadows_soft: true,
+        ..dl::Keywords::DEFAULT
+    })
+    .unwrap_err();
+    assert_eq!(
+        err,
+        dl::KeyError::Requires {
+            keyword: "_SHADOWS_SOFT",
+            required: "_MAIN_LIGHT_SHADOWS or _MAIN_LIGHT_SHADOWS_CASCADE"
+        }
+    );
+    let soft = dl::Key::new(dl::Keywords {
+        deferred_main_light: true,
+        main_light_shadows: dl::keywords::MainLightShadows::Cascade,
+        shadows_soft: true,
+        ..dl::Keywords::DEFAULT
+    })
+    .unwrap();
+    assert!(soft.keywords().contains(&"_MAIN_LIGHT_SHADOWS_CASCADE"));
 
     use standard_deferred as sd;
     const KEY: sd::Key = sd::Key::checked(sd::Keywords {

@@ -107,10 +107,6 @@ pub(crate) fn fields(pass: &Pass) -> Vec<Field> {
                 let common = prefix.iter().zip(w).take_while(|(a, b)| a == b).count();
                 prefix.truncate(common);
             }
-            // Keep a word for each option's own name.
-            if split.iter().any(|w| w.len() == prefix.len()) {
-                prefix.clear();
-            }
             let (name, field) = if prefix.is_empty() {
                 (format!("Set{i}"), format!("set{i}"))
             } else {
@@ -126,7 +122,13 @@ pub(crate) fn fields(pass: &Pass) -> Vec<Field> {
                     Some(_) => {
                         let w = &split[next];
                         next += 1;
-                        camel_words(&w[prefix.len()..])
+                        // The option that is the shared words alone (`_MAIN_LIGHT_SHADOWS`
+                        // beside `_MAIN_LIGHT_SHADOWS_CASCADE`) is the set's `On`.
+                        if w.len() == prefix.len() {
+                            "On".to_string()
+                        } else {
+                            camel_words(&w[prefix.len()..])
+                        }
                     }
                 };
                 if variants.contains(&variant) {
@@ -208,6 +210,42 @@ fn on(fields: &[Field], set: usize, option: usize, negated: bool) -> String {
             "{not}matches!(k.{field}, keywords::{name}::{})",
             variants[option]
         ),
+    }
+}
+
+/// The Rust condition "none of `alternatives` is on" (options of one set, so of one enum
+/// field): the shorter of `!matches!(k.f, A | B)` and `matches!(k.f, C | D)` over the other
+/// options, so the line stays as rustfmt leaves it.
+fn none_of(fields: &[Field], alternatives: &[(usize, usize)]) -> String {
+    let set = alternatives[0].0;
+    let Field::Choice {
+        field,
+        name,
+        variants,
+    } = &fields[set]
+    else {
+        // Only a set of three or more options has alternatives; join the conditions.
+        let any: Vec<String> = alternatives
+            .iter()
+            .map(|&(s, o)| on(fields, s, o, false))
+            .collect();
+        return format!("!({})", any.join(" || "));
+    };
+    let pattern = |options: Vec<usize>| {
+        let arms: Vec<String> = options
+            .iter()
+            .map(|&o| format!("keywords::{name}::{}", variants[o]))
+            .collect();
+        format!("matches!(k.{field}, {})", arms.join(" | "))
+    };
+    let named: Vec<usize> = alternatives.iter().map(|&(_, o)| o).collect();
+    let others: Vec<usize> = (0..variants.len()).filter(|o| !named.contains(o)).collect();
+    let negated = format!("!{}", pattern(named));
+    let complement = pattern(others);
+    if complement.len() < negated.len() {
+        complement
+    } else {
+        negated
     }
 }
 
@@ -385,17 +423,19 @@ pub(crate) fn write(code: &mut String, pass: &Pass, fields: &[Field], baked: boo
     );
     let mut checks = String::new();
     for c in &pass.constraints {
-        let [(sa, oa), (sb, ob)] = c.at;
-        let [a, b] = &c.keywords;
+        let (sa, oa) = c.at[0];
+        let a = &c.keywords[0];
+        // A requirement's alternatives, joined: "B or C".
+        let b = c.keywords[1..].join(" or ");
         let (variant, other, negated) = match c.kind {
             ConstraintKind::Require => ("Requires", "required", true),
             ConstraintKind::Exclude => ("Excludes", "excluded", false),
         };
-        if_both(
-            &mut checks,
-            &on(fields, sa, oa, false),
-            &on(fields, sb, ob, negated),
-        );
+        let partner = match &c.at[1..] {
+            [(sb, ob)] => on(fields, *sb, *ob, negated),
+            alternatives => none_of(fields, alternatives),
+        };
+        if_both(&mut checks, &on(fields, sa, oa, false), &partner);
         struct_lit(
             &mut checks,
             12,
@@ -625,7 +665,7 @@ pub enum KeyError {
     Requires {
         /// The keyword that is on.
         keyword: &'static str,
-        /// The keyword it needs.
+        /// The keyword it needs (alternatives joined by ` or `).
         required: &'static str,
     },
     /// `#pragma exclude`: `keyword` and `excluded` are both on.

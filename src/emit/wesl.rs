@@ -943,7 +943,7 @@ pub fn declaration(lib: &Library) -> Result<String, ExportError> {
                     .constraints
                     .iter()
                     .filter(|c| c.kind == kind)
-                    .map(|c| names(&[Some(c.keywords[0].clone()), Some(c.keywords[1].clone())]))
+                    .map(|c| names(&c.keywords.iter().cloned().map(Some).collect::<Vec<_>>()))
                     .collect();
                 if !pairs.is_empty() {
                     let _ = writeln!(out, "{key} = [{}]", pairs.join(", "));

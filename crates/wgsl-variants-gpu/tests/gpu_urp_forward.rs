@@ -1,10 +1,11 @@
 //! The GPU proof of URP's `universal_lit/UniversalForward`: the default selection (a t = 3
 //! covering set plus one partner per keyword) rendered on the URP scene lit by the main light
-//! (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat`
+//! (with its shadow map, or its four cascades) and three additional lights, every texel of the `Rg11b10Ufloat`
 //! camera target compared with `reference::urp::forward`, every keyword shown to change a
 //! texel; and libraries with planted bugs (the per-vertex light not multiplied by the diffuse
 //! colour, light layers ignored by the per-pixel loop, the subtractive mix's shadow strength
-//! wrong) caught where, and only where, the bug shows. The full space (55,296 variants) is the
+//! wrong, the shadow fade dropped, the cascade selection ignored) caught where, and only where,
+//! the bug shows. The full space (92,160 variants) is the
 //! ignored test `every_universal_forward_variant_matches_the_reference`
 //! (`cargo test --release -p wgsl-variants-gpu --test gpu_urp_forward -- --ignored`).
 //!
@@ -36,9 +37,10 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
     assert!(p.variants_run >= at_least, "{} variants", p.variants_run);
     assert_eq!(p.mismatches, 0, "{report}");
     assert!(p.discarded_compared > 0, "the alpha test discarded nothing");
-    // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS,
-    // _SHADOWS_SOFT, the two additional-light options, _LIGHT_LAYERS, subtractive, lightmap.
-    assert_eq!(p.keywords.len(), 17);
+    // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS and
+    // _MAIN_LIGHT_SHADOWS_CASCADE, _SHADOWS_SOFT, the two additional-light options,
+    // _LIGHT_LAYERS, subtractive, lightmap.
+    assert_eq!(p.keywords.len(), 18);
     assert!(p.untested_keywords.is_empty(), "{:?}", p.untested_keywords);
     assert!(
         p.keywords.iter().all(|k| k.pairs_changed > 0),
@@ -63,16 +65,16 @@ fn covering_set_of_universal_forward_matches_the_reference() {
     let pass = lib.pass("universal_lit", "UniversalForward").unwrap();
     let cover = Space::full(pass).covering(3).unwrap().len();
     assert_passes(&report, cover);
-    assert!(report.passes[0].variants_run <= cover + 17);
+    assert!(report.passes[0].variants_run <= cover + 18);
 }
 
 #[test]
-#[ignore = "55,296 variants: run with --ignored (the README gives the time)"]
+#[ignore = "92,160 variants: run with --ignored (docs/urp.md gives the time)"]
 fn every_universal_forward_variant_matches_the_reference() {
     let Some(report) = run(&wgsl_variants_shaders::library().unwrap(), true) else {
         return;
     };
-    assert_passes(&report, 55_296);
+    assert_passes(&report, 92_160);
 }
 
 /// Runs the forward pass's default selection over the bundled library with one planted bug
@@ -120,9 +122,9 @@ fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows(
     // The subtractive mix takes the main light's shadow strength (URP's
     // SubtractDirectMainLightFromLightmap); full strength instead changes shadowed texels.
     let Some(bad) = mismatching(
-        "universal/lit_forward_pass.wgsl",
-        "return vec2f(mix(realtime, 1.0, fade), shadow.params.x);",
-        "return vec2f(mix(realtime, 1.0, fade), 1.0);",
+        "universal/main_light_shadow.wgsl",
+        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), params.x);",
+        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), 1.0);",
     ) else {
         return;
     };
@@ -143,14 +145,32 @@ fn an_ignored_shadow_fade_is_caught_only_where_the_main_light_is_shadowed() {
     // URP's MainLightShadow lerps the realtime shadow towards 1 with the distance from the
     // camera; the check's fade ramps across the shadowed texels.
     let Some(bad) = mismatching(
-        "universal/lit_forward_pass.wgsl",
-        "return vec2f(mix(realtime, 1.0, fade), shadow.params.x);",
-        "return vec2f(realtime, shadow.params.x);",
+        "universal/main_light_shadow.wgsl",
+        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), params.x);",
+        "return vec2f(realtime, params.x);",
     ) else {
         return;
     };
     for k in &bad {
         assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn an_ignored_cascade_selection_is_caught_only_with_cascades() {
+    // URP's ComputeCascadeIndex picks the first split sphere holding the point; reading
+    // cascade 0 everywhere puts the shadow of cascade 1's half (and of the points in no
+    // cascade) in the wrong place.
+    let Some(bad) = mismatching(
+        "universal/main_light_shadow.wgsl",
+        "let c = cascade_coords(main_light_cascades, p);",
+        "let c = shadow_coords(main_light_cascades.world_to_shadow[0], p);",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS_CASCADE"), "{k}");
         assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
     }
 }

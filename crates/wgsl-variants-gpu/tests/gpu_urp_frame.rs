@@ -48,11 +48,22 @@ fn the_urp_frame_matches_the_reference_both_ways() {
     // The main light's shadow falls on the surfaces in view, mostly clear of its edges.
     assert!(report.shadowed > 50, "{report}");
     assert!(report.uncertain < report.compared / 20, "{report}");
+    // Four cascades, URP's split spheres picking one per pixel: each holds part of the frame
+    // and the shadow falls in more than one; no pixel lies in two spheres URP's cascade index
+    // cannot tell apart.
+    let [all, shadowed] = report.cascades;
+    assert!(all[..4].iter().all(|&n| n > 50), "{report}");
+    assert!(
+        shadowed[..4].iter().filter(|&&n| n > 0).count() >= 2,
+        "{report}"
+    );
+    assert_eq!(all[5], 0, "{report}");
 }
 
 /// The frame rendered with a fault, compared with the reference of the true frame: a light
 /// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
-/// on every layer), the main light's shadow missing or not fading with the distance — each
+/// on every layer), the main light's shadow missing, not fading with the distance or drawn
+/// from one map where the frame has cascades — each
 /// fails on both paths; a light volume too small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
@@ -75,12 +86,17 @@ fn a_wrong_light_is_caught_both_ways() {
     if let Some(spec) = &mut unfaded.main_shadow {
         spec.fade = MainLightShadowFade::NONE;
     }
+    let mut one_map = truth.clone();
+    if let Some(spec) = &mut one_map.main_shadow {
+        spec.cascade_splits = None;
+    }
     for (what, wrong) in [
         ("spot 25 % brighter", &brighter),
         ("no main light", &no_main),
         ("rendering layers ignored", &unlayered),
         ("no main-light shadow", &unshadowed),
         ("the shadow's fade ignored", &unfaded),
+        ("one map instead of the cascades", &one_map),
     ] {
         let shadow = render_urp_shadow(&ctx, &lib, wrong).expect("shadow");
         let forward = render_urp_forward(&ctx, &lib, wrong, shadow.as_ref()).expect("forward");

@@ -77,7 +77,7 @@ pub enum KeyError {
     Requires {
         /// The keyword that is on.
         keyword: &'static str,
-        /// The keyword it needs.
+        /// The keyword it needs (alternatives joined by ` or `).
         required: &'static str,
     },
     /// `#pragma exclude`: `keyword` and `excluded` are both on.

@@ -4,8 +4,9 @@
 //! its orthographic view and laid into its tile of an atlas — and the masks every
 //! `screen_space_shadows/Collect` variant made of each atlas over the camera's depth buffer.
 //! The `Collect` check compares these masks; the lighting and forward checks read the
-//! 4-cascade mask. Each light also keeps one map over the region around the scene (URP's main
-//! light reads it).
+//! 4-cascade mask. Each light also keeps one map over the region around the scene and URP's
+//! cascades over the test quad ([`urp_split_spheres`]): URP's main light reads them
+//! (`_MAIN_LIGHT_SHADOWS`, `_MAIN_LIGHT_SHADOWS_CASCADE`).
 
 use glam::{Mat4, Vec3};
 
@@ -17,11 +18,16 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::cascades::{Cascade, CascadeCamera, Cascades};
+use wgsl_variants_shaders::reference::cascades::{
+    Cascade, CascadeCamera, CascadeKeywords, Cascades,
+};
 use wgsl_variants_shaders::reference::light::{
     Light, LightType, look_at_rh, perspective_rh, world_from_depth,
 };
-use wgsl_variants_shaders::reference::shadow::{ShadowMap2d, ShadowParams};
+use wgsl_variants_shaders::reference::shadow::{
+    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
+};
+use wgsl_variants_shaders::reference::urp::forward::MainLightShadows;
 
 /// The directional shadows' strength.
 pub const DIRECTIONAL_STRENGTH: f32 = 0.85;
@@ -47,6 +53,52 @@ pub const DEEP_TARGET: Vec3 = Vec3::new(0.25, -0.25, 0.0);
 /// The deep view's far plane (its sky pixels lie there, beyond every cascade).
 pub const DEEP_FAR: f32 = 30.0;
 
+/// URP's main-light split spheres over the test quad (`_MAIN_LIGHT_SHADOWS_CASCADE`), each
+/// inside the next as URP's grow along the view (so exactly one cascade weight is on where
+/// any is: URP's `ComputeCascadeIndex` subtracts only the previous sphere's weight): centres
+/// 0.6 above the floor (each map's depth range then holds the occluders) along a line through
+/// the occluders' shadow on the floor, radii 0.9, 1.35, 1.9 and 2.45. The shadow's left part
+/// falls in cascade 0, its right part in cascade 1; the quad's corners lie in none (lit).
+pub fn urp_split_spheres() -> [(Vec3, f32); 4] {
+    // Near the middle of the two occluders' shadows on the floor (shadows::OCCLUDERS cast
+    // along the rig's directional light), lifted to the occluders' height.
+    let shadow = Vec3::new(0.4, -0.45, 0.6);
+    [(-0.4, 0.9), (0.0, 1.35), (0.5, 1.9), (1.0, 2.45)]
+        .map(|(dx, radius)| (shadow + Vec3::X * dx, radius))
+}
+
+/// Cascades rendered into one atlas (each tile a cascade's map, [`Cascades::grid`]).
+#[derive(Clone, Debug)]
+pub struct CascadeAtlas {
+    /// The cascades.
+    pub cascades: Cascades,
+    /// The atlas, read back.
+    pub map: ShadowMap2d,
+    /// The atlas as rendered (`Depth16Unorm`).
+    pub texels: Vec<u16>,
+    /// The atlas's width and height in texels.
+    pub size: (u32, u32),
+}
+
+impl CascadeAtlas {
+    /// Renders `cascades`' maps into their atlas.
+    fn render(
+        ctx: &GpuContext,
+        lib: &Library,
+        cascades: Cascades,
+    ) -> Result<CascadeAtlas, GpuError> {
+        let (texels, size) = render_atlas(ctx, lib, &cascades)?;
+        let map = ShadowMap2d::from_depth16(size.0, size.1, &texels)
+            .map_err(refused("screen_space_shadows/Collect"))?;
+        Ok(CascadeAtlas {
+            cascades,
+            map,
+            texels,
+            size,
+        })
+    }
+}
+
 /// Where the cascades end and the next starts, as fractions of the pixels' view depths sorted
 /// (the depths half-way between two neighbours there): the last cascade ends before the
 /// farthest pixels, so some pixels lie in no cascade.
@@ -62,14 +114,8 @@ pub fn split_fractions(count: usize) -> &'static [f32] {
 /// variant.
 #[derive(Clone, Debug)]
 pub struct CascadeSet {
-    /// The cascades, fitted to the camera's view.
-    pub cascades: Cascades,
-    /// The atlas, read back (each tile a cascade's map, [`Cascades::grid`]).
-    pub atlas: ShadowMap2d,
-    /// The atlas as rendered (`Depth16Unorm`).
-    pub atlas_texels: Vec<u16>,
-    /// The atlas's width and height in texels.
-    pub atlas_size: (u32, u32),
+    /// The cascades, fitted to the camera's view, and their atlas.
+    pub atlas: CascadeAtlas,
     /// The mask of each `Collect` variant (in [`ScreenShadows::variants`] order),
     /// `Rgba8Unorm` bytes of the rig's camera view.
     pub masks: Vec<Vec<u8>>,
@@ -91,6 +137,93 @@ pub struct ScreenShadow {
     pub sets: Vec<CascadeSet>,
     /// The same over the deep view ([`ScreenShadows::deep`]).
     pub deep_sets: Vec<CascadeSet>,
+    /// URP's cascades over the test quad (its split spheres: `urp_split_spheres` of this
+    /// module), with the region map's strength and bias.
+    pub urp: CascadeAtlas,
+}
+
+impl ScreenShadow {
+    /// URP's realtime main-light shadow at `p` before the fade, as an interval (a tap or a
+    /// split within a hair of flipping gives both outcomes): 1 without a shadow, the region
+    /// map's ([`shadow_factor`]) with `_MAIN_LIGHT_SHADOWS`, the cascades'
+    /// ([`Cascades::factor`] with URP's split-sphere selection) with
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`; `soft`: `_SHADOWS_SOFT`.
+    pub fn urp_factor(&self, mode: MainLightShadows, soft: bool, p: Vec3) -> (f32, f32) {
+        match mode {
+            MainLightShadows::Off => (1.0, 1.0),
+            MainLightShadows::Map => shadow_factor(
+                &self.params,
+                ShadowKeywords {
+                    depth: true,
+                    soft,
+                    ..ShadowKeywords::default()
+                },
+                ShadowMaps {
+                    map: Some(&self.map),
+                    cube: None,
+                },
+                p,
+            ),
+            MainLightShadows::Cascades => self.urp.cascades.factor(
+                CascadeKeywords {
+                    split_spheres: true,
+                    soft,
+                    single: false,
+                },
+                &self.urp.map,
+                p,
+            ),
+        }
+    }
+
+    /// What URP's cascades do at `positions`, for reports: how many lie in each cascade and in
+    /// none, and how many of those the hard cascaded shadow darkens, e.g. `cascades 0-3, none:
+    /// 30, 33, 61, 105, 27 positions; shadowed 5, 4, 0, 0, 0`.
+    pub fn urp_cascade_census(&self, positions: &[Vec3]) -> String {
+        let spheres = CascadeKeywords {
+            split_spheres: true,
+            ..CascadeKeywords::default()
+        };
+        let mut all = [0usize; 5];
+        let mut shadowed = [0usize; 5];
+        for &p in positions {
+            let Some(w) = self.urp.cascades.candidates(spheres, p)[0] else {
+                continue;
+            };
+            let k = Cascades::picked(w).min(4);
+            all[k] += 1;
+            let lit = self.urp_factor(MainLightShadows::Cascades, false, p).1;
+            shadowed[k] += usize::from(lit < 1.0);
+        }
+        let list = |v: [usize; 5]| v.map(|n| n.to_string()).join(", ");
+        format!(
+            "cascades 0-3, none: {} positions; shadowed {}",
+            list(all),
+            list(shadowed)
+        )
+    }
+
+    /// Bindings 10-12, 14 and 15 of URP's main-light shadow (`universal/main_light_shadow`):
+    /// the region map's `Shadow` record and map (`_MAIN_LIGHT_SHADOWS`), the comparison
+    /// sampler, the cascades' `CascadedShadow` record and atlas
+    /// (`_MAIN_LIGHT_SHADOWS_CASCADE`). A variant binds those it declares.
+    pub(crate) fn urp_resources(&self) -> Vec<BoundResource> {
+        let mut out = shadow_map_resources(&self.params, &self.map_texels);
+        let cascades = map_resources(
+            &self.urp.cascades.uniform(),
+            &self.urp.texels,
+            self.urp.size,
+        );
+        // The record and the atlas at URP's cascade slots; the sampler is the map's.
+        out.extend(
+            cascades
+                .into_iter()
+                .take(2)
+                .zip([14, 15])
+                .map(|(r, binding)| BoundResource { binding, ..r }),
+        );
+        out
+    }
 }
 
 /// A second camera view for the `Collect` check: the floor `z = 0` seen from [`DEEP_EYE`]
@@ -216,6 +349,14 @@ impl ScreenShadows {
             };
             let sets = collect.sets(ctx, lib, light, camera)?;
             let deep_sets = collect.sets(ctx, lib, light, &deep.camera())?;
+            let urp = Cascades::from_spheres(
+                light,
+                DIRECTIONAL_STRENGTH,
+                SPOT_BIAS,
+                &urp_split_spheres(),
+            )
+            .map_err(&refused)?;
+            let urp = CascadeAtlas::render(ctx, lib, urp)?;
             lights.push(ScreenShadow {
                 light: kind,
                 params,
@@ -223,6 +364,7 @@ impl ScreenShadows {
                 map_texels: image.depth,
                 sets,
                 deep_sets,
+                urp,
             });
         }
         Ok(ScreenShadows {
@@ -296,9 +438,7 @@ impl Collect<'_> {
             splits.extend(split_fractions(count).iter().map(|&f| quantile(&depths, f)));
             let cascades = Cascades::fit(light, DIRECTIONAL_STRENGTH, SPOT_BIAS, &view, &splits)
                 .map_err(&refused)?;
-            let (atlas_texels, atlas_size) = render_atlas(ctx, lib, &cascades)?;
-            let atlas = ShadowMap2d::from_depth16(atlas_size.0, atlas_size.1, &atlas_texels)
-                .map_err(&refused)?;
+            let atlas = CascadeAtlas::render(ctx, lib, cascades)?;
             let mut masks = Vec::new();
             for choice in self.choices {
                 let variant = wgsl_variants::Variant {
@@ -311,19 +451,13 @@ impl Collect<'_> {
                 job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
                 job.resources = depth_camera_resources(self.size, camera);
                 job.resources.extend(map_resources(
-                    &cascades.uniform(),
-                    &atlas_texels,
-                    atlas_size,
+                    &atlas.cascades.uniform(),
+                    &atlas.texels,
+                    atlas.size,
                 ));
                 masks.push(render(ctx, &job)?.remove(0));
             }
-            sets.push(CascadeSet {
-                cascades,
-                atlas,
-                atlas_texels,
-                atlas_size,
-                masks,
-            });
+            sets.push(CascadeSet { atlas, masks });
         }
         Ok(sets)
     }
@@ -432,4 +566,38 @@ pub(crate) fn map_resources(
             },
         ),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn urp_split_spheres_nest_so_one_cascade_is_picked() {
+        let spheres = urp_split_spheres();
+        for w in spheres.windows(2) {
+            let ((a, ra), (b, rb)) = (w[0], w[1]);
+            assert!(a.distance(b) + ra <= rb, "{w:?}: not inside the next");
+        }
+        // Every point of the quad's plane is in one cascade or in none.
+        let sun = Light::directional(Vec3::new(0.25, -0.35, -0.9), Vec3::ONE);
+        let c = Cascades::from_spheres(&sun, 0.5, 0.0, &spheres).unwrap();
+        let keywords = CascadeKeywords {
+            split_spheres: true,
+            ..CascadeKeywords::default()
+        };
+        let mut picked = [0usize; 5];
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let p = Vec3::new(-1.5 + 0.1 * i as f32, -2.25 + 0.1 * j as f32, 0.0);
+                for w in c.candidates(keywords, p) {
+                    let k = Cascades::picked(w.unwrap());
+                    assert!(k <= 4, "{p}: more than one cascade");
+                    picked[k] += 1;
+                }
+            }
+        }
+        // Each cascade and the outside are reached.
+        assert!(picked.iter().all(|&n| n > 0), "{picked:?}");
+    }
 }

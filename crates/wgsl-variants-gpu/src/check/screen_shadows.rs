@@ -103,11 +103,11 @@ pub fn check_collect(
                     let mask = &set.masks[v];
                     for (i, (x, y)) in scene.pixels().enumerate() {
                         let p = positions[i];
-                        let (lo, hi) = set.cascades.factor(keywords, &set.atlas, p);
+                        let (lo, hi) = set.atlas.cascades.factor(keywords, &set.atlas.map, p);
                         if count == 4
                             && !keywords.single
                             && !keywords.soft
-                            && let Some(w) = set.cascades.candidates(keywords, p)[0]
+                            && let Some(w) = set.atlas.cascades.candidates(keywords, p)[0]
                         {
                             picked[view][usize::from(keywords.split_spheres)]
                                 [Cascades::picked(w)] += 1;

@@ -281,12 +281,13 @@ pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFa
     MainLightShadowFade::between(near + 0.1 * span, near + 0.9 * span)
 }
 
-/// The bindings of the main light's shadow in URP's passes: the map (10-12) and the fade (13).
+/// The bindings of the main light's shadow in URP's passes: the map, the cascades and their
+/// atlas (10-12, 14, 15) and the fade (13).
 pub(crate) fn main_shadow_resources(
     shadow: &super::screen_masks::ScreenShadow,
     fade: &MainLightShadowFade,
 ) -> Vec<BoundResource> {
-    let mut out = super::screen_masks::shadow_map_resources(&shadow.params, &shadow.map_texels);
+    let mut out = shadow.urp_resources();
     out.push(BoundResource::new(0, 13, Resource::Uniform(fade.uniform())));
     out
 }

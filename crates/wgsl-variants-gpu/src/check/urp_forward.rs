@@ -30,10 +30,9 @@ use super::urp_lighting::{
 };
 use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
 use wgsl_variants_shaders::reference::light::{Light, LightError};
-use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::urp::forward::{
-    MainLightShadow, MainLightShadowFade, UrpForwardKeywords, UrpForwardLights, shade_forward,
-    vertex_lighting,
+    MainLightShadow, MainLightShadowFade, MainLightShadows, UrpForwardKeywords, UrpForwardLights,
+    shade_forward, vertex_lighting,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
 use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
@@ -122,26 +121,15 @@ impl UrpForwardScene {
     }
 
     /// The main light's shadow at `p` for a variant: the interval of its outcomes
-    /// ([`shadow_factor`]), `NONE` twice where the variant reads no map.
+    /// ([`ScreenShadow::urp_factor`]: the map or the cascades), `NONE` twice where the variant
+    /// reads no map.
     fn main_light_shadow(&self, k: &UrpForwardKeywords, p: Vec3) -> [MainLightShadow; 2] {
         if !k.reads_shadow_map() {
             return [MainLightShadow::NONE; 2];
         }
-        let (lo, hi) = shadow_factor(
-            &self.shadow.params,
-            ShadowKeywords {
-                depth: true,
-                cube: false,
-                screen: false,
-                soft: k.shadows_soft,
-                ..ShadowKeywords::default()
-            },
-            ShadowMaps {
-                map: Some(&self.shadow.map),
-                cube: None,
-            },
-            p,
-        );
+        let (lo, hi) = self
+            .shadow
+            .urp_factor(k.main_light_shadows, k.shadows_soft, p);
         let fade = self.fade.at(p, self.urp.lighting.camera_position);
         [lo, hi].map(|attenuation| {
             MainLightShadow {
@@ -232,7 +220,7 @@ impl UrpColorPass for UrpForwardScene {
             .pixels()
             .filter(|&(x, y)| {
                 let k = UrpForwardKeywords {
-                    main_light_shadows: true,
+                    main_light_shadows: MainLightShadows::Map,
                     ..UrpForwardKeywords::default()
                 };
                 let [lo, _] =
@@ -240,10 +228,12 @@ impl UrpColorPass for UrpForwardScene {
                 lo.attenuation < 1.0
             })
             .count();
+        let positions: Vec<Vec3> = s.pixels().map(|(x, y)| s.world_position(x, y)).collect();
         format!(
-            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners",
+            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; URP's {}; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners",
             s.width,
             s.height,
+            self.shadow.urp_cascade_census(&positions),
             self.lights.additional().len()
         )
     }

@@ -43,7 +43,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
-use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+use wgsl_variants_shaders::reference::urp::forward::{MainLightShadowFade, MainLightShadows};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
@@ -166,7 +166,7 @@ impl UrpLights {
 struct LightingKeywords {
     kind: UrpLightKind,
     main: bool,
-    shadows: bool,
+    shadows: MainLightShadows,
     soft: bool,
     oct: bool,
     layers: bool,
@@ -190,6 +190,7 @@ impl LightingKeywords {
             "_POINT",
             "_DEFERRED_MAIN_LIGHT",
             "_MAIN_LIGHT_SHADOWS",
+            "_MAIN_LIGHT_SHADOWS_CASCADE",
             "_SHADOWS_SOFT",
             "_GBUFFER_NORMALS_OCT",
             "_LIGHT_LAYERS",
@@ -200,7 +201,7 @@ impl LightingKeywords {
         Ok(LightingKeywords {
             kind,
             main: has("_DEFERRED_MAIN_LIGHT"),
-            shadows: has("_MAIN_LIGHT_SHADOWS"),
+            shadows: MainLightShadows::of(names),
             soft: has("_SHADOWS_SOFT"),
             oct: has("_GBUFFER_NORMALS_OCT"),
             layers: has("_LIGHT_LAYERS"),
@@ -294,27 +295,9 @@ pub fn check_stencil_deferred(
                     });
                     let stored = unpack_rg11b10(u32::from_le_bytes(texel_bytes(3)));
                     let p = rig.deferred_position(scene, x, y);
-                    let (lo, hi) = if k.shadows {
-                        shadow_factor(
-                            &main_shadow.params,
-                            ShadowKeywords {
-                                depth: true,
-                                cube: false,
-                                screen: false,
-                                soft: k.soft,
-                                ..ShadowKeywords::default()
-                            },
-                            ShadowMaps {
-                                map: Some(&main_shadow.map),
-                                cube: None,
-                            },
-                            p,
-                        )
-                    } else {
-                        (1.0, 1.0)
-                    };
+                    let (lo, hi) = main_shadow.urp_factor(k.shadows, k.soft, p);
                     // URP's MainLightShadow fades the realtime shadow with the distance.
-                    let f = if k.shadows {
+                    let f = if k.shadows != MainLightShadows::Off {
                         fade.at(p, scene.scene.camera_position)
                     } else {
                         0.0

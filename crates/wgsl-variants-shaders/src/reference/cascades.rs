@@ -155,6 +155,60 @@ impl Cascades {
         })
     }
 
+    /// URP's cascades as its shader sees them (`_MAIN_LIGHT_SHADOWS_CASCADE`): one per split
+    /// sphere `(centre, radius)`, the light's orthographic view around it
+    /// ([`ShadowParams::for_directional`]) in tile `i` of the atlas. URP's host derives the
+    /// spheres from its split ratios; its shader reads only the spheres and the matrices, so a
+    /// check may place them where they split its pixels. No view-depth slices: select with
+    /// `split_spheres` ([`CascadeKeywords`]).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades};
+    /// use wgsl_variants_shaders::reference::light::Light;
+    /// let sun = Light::directional(Vec3::NEG_Z, Vec3::ONE);
+    /// let rings = [(Vec3::ZERO, 1.0), (Vec3::ZERO, 2.0)];
+    /// let c = Cascades::from_spheres(&sun, 0.8, 0.0, &rings).unwrap();
+    /// let spheres = CascadeKeywords { split_spheres: true, ..CascadeKeywords::default() };
+    /// let pick = |p: Vec3| Cascades::picked(c.candidates(spheres, p)[0].unwrap());
+    /// // The first sphere that holds the point; none beyond the last.
+    /// assert_eq!(pick(Vec3::new(0.5, 0.0, 0.0)), 0);
+    /// assert_eq!(pick(Vec3::new(1.5, 0.0, 0.0)), 1);
+    /// assert_eq!(pick(Vec3::new(2.5, 0.0, 0.0)), 4);
+    /// ```
+    ///
+    /// # Errors
+    /// Not 1 to 4 spheres ([`ShadowError::SplitSpheres`]), or what
+    /// [`ShadowParams::for_directional`] refuses.
+    pub fn from_spheres(
+        light: &Light,
+        strength: f32,
+        bias: f32,
+        spheres: &[(Vec3, f32)],
+    ) -> Result<Cascades, ShadowError> {
+        if !(1..=MAX_CASCADES).contains(&spheres.len()) {
+            return Err(ShadowError::SplitSpheres(spheres.len()));
+        }
+        let count = spheres.len();
+        let mut cascades = Vec::with_capacity(count);
+        for (i, &(center, radius)) in spheres.iter().enumerate() {
+            let params = ShadowParams::for_directional(light, strength, bias, center, radius)?;
+            cascades.push(Cascade {
+                splits: (0.0, 0.0),
+                sphere: (center, radius),
+                params: ShadowParams {
+                    world_to_shadow: Cascades::tile(count, i) * params.world_to_shadow,
+                    ..params
+                },
+                view_proj: params.world_to_shadow,
+            });
+        }
+        Ok(Cascades {
+            cascades,
+            view_axis: Vec4::ZERO,
+        })
+    }
+
     /// One cascade over a whole map of its own: `params`'s view (what a light with
     /// `SHADOWS_SINGLE_CASCADE` binds), covering every depth and every point.
     ///
@@ -185,7 +239,8 @@ impl Cascades {
         }
     }
 
-    /// The atlas's tiles across and down for `count` cascades: 1 × 1, 2 × 1 or 2 × 2.
+    /// The atlas's tiles across and down for `count` cascades: 1 × 1, 2 × 1 or 2 × 2 (3
+    /// cascades leave the last tile empty).
     pub fn grid(count: usize) -> (u32, u32) {
         match count {
             1 => (1, 1),

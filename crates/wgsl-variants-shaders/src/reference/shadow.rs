@@ -143,6 +143,10 @@ pub enum ShadowError {
     /// cascades; [`crate::reference::cascades::Cascades::fit`]).
     #[error("cascade splits {0:?} must be 2, 3 or 5 increasing view depths above 0")]
     Cascades(Vec<f32>),
+    /// Split spheres that are not 1 to 4 ([`crate::reference::cascades::Cascades::from_spheres`];
+    /// each sphere is also checked as a directional region).
+    #[error("{0} split spheres: URP's main light has 1 to 4 cascades")]
+    SplitSpheres(usize),
     /// A shadow fade whose ramp is not finite or not increasing, or whose camera has no
     /// forward axis ([`crate::reference::shadow_fade::ShadowFade::new`]).
     #[error("shadow fade from {start} to {end} needs finite values, start < end and a camera axis")]

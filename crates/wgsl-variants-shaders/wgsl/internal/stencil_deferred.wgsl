@@ -22,11 +22,12 @@
 // those variants instead).
 #pragma multi_compile _DIRECTIONAL
 #pragma multi_compile _ _DEFERRED_MAIN_LIGHT
-#pragma multi_compile _ _MAIN_LIGHT_SHADOWS
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _GBUFFER_NORMALS_OCT
 #pragma multi_compile _ _LIGHT_LAYERS
 #pragma require _MAIN_LIGHT_SHADOWS _DEFERRED_MAIN_LIGHT
-#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS
+#pragma require _MAIN_LIGHT_SHADOWS_CASCADE _DEFERRED_MAIN_LIGHT
+#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
 #import universal/stencil_deferred_pass
 #endpass

@@ -9,6 +9,8 @@
 //                           unity_ShadowSplitSpheres / unity_ShadowSplitSqRadii,
 //                           getCascadeWeights_splitSpheres: weights.yzw -= weights.xyz)
 //   SHADOWS_SINGLE_CASCADE  cascade 0, nothing selected (getShadowCoord_SingleCascade)
+// URP's _MAIN_LIGHT_SHADOWS_CASCADE (universal/main_light_shadow) selects as
+// SHADOWS_SPLIT_SPHERES does: its ComputeCascadeIndex is the same subtraction.
 // A pixel in no cascade gets the coordinate (0, 0, 0): depth 0 is in front of every caster, so
 // it is lit (Unity moves it in front of the casters likewise).
 //
@@ -40,7 +42,7 @@ struct CascadedShadow {
 }
 
 fn cascade_weights(c: CascadedShadow, p: vec3f) -> vec4f {
-#if defined(SHADOWS_SPLIT_SPHERES)
+#if defined(SHADOWS_SPLIT_SPHERES) || defined(_MAIN_LIGHT_SHADOWS_CASCADE)
     let d0 = p - c.split_spheres[0].xyz;
     let d1 = p - c.split_spheres[1].xyz;
     let d2 = p - c.split_spheres[2].xyz;

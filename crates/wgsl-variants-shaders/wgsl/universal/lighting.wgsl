@@ -12,8 +12,6 @@
 //                            specular_setup: bool) -> UrpBrdfData
 //   fn urp_lighting_physically_based(brdf: UrpBrdfData, color: vec3f, attenuation: f32,
 //       l: vec3f, n: vec3f, v: vec3f, specular_highlights_off: bool) -> vec3f
-//   fn urp_main_light_shadow_fade(p: vec3f, camera: vec3f, fade: vec2f) -> f32
-//       how far the main light's realtime shadow has faded at p (0 none, 1 gone)
 
 // position.xyz (punctual); color.rgb; attenuation: x 1/range², z, w the spot's scale and
 // offset (0, 1 for a point light); direction.xyz: to the light (directional) or the spot's
@@ -24,14 +22,6 @@ struct UrpLight {
     attenuation: vec4f,
     direction: vec4f,
     layer_mask: vec4u,
-}
-
-// URP's GetMainLightShadowFade: saturate(|p - camera|² · scale + bias), a ramp in the squared
-// distance from the camera that the host sets to end at the shadow distance
-// (_MainLightShadowParams.zw).
-fn urp_main_light_shadow_fade(p: vec3f, camera: vec3f, fade: vec2f) -> f32 {
-    let d = p - camera;
-    return saturate(dot(d, d) * fade.x + fade.y);
 }
 
 const URP_HALF_MIN: f32 = 6.103515625e-5;

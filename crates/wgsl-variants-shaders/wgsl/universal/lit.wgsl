@@ -32,10 +32,10 @@
 #pass UniversalForward
 #tag LightMode UniversalForward
 // URP Lit's forward pass: the same material keywords; the pipeline keywords of the main
-// light's shadow (hard or soft), the additional lights (none, per vertex, per pixel), light
-// layers and baked lighting (a lightmap, with subtractive mixing). The soft-shadow and
-// subtractive keywords change nothing without the keyword they refine, so they require it:
-// 1024 · 3 · 3 · 2 · 3 = 55296 variants.
+// light's shadow (none, one map, cascades; hard or soft), the additional lights (none, per
+// vertex, per pixel), light layers and baked lighting (a lightmap, with subtractive mixing).
+// The soft-shadow and subtractive keywords change nothing without the keywords they refine,
+// so they require one of them: 1024 · 5 · 3 · 2 · 3 = 92160 variants.
 #pragma shader_feature_local _NORMALMAP
 #pragma shader_feature_local _ALPHATEST_ON
 #pragma shader_feature_local _EMISSION
@@ -46,13 +46,13 @@
 #pragma shader_feature_local _RECEIVE_SHADOWS_OFF
 #pragma shader_feature_local _SPECULARHIGHLIGHTS_OFF
 #pragma shader_feature_local _ENVIRONMENTREFLECTIONS_OFF
-#pragma multi_compile _ _MAIN_LIGHT_SHADOWS
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _ADDITIONAL_LIGHTS_VERTEX _ADDITIONAL_LIGHTS
 #pragma multi_compile _ _LIGHT_LAYERS
 #pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
 #pragma multi_compile _ LIGHTMAP_ON
-#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS
+#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
 #pragma require _MIXED_LIGHTING_SUBTRACTIVE LIGHTMAP_ON
 #import universal/lit_forward_pass
 #endpass

@@ -7,10 +7,7 @@
 //   group 0-2: universal/bindings (camera, lighting, environment; material; object, lightmap)
 //   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
 //                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
-//              10 shadow (Shadow), 11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler
-//                (sampler_comparison), 13 main_light_shadow_fade (vec4f: x URP's fade scale,
-//                y its bias) (the main light's map: _MAIN_LIGHT_SHADOWS without
-//                _RECEIVE_SHADOWS_OFF)
+//              10-15 the main light's shadow (universal/main_light_shadow)
 //
 // Provides the entry points:
 //   @vertex   vs_main(UrpVertexInput) -> UrpVertexOutput
@@ -21,9 +18,7 @@
 #import universal/lit_vertex
 #import universal/gi
 #import universal/lighting
-#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
-#import lighting/shadow
-#endif
+#import universal/main_light_shadow
 
 // URP's limit of additional lights per object in the forward path.
 const URP_MAX_ADDITIONAL_LIGHTS: u32 = 8u;
@@ -37,12 +32,6 @@ struct ForwardLights {
 
 #if defined(_ADDITIONAL_LIGHTS) || defined(_ADDITIONAL_LIGHTS_VERTEX) || defined(_LIGHT_LAYERS)
 @group(0) @binding(4) var<uniform> forward_lights: ForwardLights;
-#endif
-#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
-@group(0) @binding(10) var<uniform> shadow: Shadow;
-@group(0) @binding(11) var shadow_map: texture_depth_2d;
-@group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
-@group(0) @binding(13) var<uniform> main_light_shadow_fade: vec4f;
 #endif
 
 // Whether a light with this rendering-layer mask lights the mesh (_LIGHT_LAYERS: any layer in
@@ -83,22 +72,6 @@ fn vs_main(in: UrpVertexInput) -> UrpVertexOutput {
     return out;
 }
 
-// The main light's shadow at p: x the attenuation (URP's MainLightShadow: the realtime
-// shadow 1 − strength + strength · visibility, faded towards the baked one, 1 here, by
-// urp_main_light_shadow_fade; 1 without _MAIN_LIGHT_SHADOWS or with _RECEIVE_SHADOWS_OFF),
-// y the shadow's strength (0 where there is no shadow).
-fn urp_main_light_shadow(p: vec3f) -> vec2f {
-#if defined(_MAIN_LIGHT_SHADOWS) && !defined(_RECEIVE_SHADOWS_OFF)
-    let c = shadow_coords(shadow.world_to_shadow, p);
-    let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - shadow.params.y);
-    let realtime = shadow_mix(shadow.params.x, visibility);
-    let fade = urp_main_light_shadow_fade(p, camera.position.xyz, main_light_shadow_fade.xy);
-    return vec2f(mix(realtime, 1.0, fade), shadow.params.x);
-#else
-    return vec2f(1.0, 0.0);
-#endif
-}
-
 // URP's BRDFData for direct light: InitializeBRDFData's roughness terms (4r + 2, r² − 1).
 fn urp_direct_brdf(b: UrpBrdf) -> UrpBrdfData {
     let roughness = max(b.perceptual_roughness * b.perceptual_roughness, URP_HALF_MIN_SQRT);
@@ -119,7 +92,7 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
     let specular_off = false;
 #endif
 
-    let shadow = urp_main_light_shadow(p);
+    let shadow = urp_main_light_shadow(p, camera.position.xyz);
     var color = urp_global_illumination(b, urp_baked_gi(in, n, shadow.x, shadow.y), n, v, s.occlusion);
 
 #if defined(_LIGHT_LAYERS)

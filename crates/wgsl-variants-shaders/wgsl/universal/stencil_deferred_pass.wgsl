@@ -8,10 +8,8 @@
 //            5 light (UrpLight; the additional light this draw shades),
 //            6 rendering_layers (texture_2d<u32>, the G-buffer's R32Uint target; _LIGHT_LAYERS),
 //            7 main_light (UrpLight; _DEFERRED_MAIN_LIGHT: the frame's main light),
-//            10 shadow (Shadow), 11 shadow_map (texture_depth_2d) + 12 shadow_map_sampler
-//               (sampler_comparison, nearest, LessEqual, clamp to edge),
-//               13 main_light_shadow_fade (vec4f: x URP's fade scale, y its bias)
-//               (_MAIN_LIGHT_SHADOWS)
+//            10-15 the main light's shadow (universal/main_light_shadow: _MAIN_LIGHT_SHADOWS
+//               or _MAIN_LIGHT_SHADOWS_CASCADE; the sampler nearest, LessEqual, clamp to edge)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -23,9 +21,7 @@
 #import deferred/depth
 #import universal/gbuffer
 #import universal/lighting
-#if defined(_MAIN_LIGHT_SHADOWS)
-#import lighting/shadow
-#endif
+#import universal/main_light_shadow
 
 @group(0) @binding(0) var gbuffer0: texture_2d<f32>;
 @group(0) @binding(1) var gbuffer1: texture_2d<f32>;
@@ -41,12 +37,6 @@
 #if defined(_DEFERRED_MAIN_LIGHT)
 @group(0) @binding(7) var<uniform> main_light: UrpLight;
 #endif
-#if defined(_MAIN_LIGHT_SHADOWS)
-@group(0) @binding(10) var<uniform> shadow: Shadow;
-@group(0) @binding(11) var shadow_map: texture_depth_2d;
-@group(0) @binding(12) var shadow_map_sampler: sampler_comparison;
-@group(0) @binding(13) var<uniform> main_light_shadow_fade: vec4f;
-#endif
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
@@ -58,17 +48,12 @@ fn vs_volume(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
     return deferred_camera.view_proj * vec4f(world_position, 1.0);
 }
 
-// The main light's shadow (URP's MainLightShadow: the realtime shadow 1 - strength + strength ·
-// visibility, faded towards the baked one, 1 here, by urp_main_light_shadow_fade), 1 for a
-// texel whose material says ReceiveShadowsOff.
+// The main light's shadow (universal/main_light_shadow), 1 for a texel whose material says
+// ReceiveShadowsOff.
 fn urp_deferred_shadow(p: vec3f, flags: u32) -> f32 {
-#if defined(_MAIN_LIGHT_SHADOWS)
+#if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE)
     if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {
-        let c = shadow_coords(shadow.world_to_shadow, p);
-        let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - shadow.params.y);
-        let realtime = shadow_mix(shadow.params.x, visibility);
-        let fade = urp_main_light_shadow_fade(p, deferred_camera.position.xyz, main_light_shadow_fade.xy);
-        return mix(realtime, 1.0, fade);
+        return urp_main_light_shadow(p, deferred_camera.position.xyz).x;
     }
 #endif
     return 1.0;

@@ -420,6 +420,10 @@ pub struct UrpFrameReport {
     /// Of those, pixels with a shadow tap within a hair of flipping (compared within the
     /// interval of both outcomes).
     pub uncertain: usize,
+    /// With `_MAIN_LIGHT_SHADOWS_CASCADE`, compared pixels per cascade URP's split spheres
+    /// pick (0 to 3), in none, and in several (which URP's cascade index cannot handle; the
+    /// frame must have none): all of them, and those in the shadow. Zeros with one map.
+    pub cascades: [[usize; 6]; 2],
     /// The first mismatches, in pixel order (at most 20).
     pub mismatches: Vec<UrpFrameMismatch>,
 }
@@ -479,6 +483,13 @@ impl fmt::Display for UrpFrameReport {
             self.shadowed,
             self.uncertain
         )?;
+        if self.cascades[0].iter().any(|&n| n > 0) {
+            writeln!(
+                f,
+                "  cascades 0-3, none, several: {:?} pixels, {:?} of them in the shadow",
+                self.cascades[0], self.cascades[1]
+            )?;
+        }
         for m in &self.mismatches {
             writeln!(
                 f,
@@ -615,6 +626,7 @@ pub fn compare(
         layer_culled: 0,
         shadowed: 0,
         uncertain: 0,
+        cascades: [[0; 6]; 2],
         mismatches: Vec::new(),
     };
     let mut every_light: Vec<&UrpLightParams> = vec![&frame.main_light];
@@ -678,6 +690,12 @@ pub fn compare(
         if let Some([lo, hi]) = shadows_at(hit.geometry.world_position) {
             report.shadowed += usize::from(lo.attenuation < 1.0);
             report.uncertain += usize::from(lo.attenuation != hi.attenuation);
+        }
+        if let Some(k) = shadow.and_then(|s| s.cascade_at(hit.geometry.world_position)) {
+            report.cascades[0][k] += 1;
+            if shadows_at(hit.geometry.world_position).is_some_and(|s| s[0].attenuation < 1.0) {
+                report.cascades[1][k] += 1;
+            }
         }
         let (lo, hi) = window_range(&values);
         let (f_lo, f_hi) = rg11b10_store_range(lo, hi);

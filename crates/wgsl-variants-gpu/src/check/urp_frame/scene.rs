@@ -193,16 +193,18 @@ impl UrpFrame {
             from("cool point", 2, 0.0, EVERY_LAYER),
             from("spot", 3, 36.0, EVERY_LAYER),
         ];
-        // A soft shadow from a 512² map over a 14-unit box around the part of the floor in
-        // view; URP's caster biases of about two texels; faded out between 8 and 10 units
-        // from the camera (the far part of the floor).
+        // A soft shadow in four cascades of 512² over the built-in frame's splits (each
+        // cascade holds part of the visible surfaces), URP's split spheres picking them; URP's
+        // caster biases (about two texels of the widest cascade); faded out between 9 units
+        // from the camera and the shadow distance, 12, where the last cascade ends.
         let main_shadow = Some(UrpShadowSpec {
             strength: 0.9,
             soft: true,
             bias: Vec2::new(-0.04, -0.06),
             center: Vec3::new(0.4, 0.5, -1.0),
             radius: 7.0,
-            fade: MainLightShadowFade::between(8.0, 10.0),
+            cascade_splits: Some(geometry.cascade_splits.clone()),
+            fade: MainLightShadowFade::between(9.0, 12.0),
         });
         UrpFrame {
             objects: materials(),

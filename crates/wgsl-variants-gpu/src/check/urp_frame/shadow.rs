@@ -1,30 +1,33 @@
-//! The URP frame's main-light shadow (`_MAIN_LIGHT_SHADOWS`, one cascade): every object drawn
-//! by `universal_lit/ShadowCaster` (URP's caster bias and near-plane pancaking; the cutout
-//! object's alpha test) into one `Depth16Unorm` map of an orthographic box around the scene,
-//! read back; both paths' receivers bind what was rendered and the reference reads the same
-//! map ([`shadow_factor`]). Whether the caster writes the right texels is the
+//! The URP frame's main-light shadow: every object drawn by `universal_lit/ShadowCaster`
+//! (URP's caster bias and near-plane pancaking; the cutout object's alpha test) into one
+//! `Depth16Unorm` map of an orthographic box around the scene (`_MAIN_LIGHT_SHADOWS`), or
+//! into each cascade's tile of an atlas (`_MAIN_LIGHT_SHADOWS_CASCADE`: the cascades fitted to
+//! slices of the camera's view, URP's split spheres), read back; both paths' receivers bind
+//! what was rendered and the reference reads the same texels ([`shadow_factor`],
+//! [`Cascades::factor`]). Whether the caster writes the right texels is the
 //! `universal_lit/ShadowCaster` check's business (`check::urp_caster`).
 
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::super::scene::{push_mat4, push_vec4};
-use super::super::screen_masks::map_resources;
+use super::super::screen_masks::{lay_atlas, map_resources};
 use super::super::shadows::{DEPTH, refused};
 use super::UrpFrame;
 use super::text;
 use crate::{BoundResource, Draw, DrawPass, GpuContext, GpuError, Resource, render_pass};
 use wgsl_variants::Library;
+use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades, MAX_CASCADES};
 use wgsl_variants_shaders::reference::light::Light;
 use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
 };
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, MainLightShadowFade};
 
-/// Edge length of the main light's map in texels.
+/// Edge length of the main light's map in texels (of each cascade's tile with cascades).
 pub const MAIN_SHADOW_MAP_SIZE: u32 = 512;
 
 /// How the URP frame's main light casts its shadow.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct UrpShadowSpec {
     /// Strength in [0, 1]: the shadowed light keeps `1 − strength`.
     pub strength: f32,
@@ -33,11 +36,15 @@ pub struct UrpShadowSpec {
     /// URP's `_ShadowBias` at the caster: (depth, normal), world units (negative: away from the
     /// light, into the surface).
     pub bias: Vec2,
-    /// The centre of the map's orthographic box.
+    /// The centre of the map's orthographic box (one map).
     pub center: Vec3,
     /// Its half extent (the box reaches `radius` across the light and `2 · radius` along it on
     /// either side of `center`).
     pub radius: f32,
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the view depths that cut the camera's view into the
+    /// cascades (the near plane, the splits, the shadow distance: 2, 3 or 5 depths,
+    /// [`Cascades::fit`]), instead of the one map over `center` and `radius`.
+    pub cascade_splits: Option<Vec<f32>>,
     /// How the realtime shadow fades with the distance from the camera (URP's
     /// `_MainLightShadowParams.zw`).
     pub fade: MainLightShadowFade,
@@ -46,14 +53,19 @@ pub struct UrpShadowSpec {
 /// The main light's rendered shadow: what the receivers bind and the reference reads.
 #[derive(Clone, Debug)]
 pub struct UrpFrameShadow {
-    /// The map's parameters (the `Shadow` uniform; no receiver bias: URP biases the caster).
+    /// The map's parameters (the `Shadow` uniform; no receiver bias: URP biases the caster);
+    /// with cascades, the first cascade's.
     pub params: ShadowParams,
     /// `_SHADOWS_SOFT`.
     pub soft: bool,
-    /// The map, read back.
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the cascades, whose tiles `map` holds.
+    pub cascades: Option<Cascades>,
+    /// The map (or the cascades' atlas), read back.
     pub map: ShadowMap2d,
     /// The map's `Depth16Unorm` codes, as rendered (for the receivers' bindings).
     pub codes: Vec<u16>,
+    /// The map's width and height in texels.
+    pub size: (u32, u32),
     /// The fade with the distance from the camera.
     pub fade: MainLightShadowFade,
     /// The camera the fade measures from.
@@ -61,26 +73,53 @@ pub struct UrpFrameShadow {
 }
 
 impl UrpFrameShadow {
-    /// The receivers' keywords: `_MAIN_LIGHT_SHADOWS`, and `_SHADOWS_SOFT` as specified.
+    /// The receivers' keywords: `_MAIN_LIGHT_SHADOWS` or `_MAIN_LIGHT_SHADOWS_CASCADE`, and
+    /// `_SHADOWS_SOFT` as specified.
     pub fn keywords(&self) -> Vec<&'static str> {
-        let mut out = vec!["_MAIN_LIGHT_SHADOWS"];
+        let mut out = vec![match self.cascades {
+            Some(_) => "_MAIN_LIGHT_SHADOWS_CASCADE",
+            None => "_MAIN_LIGHT_SHADOWS",
+        }];
         if self.soft {
             out.push("_SHADOWS_SOFT");
         }
         out
     }
 
-    /// Bindings 10–13 of a receiver: the `Shadow` uniform, the map, its comparison sampler
-    /// and the fade.
+    /// A receiver's bindings (`universal/main_light_shadow`): the `Shadow` uniform and the
+    /// map (10, 11) or the `CascadedShadow` uniform and the atlas (14, 15), the comparison
+    /// sampler (12) and the fade (13).
     pub fn resources(&self) -> Vec<BoundResource> {
-        let size = (MAIN_SHADOW_MAP_SIZE, MAIN_SHADOW_MAP_SIZE);
-        let mut out = map_resources(&self.params.uniform(), &self.codes, size);
+        let mut out = match &self.cascades {
+            None => map_resources(&self.params.uniform(), &self.codes, self.size),
+            Some(c) => map_resources(&c.uniform(), &self.codes, self.size)
+                .into_iter()
+                .map(|r| match r.binding {
+                    10 => BoundResource { binding: 14, ..r },
+                    11 => BoundResource { binding: 15, ..r },
+                    _ => r,
+                })
+                .collect(),
+        };
         out.push(BoundResource::new(
             0,
             13,
             Resource::Uniform(self.fade.uniform()),
         ));
         out
+    }
+
+    /// With cascades, the one URP's split spheres pick at `p` (0 to 3; [`MAX_CASCADES`] for
+    /// none, one more for several: spheres URP's `ComputeCascadeIndex` cannot tell apart);
+    /// `None` with one map.
+    pub fn cascade_at(&self, p: Vec3) -> Option<usize> {
+        let c = self.cascades.as_ref()?;
+        let spheres = CascadeKeywords {
+            split_spheres: true,
+            ..CascadeKeywords::default()
+        };
+        let w = c.candidates(spheres, p)[0].unwrap_or([0.0; MAX_CASCADES]);
+        Some(Cascades::picked(w))
     }
 
     /// The main light's shadow at world position `p`, faded with the distance: the interval
@@ -95,7 +134,18 @@ impl UrpFrameShadow {
             map: Some(&self.map),
             cube: None,
         };
-        let (lo, hi) = shadow_factor(&self.params, keywords, maps, p);
+        let (lo, hi) = match &self.cascades {
+            None => shadow_factor(&self.params, keywords, maps, p),
+            Some(c) => c.factor(
+                CascadeKeywords {
+                    split_spheres: true,
+                    soft: self.soft,
+                    single: false,
+                },
+                &self.map,
+                p,
+            ),
+        };
         let fade = self.fade.at(p, self.camera);
         [lo, hi].map(|attenuation| {
             MainLightShadow {
@@ -116,24 +166,63 @@ pub fn render_urp_shadow(
     lib: &Library,
     frame: &UrpFrame,
 ) -> Result<Option<UrpFrameShadow>, GpuError> {
-    let Some(spec) = frame.main_shadow else {
+    let Some(spec) = &frame.main_shadow else {
         return Ok(None);
     };
     let refused = refused("universal_lit/ShadowCaster");
-    let g = &frame.geometry;
     let light = Light::directional(
         -frame.lighting.main_light_dir,
         frame.lighting.main_light_color,
     );
-    let params =
-        ShadowParams::for_directional(&light, spec.strength, 0.0, spec.center, spec.radius)
-            .map_err(&refused)?;
+    let tile = MAIN_SHADOW_MAP_SIZE;
+    let (params, cascades, codes, size) = match &spec.cascade_splits {
+        None => {
+            let params =
+                ShadowParams::for_directional(&light, spec.strength, 0.0, spec.center, spec.radius)
+                    .map_err(&refused)?;
+            let codes = render_casters(ctx, lib, frame, spec, params.world_to_shadow)?;
+            (params, None, codes, (tile, tile))
+        }
+        Some(splits) => {
+            let camera = frame.geometry.cascade_camera();
+            let cascades =
+                Cascades::fit(&light, spec.strength, 0.0, &camera, splits).map_err(&refused)?;
+            let (codes, size) = lay_atlas(&cascades, tile, |c| {
+                render_casters(ctx, lib, frame, spec, c.view_proj)
+            })?;
+            (cascades.cascades[0].params, Some(cascades), codes, size)
+        }
+    };
+    let map = ShadowMap2d::from_depth16(size.0, size.1, &codes).map_err(&refused)?;
+    Ok(Some(UrpFrameShadow {
+        params,
+        soft: spec.soft,
+        cascades,
+        map,
+        codes,
+        size,
+        fade: spec.fade,
+        camera: frame.lighting.camera_position,
+    }))
+}
+
+/// Every object of `frame` drawn by `universal_lit/ShadowCaster` through `view_proj` (the
+/// light's view of the map or of one cascade) into a [`MAIN_SHADOW_MAP_SIZE`]² depth map: its
+/// `Depth16Unorm` codes, row by row.
+fn render_casters(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+    spec: &UrpShadowSpec,
+    view_proj: Mat4,
+) -> Result<Vec<u16>, GpuError> {
+    let g = &frame.geometry;
     let size = MAIN_SHADOW_MAP_SIZE;
     let mut pass = DrawPass::new("URP frame: main-light shadow map", size, size, Vec::new());
     pass.depth = true;
     pass.depth_format = DEPTH;
     let mut camera = Vec::new();
-    push_mat4(&mut camera, params.world_to_shadow);
+    push_mat4(&mut camera, view_proj);
     push_vec4(&mut camera, Vec4::ZERO);
     let mut caster = Vec::new();
     push_vec4(&mut caster, frame.lighting.main_light_dir.extend(0.0));
@@ -168,14 +257,5 @@ pub fn render_urp_shadow(
         );
     }
     let depth = render_pass(ctx, &pass)?.depth.unwrap_or_default();
-    let codes: Vec<u16> = depth.iter().map(|d| (d * 65535.0).round() as u16).collect();
-    let map = ShadowMap2d::from_depth16(size, size, &codes).map_err(&refused)?;
-    Ok(Some(UrpFrameShadow {
-        params,
-        soft: spec.soft,
-        map,
-        codes,
-        fade: spec.fade,
-        camera: frame.lighting.camera_position,
-    }))
+    Ok(depth.iter().map(|d| (d * 65535.0).round() as u16).collect())
 }

@@ -41,7 +41,7 @@ use crate::reference::light::LightError;
 use crate::reference::surface::KeywordsError;
 
 /// The keywords of `universal_lit/UniversalForward`, in declaration order.
-pub const URP_FORWARD_KEYWORD_NAMES: [&str; 17] = [
+pub const URP_FORWARD_KEYWORD_NAMES: [&str; 18] = [
     "_NORMALMAP",
     "_ALPHATEST_ON",
     "_EMISSION",
@@ -53,6 +53,7 @@ pub const URP_FORWARD_KEYWORD_NAMES: [&str; 17] = [
     "_SPECULARHIGHLIGHTS_OFF",
     "_ENVIRONMENTREFLECTIONS_OFF",
     "_MAIN_LIGHT_SHADOWS",
+    "_MAIN_LIGHT_SHADOWS_CASCADE",
     "_SHADOWS_SOFT",
     "_ADDITIONAL_LIGHTS_VERTEX",
     "_ADDITIONAL_LIGHTS",
@@ -76,14 +77,58 @@ pub enum AdditionalLights {
     PerPixel,
 }
 
+/// Where the main light's realtime shadow comes from (`_ _MAIN_LIGHT_SHADOWS
+/// _MAIN_LIGHT_SHADOWS_CASCADE`, in `UniversalForward` and `stencil_deferred`'s
+/// `DirectionalLit`; URP's `Shadows.hlsl`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MainLightShadows {
+    /// No shadow.
+    #[default]
+    Off,
+    /// `_MAIN_LIGHT_SHADOWS`: one map (`_MainLightWorldToShadow[0]`).
+    Map,
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the cascade of the first split sphere that holds the
+    /// point (`ComputeCascadeIndex`), lit in none.
+    Cascades,
+}
+
+impl MainLightShadows {
+    /// The mode a variant's keyword `names` select.
+    ///
+    /// ```
+    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadows;
+    /// let m = MainLightShadows::of(&["_SHADOWS_SOFT", "_MAIN_LIGHT_SHADOWS_CASCADE"]);
+    /// assert_eq!(m, MainLightShadows::Cascades);
+    /// assert_eq!(MainLightShadows::of(&["_SHADOWS_SOFT"]), MainLightShadows::Off);
+    /// ```
+    pub fn of(names: &[&str]) -> MainLightShadows {
+        if names.contains(&"_MAIN_LIGHT_SHADOWS_CASCADE") {
+            MainLightShadows::Cascades
+        } else if names.contains(&"_MAIN_LIGHT_SHADOWS") {
+            MainLightShadows::Map
+        } else {
+            MainLightShadows::Off
+        }
+    }
+
+    /// Its keyword (`None` for [`MainLightShadows::Off`]).
+    pub fn keyword(self) -> Option<&'static str> {
+        match self {
+            MainLightShadows::Off => None,
+            MainLightShadows::Map => Some("_MAIN_LIGHT_SHADOWS"),
+            MainLightShadows::Cascades => Some("_MAIN_LIGHT_SHADOWS_CASCADE"),
+        }
+    }
+}
+
 /// The keyword set of one `UniversalForward` variant.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct UrpForwardKeywords {
     /// The surface keywords, shared with the G-buffer pass: the ten material keywords,
     /// `LIGHTMAP_ON` and `_MIXED_LIGHTING_SUBTRACTIVE` (at their [`kw`] indices).
     pub surface: UrpKeywords,
-    /// `_MAIN_LIGHT_SHADOWS`.
-    pub main_light_shadows: bool,
+    /// The main light's shadow: none, one map or cascades.
+    pub main_light_shadows: MainLightShadows,
     /// `_SHADOWS_SOFT`: the 3 × 3 tent instead of one tap.
     pub shadows_soft: bool,
     /// The additional-lights keyword.
@@ -107,7 +152,10 @@ impl UrpForwardKeywords {
         let mut surface = Vec::new();
         for &name in names {
             match name {
-                "_MAIN_LIGHT_SHADOWS" => k.main_light_shadows = true,
+                "_MAIN_LIGHT_SHADOWS" => k.main_light_shadows = MainLightShadows::Map,
+                "_MAIN_LIGHT_SHADOWS_CASCADE" => {
+                    k.main_light_shadows = MainLightShadows::Cascades;
+                }
                 "_SHADOWS_SOFT" => k.shadows_soft = true,
                 "_ADDITIONAL_LIGHTS_VERTEX" => k.additional_lights = AdditionalLights::PerVertex,
                 "_ADDITIONAL_LIGHTS" => k.additional_lights = AdditionalLights::PerPixel,
@@ -124,10 +172,12 @@ impl UrpForwardKeywords {
         Ok(k)
     }
 
-    /// Whether the main light's shadow map is read: `_MAIN_LIGHT_SHADOWS` without
-    /// `_RECEIVE_SHADOWS_OFF` (URP's `MainLightRealtimeShadow` returns 1 then).
+    /// Whether the main light's shadow map is read: `_MAIN_LIGHT_SHADOWS` or
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE` without `_RECEIVE_SHADOWS_OFF` (URP's
+    /// `MainLightRealtimeShadow` returns 1 then).
     pub fn reads_shadow_map(&self) -> bool {
-        self.main_light_shadows && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
+        self.main_light_shadows != MainLightShadows::Off
+            && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
     }
 }
 
