@@ -174,11 +174,21 @@ pub fn manifest_of(lib: &Library, passes: &[&Pass], budget: u64) -> Result<Strin
 /// 16 hex digits). Any change to any variant's canonical WGSL changes the digest; `wgsl-variants
 /// manifest` prints the full list to see which.
 ///
+/// `DETAIL` reaches no code, so its two variants of each `RED` choice share one text:
+///
 /// ```
-/// let lib = wgsl_variants_shaders::library().unwrap();
-/// let summary = wgsl_variants::snapshot::manifest_summary(&lib, 1_000_000).unwrap();
-/// assert!(summary.contains("standard/Deferred: 110592 variants, 64512 distinct"));
+/// let lib = wgsl_variants::Library::from_sources([(
+///     "unlit.wgsl",
+///     "#shader unlit\n#pass Forward\n#pragma multi_compile _ RED\n#pragma multi_compile _ DETAIL\n\
+///      @fragment fn fs() -> @location(0) vec4f {\n#if RED\n    return vec4f(1.0, 0.0, 0.0, 1.0);\n\
+///      #else\n    return vec4f(1.0);\n#endif\n}\n#endpass\n",
+/// )])
+/// .unwrap();
+/// let summary = wgsl_variants::snapshot::manifest_summary(&lib, 100).unwrap();
+/// assert!(summary.contains("unlit/Forward: 4 variants, 2 distinct, digest "));
 /// ```
+///
+/// The bundled library's summary is the committed `snapshots/manifest.snap` (tests/snapshots.rs).
 pub fn manifest_summary(lib: &Library, budget: u64) -> Result<String, ManifestError> {
     manifest_summary_of(lib, &lib.passes().collect::<Vec<_>>(), budget)
 }

@@ -81,21 +81,43 @@ pub struct CascadeAtlas {
 }
 
 impl CascadeAtlas {
-    /// Renders `cascades`' maps into their atlas.
-    fn render(
-        ctx: &GpuContext,
-        lib: &Library,
+    /// Lays the `tile × tile` map `render` draws of each of `cascades` (through the cascade's
+    /// own view, row by row) into its tile of the atlas ([`Cascades::grid`]) and reads it back;
+    /// `pass` names the reader in the error when the atlas is refused.
+    pub(crate) fn render(
         cascades: Cascades,
+        tile: u32,
+        pass: &str,
+        render: impl FnMut(&Cascade) -> Result<Vec<u16>, GpuError>,
     ) -> Result<CascadeAtlas, GpuError> {
-        let (texels, size) = render_atlas(ctx, lib, &cascades)?;
-        let map = ShadowMap2d::from_depth16(size.0, size.1, &texels)
-            .map_err(refused("screen_space_shadows/Collect"))?;
+        let (texels, size) = lay_atlas(&cascades, tile, render)?;
+        let map = ShadowMap2d::from_depth16(size.0, size.1, &texels).map_err(refused(pass))?;
         Ok(CascadeAtlas {
             cascades,
             map,
             texels,
             size,
         })
+    }
+
+    /// Bindings 10-12 as Unity's collector reads them (`lighting/cascades`): the
+    /// `CascadedShadow` record, the atlas and the comparison sampler.
+    pub(crate) fn resources(&self) -> Vec<BoundResource> {
+        map_resources(&self.cascades.uniform(), &self.texels, self.size)
+    }
+
+    /// Bindings 12, 14 and 15 as URP's receivers read them (`universal/main_light_shadow`,
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`): the comparison sampler, the `CascadedShadow` record and
+    /// the atlas. Slots 10 and 11 are the one map's, so the record and atlas move.
+    pub(crate) fn urp_resources(&self) -> Vec<BoundResource> {
+        self.resources()
+            .into_iter()
+            .map(|r| match r.binding {
+                10 => BoundResource { binding: 14, ..r },
+                11 => BoundResource { binding: 15, ..r },
+                _ => r,
+            })
+            .collect()
     }
 }
 
@@ -164,15 +186,11 @@ impl ScreenShadow {
                 },
                 p,
             ),
-            MainLightShadows::Cascades => self.urp.cascades.factor(
-                CascadeKeywords {
-                    split_spheres: true,
-                    soft,
-                    single: false,
-                },
-                &self.urp.map,
-                p,
-            ),
+            MainLightShadows::Cascades => {
+                self.urp
+                    .cascades
+                    .factor(CascadeKeywords::urp(soft), &self.urp.map, p)
+            }
         }
     }
 
@@ -180,10 +198,7 @@ impl ScreenShadow {
     /// none, and how many of those the hard cascaded shadow darkens, e.g. `cascades 0-3, none:
     /// 30, 33, 61, 105, 27 positions; shadowed 5, 4, 0, 0, 0`.
     pub fn urp_cascade_census(&self, positions: &[Vec3]) -> String {
-        let spheres = CascadeKeywords {
-            split_spheres: true,
-            ..CascadeKeywords::default()
-        };
+        let spheres = CascadeKeywords::urp(false);
         let mut all = [0usize; 5];
         let mut shadowed = [0usize; 5];
         for &p in positions {
@@ -208,20 +223,10 @@ impl ScreenShadow {
     /// sampler, the cascades' `CascadedShadow` record and atlas
     /// (`_MAIN_LIGHT_SHADOWS_CASCADE`). A variant binds those it declares.
     pub(crate) fn urp_resources(&self) -> Vec<BoundResource> {
+        // The map's record and map (10, 11); the atlas brings the shared sampler (12).
         let mut out = shadow_map_resources(&self.params, &self.map_texels);
-        let cascades = map_resources(
-            &self.urp.cascades.uniform(),
-            &self.urp.texels,
-            self.urp.size,
-        );
-        // The record and the atlas at URP's cascade slots; the sampler is the map's.
-        out.extend(
-            cascades
-                .into_iter()
-                .take(2)
-                .zip([14, 15])
-                .map(|(r, binding)| BoundResource { binding, ..r }),
-        );
+        out.retain(|r| r.binding != 12);
+        out.extend(self.urp.urp_resources());
         out
     }
 }
@@ -356,7 +361,7 @@ impl ScreenShadows {
                 &urp_split_spheres(),
             )
             .map_err(&refused)?;
-            let urp = CascadeAtlas::render(ctx, lib, urp)?;
+            let urp = cut_out_atlas(ctx, lib, urp)?;
             lights.push(ScreenShadow {
                 light: kind,
                 params,
@@ -438,7 +443,7 @@ impl Collect<'_> {
             splits.extend(split_fractions(count).iter().map(|&f| quantile(&depths, f)));
             let cascades = Cascades::fit(light, DIRECTIONAL_STRENGTH, SPOT_BIAS, &view, &splits)
                 .map_err(&refused)?;
-            let atlas = CascadeAtlas::render(ctx, lib, cascades)?;
+            let atlas = cut_out_atlas(ctx, lib, cascades)?;
             let mut masks = Vec::new();
             for choice in self.choices {
                 let variant = wgsl_variants::Variant {
@@ -450,11 +455,7 @@ impl Collect<'_> {
                 (job.width, job.height) = self.size;
                 job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
                 job.resources = depth_camera_resources(self.size, camera);
-                job.resources.extend(map_resources(
-                    &atlas.cascades.uniform(),
-                    &atlas.texels,
-                    atlas.size,
-                ));
+                job.resources.extend(atlas.resources());
                 masks.push(render(ctx, &job)?.remove(0));
             }
             sets.push(CascadeSet { atlas, masks });
@@ -488,15 +489,13 @@ fn quantile(depths: &[f32], f: f32) -> f32 {
     0.5 * (depths[k] + depths[k + 1])
 }
 
-/// Renders each cascade's map with the cut-out caster through its own view and lays it into
-/// its tile of the atlas ([`Cascades::grid`] of [`MAP_SIZE`] tiles): the texels and the
-/// atlas's size.
-fn render_atlas(
+/// `cascades` rendered by the cut-out caster into their atlas of [`MAP_SIZE`] tiles.
+fn cut_out_atlas(
     ctx: &GpuContext,
     lib: &Library,
-    cascades: &Cascades,
-) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
-    lay_atlas(cascades, MAP_SIZE, |c| {
+    cascades: Cascades,
+) -> Result<CascadeAtlas, GpuError> {
+    CascadeAtlas::render(cascades, MAP_SIZE, "screen_space_shadows/Collect", |c| {
         Ok(render_caster(
             ctx,
             lib,
@@ -511,7 +510,7 @@ fn render_atlas(
 
 /// Lays each cascade's `tile × tile` map (row by row, as `render` returns it for the cascade's
 /// own view) into its tile of the atlas ([`Cascades::grid`]): the texels and the atlas's size.
-pub(crate) fn lay_atlas(
+fn lay_atlas(
     cascades: &Cascades,
     tile: u32,
     mut render: impl FnMut(&Cascade) -> Result<Vec<u16>, GpuError>,
@@ -582,10 +581,7 @@ mod tests {
         // Every point of the quad's plane is in one cascade or in none.
         let sun = Light::directional(Vec3::new(0.25, -0.35, -0.9), Vec3::ONE);
         let c = Cascades::from_spheres(&sun, 0.5, 0.0, &spheres).unwrap();
-        let keywords = CascadeKeywords {
-            split_spheres: true,
-            ..CascadeKeywords::default()
-        };
+        let keywords = CascadeKeywords::urp(false);
         let mut picked = [0usize; 5];
         for i in 0..=40 {
             for j in 0..=40 {

@@ -32,7 +32,8 @@ use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades};
 use wgsl_variants_shaders::reference::tolerance::unorm_within;
 
 pub use super::screen_masks::{
-    CASCADE_COUNTS, CascadeSet, DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow, ScreenShadows,
+    CASCADE_COUNTS, CascadeAtlas, CascadeSet, DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow,
+    ScreenShadows,
 };
 
 impl ScreenShadows {

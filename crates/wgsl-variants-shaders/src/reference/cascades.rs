@@ -49,6 +49,22 @@ impl CascadeKeywords {
             soft: names.contains(&"SHADOWS_SOFT"),
         }
     }
+
+    /// URP's selection (`ComputeCascadeIndex` in URP's `Shadows.hlsl`): always by the split
+    /// spheres, never one cascade alone; `soft`: `_SHADOWS_SOFT`.
+    ///
+    /// ```
+    /// use wgsl_variants_shaders::reference::cascades::CascadeKeywords;
+    /// let k = CascadeKeywords::urp(true);
+    /// assert!(k.split_spheres && k.soft && !k.single);
+    /// ```
+    pub fn urp(soft: bool) -> CascadeKeywords {
+        CascadeKeywords {
+            single: false,
+            split_spheres: true,
+            soft,
+        }
+    }
 }
 
 /// The camera a cascade set is fitted to.

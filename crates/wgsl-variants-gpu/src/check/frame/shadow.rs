@@ -16,7 +16,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::super::rig::fade_resource;
 use super::super::scene::{push_mat4, push_vec4, texture};
-use super::super::screen_masks::{lay_atlas, map_resources};
+use super::super::screen_masks::CascadeAtlas;
 use super::super::shadows::{CUBE_FORMAT, DEPTH, red_f16, refused, shadow_bindings};
 use super::{Drawer, FrameScene};
 use crate::{
@@ -402,7 +402,7 @@ fn render_cascades(
     )
     .map_err(&refused)?;
     let size = DIRECTIONAL_MAP_SIZE;
-    let (atlas, atlas_size) = lay_atlas(&cascades, size, |c| {
+    let atlas = CascadeAtlas::render(cascades, size, "screen_space_shadows/Collect", |c| {
         let mut pass = DrawPass::new("frame: shadow cascade", size, size, Vec::new());
         pass.depth = true;
         pass.depth_format = DEPTH;
@@ -411,8 +411,7 @@ fn render_cascades(
         let depth = render_pass(ctx, &pass)?.depth.unwrap_or_default();
         Ok(depth.iter().map(|d| (d * 65535.0).round() as u16).collect())
     })?;
-    let map = ShadowMap2d::from_depth16(atlas_size.0, atlas_size.1, &atlas).map_err(&refused)?;
-    let mut resources = map_resources(&cascades.uniform(), &atlas, atlas_size);
+    let mut resources = atlas.resources();
     resources.push(fade_resource(&frame.shadow_fade));
     let collect = CascadeKeywords {
         single: false,
@@ -425,9 +424,9 @@ fn render_cascades(
             soft: spec.soft,
             ..ShadowKeywords::default()
         },
-        params: cascades.cascades[0].params,
-        cascades: Some((cascades, collect)),
-        map: Some(map),
+        params: atlas.cascades.cascades[0].params,
+        cascades: Some((atlas.cascades, collect)),
+        map: Some(atlas.map),
         cube: None,
         resources,
         fade: frame.shadow_fade,

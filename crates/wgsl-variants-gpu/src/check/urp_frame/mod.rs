@@ -31,7 +31,9 @@ use glam::Vec3;
 pub use scene::{
     DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameLight, UrpFrameObject,
 };
-pub use shadow::{MAIN_SHADOW_MAP_SIZE, UrpFrameShadow, UrpShadowSpec, render_urp_shadow};
+pub use shadow::{
+    MAIN_SHADOW_MAP_SIZE, UrpFrameShadow, UrpShadowMaps, UrpShadowSpec, render_urp_shadow,
+};
 
 use super::camera::deferred_camera;
 use super::scene::{push_mat4, texture};

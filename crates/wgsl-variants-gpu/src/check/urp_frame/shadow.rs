@@ -10,7 +10,7 @@
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::super::scene::{push_mat4, push_vec4};
-use super::super::screen_masks::{lay_atlas, map_resources};
+use super::super::screen_masks::{CascadeAtlas, map_resources};
 use super::super::shadows::{DEPTH, refused};
 use super::UrpFrame;
 use super::text;
@@ -50,6 +50,21 @@ pub struct UrpShadowSpec {
     pub fade: MainLightShadowFade,
 }
 
+/// Where the main light's shadow was rendered.
+#[derive(Clone, Debug)]
+pub enum UrpShadowMaps {
+    /// `_MAIN_LIGHT_SHADOWS`: one [`MAIN_SHADOW_MAP_SIZE`]² map.
+    Map {
+        /// The map, read back.
+        map: ShadowMap2d,
+        /// Its `Depth16Unorm` codes, as rendered (for the receivers' bindings).
+        codes: Vec<u16>,
+    },
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the cascades and their atlas of
+    /// [`MAIN_SHADOW_MAP_SIZE`]² tiles.
+    Cascades(CascadeAtlas),
+}
+
 /// The main light's rendered shadow: what the receivers bind and the reference reads.
 #[derive(Clone, Debug)]
 pub struct UrpFrameShadow {
@@ -58,14 +73,8 @@ pub struct UrpFrameShadow {
     pub params: ShadowParams,
     /// `_SHADOWS_SOFT`.
     pub soft: bool,
-    /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the cascades, whose tiles `map` holds.
-    pub cascades: Option<Cascades>,
-    /// The map (or the cascades' atlas), read back.
-    pub map: ShadowMap2d,
-    /// The map's `Depth16Unorm` codes, as rendered (for the receivers' bindings).
-    pub codes: Vec<u16>,
-    /// The map's width and height in texels.
-    pub size: (u32, u32),
+    /// The map or the cascades.
+    pub maps: UrpShadowMaps,
     /// The fade with the distance from the camera.
     pub fade: MainLightShadowFade,
     /// The camera the fade measures from.
@@ -76,9 +85,9 @@ impl UrpFrameShadow {
     /// The receivers' keywords: `_MAIN_LIGHT_SHADOWS` or `_MAIN_LIGHT_SHADOWS_CASCADE`, and
     /// `_SHADOWS_SOFT` as specified.
     pub fn keywords(&self) -> Vec<&'static str> {
-        let mut out = vec![match self.cascades {
-            Some(_) => "_MAIN_LIGHT_SHADOWS_CASCADE",
-            None => "_MAIN_LIGHT_SHADOWS",
+        let mut out = vec![match self.maps {
+            UrpShadowMaps::Cascades(_) => "_MAIN_LIGHT_SHADOWS_CASCADE",
+            UrpShadowMaps::Map { .. } => "_MAIN_LIGHT_SHADOWS",
         }];
         if self.soft {
             out.push("_SHADOWS_SOFT");
@@ -90,16 +99,12 @@ impl UrpFrameShadow {
     /// map (10, 11) or the `CascadedShadow` uniform and the atlas (14, 15), the comparison
     /// sampler (12) and the fade (13).
     pub fn resources(&self) -> Vec<BoundResource> {
-        let mut out = match &self.cascades {
-            None => map_resources(&self.params.uniform(), &self.codes, self.size),
-            Some(c) => map_resources(&c.uniform(), &self.codes, self.size)
-                .into_iter()
-                .map(|r| match r.binding {
-                    10 => BoundResource { binding: 14, ..r },
-                    11 => BoundResource { binding: 15, ..r },
-                    _ => r,
-                })
-                .collect(),
+        let tile = MAIN_SHADOW_MAP_SIZE;
+        let mut out = match &self.maps {
+            UrpShadowMaps::Map { codes, .. } => {
+                map_resources(&self.params.uniform(), codes, (tile, tile))
+            }
+            UrpShadowMaps::Cascades(atlas) => atlas.urp_resources(),
         };
         out.push(BoundResource::new(
             0,
@@ -113,38 +118,35 @@ impl UrpFrameShadow {
     /// none, one more for several: spheres URP's `ComputeCascadeIndex` cannot tell apart);
     /// `None` with one map.
     pub fn cascade_at(&self, p: Vec3) -> Option<usize> {
-        let c = self.cascades.as_ref()?;
-        let spheres = CascadeKeywords {
-            split_spheres: true,
-            ..CascadeKeywords::default()
+        let UrpShadowMaps::Cascades(atlas) = &self.maps else {
+            return None;
         };
-        let w = c.candidates(spheres, p)[0].unwrap_or([0.0; MAX_CASCADES]);
+        let w = atlas.cascades.candidates(CascadeKeywords::urp(false), p)[0]
+            .unwrap_or([0.0; MAX_CASCADES]);
         Some(Cascades::picked(w))
     }
 
     /// The main light's shadow at world position `p`, faded with the distance: the interval
     /// of its attenuation (its two ends differ where a tap lies within a hair of flipping).
     pub fn at(&self, p: Vec3) -> [MainLightShadow; 2] {
-        let keywords = ShadowKeywords {
-            depth: true,
-            soft: self.soft,
-            ..ShadowKeywords::default()
-        };
-        let maps = ShadowMaps {
-            map: Some(&self.map),
-            cube: None,
-        };
-        let (lo, hi) = match &self.cascades {
-            None => shadow_factor(&self.params, keywords, maps, p),
-            Some(c) => c.factor(
-                CascadeKeywords {
-                    split_spheres: true,
+        let (lo, hi) = match &self.maps {
+            UrpShadowMaps::Map { map, .. } => {
+                let keywords = ShadowKeywords {
+                    depth: true,
                     soft: self.soft,
-                    single: false,
-                },
-                &self.map,
-                p,
-            ),
+                    ..ShadowKeywords::default()
+                };
+                let maps = ShadowMaps {
+                    map: Some(map),
+                    cube: None,
+                };
+                shadow_factor(&self.params, keywords, maps, p)
+            }
+            UrpShadowMaps::Cascades(atlas) => {
+                atlas
+                    .cascades
+                    .factor(CascadeKeywords::urp(self.soft), &atlas.map, p)
+            }
         };
         let fade = self.fade.at(p, self.camera);
         [lo, hi].map(|attenuation| {
@@ -175,32 +177,32 @@ pub fn render_urp_shadow(
         frame.lighting.main_light_color,
     );
     let tile = MAIN_SHADOW_MAP_SIZE;
-    let (params, cascades, codes, size) = match &spec.cascade_splits {
+    let (params, maps) = match &spec.cascade_splits {
         None => {
             let params =
                 ShadowParams::for_directional(&light, spec.strength, 0.0, spec.center, spec.radius)
                     .map_err(&refused)?;
             let codes = render_casters(ctx, lib, frame, spec, params.world_to_shadow)?;
-            (params, None, codes, (tile, tile))
+            let map = ShadowMap2d::from_depth16(tile, tile, &codes).map_err(&refused)?;
+            (params, UrpShadowMaps::Map { map, codes })
         }
         Some(splits) => {
             let camera = frame.geometry.cascade_camera();
             let cascades =
                 Cascades::fit(&light, spec.strength, 0.0, &camera, splits).map_err(&refused)?;
-            let (codes, size) = lay_atlas(&cascades, tile, |c| {
+            let atlas = CascadeAtlas::render(cascades, tile, "universal_lit/ShadowCaster", |c| {
                 render_casters(ctx, lib, frame, spec, c.view_proj)
             })?;
-            (cascades.cascades[0].params, Some(cascades), codes, size)
+            (
+                atlas.cascades.cascades[0].params,
+                UrpShadowMaps::Cascades(atlas),
+            )
         }
     };
-    let map = ShadowMap2d::from_depth16(size.0, size.1, &codes).map_err(&refused)?;
     Ok(Some(UrpFrameShadow {
         params,
         soft: spec.soft,
-        cascades,
-        map,
-        codes,
-        size,
+        maps,
         fade: spec.fade,
         camera: frame.lighting.camera_position,
     }))
