@@ -185,7 +185,28 @@ fn if_both(code: &mut String, a: &str, b: &str) {
         let _ = writeln!(code, "        {{");
     } else {
         let _ = writeln!(code, "        if {a}");
-        let _ = writeln!(code, "            && {b}");
+        match b.split_once("matches!(") {
+            // A `matches!` too long for its line: rustfmt puts each argument on a line of its
+            // own, and a pattern still too long one arm per line.
+            Some((not, args)) if 15 + b.len() > 100 => {
+                let args = args.strip_suffix(')').unwrap_or(args);
+                let (value, pattern) = args.split_once(", ").unwrap_or((args, ""));
+                let _ = writeln!(code, "            && {not}matches!(");
+                let _ = writeln!(code, "                {value},");
+                if 16 + pattern.len() <= 100 {
+                    let _ = writeln!(code, "                {pattern}");
+                } else {
+                    for (i, arm) in pattern.split(" | ").enumerate() {
+                        let bar = if i == 0 { "" } else { "    | " };
+                        let _ = writeln!(code, "                {bar}{arm}");
+                    }
+                }
+                let _ = writeln!(code, "            )");
+            }
+            _ => {
+                let _ = writeln!(code, "            && {b}");
+            }
+        }
         let _ = writeln!(code, "        {{");
     }
 }

@@ -1,11 +1,13 @@
 //! The GPU proof of URP's `universal_lit/UniversalForward`: the default selection (a t = 3
 //! covering set plus one partner per keyword) rendered on the URP scene lit by the main light
-//! (with its shadow map, or its four cascades) and three additional lights, every texel of the `Rg11b10Ufloat`
+//! (with its shadow map, its four cascades, or a screen-space shadow texture) and three
+//! additional lights, every texel of the `Rg11b10Ufloat`
 //! camera target compared with `reference::urp::forward`, every keyword shown to change a
 //! texel; and libraries with planted bugs (the per-vertex light not multiplied by the diffuse
 //! colour, light layers ignored by the per-pixel loop, the subtractive mix's shadow strength
-//! wrong, the shadow fade dropped, the cascade selection ignored) caught where, and only where,
-//! the bug shows. The full space (92,160 variants) is the
+//! wrong, the shadow fade dropped, the cascade selection ignored, the screen-space shadow read
+//! at another pixel) caught where, and only where, the bug shows. The full space (110,592
+//! variants) is the
 //! ignored test `every_universal_forward_variant_matches_the_reference`
 //! (`cargo test --release -p wgsl-variants-gpu --test gpu_urp_forward -- --ignored`).
 //!
@@ -37,10 +39,10 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
     assert!(p.variants_run >= at_least, "{} variants", p.variants_run);
     assert_eq!(p.mismatches, 0, "{report}");
     assert!(p.discarded_compared > 0, "the alpha test discarded nothing");
-    // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS and
-    // _MAIN_LIGHT_SHADOWS_CASCADE, _SHADOWS_SOFT, the two additional-light options,
-    // _LIGHT_LAYERS, subtractive, lightmap.
-    assert_eq!(p.keywords.len(), 18);
+    // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS,
+    // _MAIN_LIGHT_SHADOWS_CASCADE and _MAIN_LIGHT_SHADOWS_SCREEN, _SHADOWS_SOFT, the two
+    // additional-light options, _LIGHT_LAYERS, subtractive, lightmap.
+    assert_eq!(p.keywords.len(), 19);
     assert!(p.untested_keywords.is_empty(), "{:?}", p.untested_keywords);
     assert!(
         p.keywords.iter().all(|k| k.pairs_changed > 0),
@@ -65,16 +67,16 @@ fn covering_set_of_universal_forward_matches_the_reference() {
     let pass = lib.pass("universal_lit", "UniversalForward").unwrap();
     let cover = Space::full(pass).covering(3).unwrap().len();
     assert_passes(&report, cover);
-    assert!(report.passes[0].variants_run <= cover + 18);
+    assert!(report.passes[0].variants_run <= cover + 19);
 }
 
 #[test]
-#[ignore = "92,160 variants: run with --ignored (docs/urp.md gives the time)"]
+#[ignore = "110,592 variants: run with --ignored (docs/urp.md gives the time)"]
 fn every_universal_forward_variant_matches_the_reference() {
     let Some(report) = run(&wgsl_variants_shaders::library().unwrap(), true) else {
         return;
     };
-    assert_passes(&report, 92_160);
+    assert_passes(&report, 110_592);
 }
 
 /// Runs the forward pass's default selection over the bundled library with one planted bug
@@ -123,8 +125,8 @@ fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows(
     // SubtractDirectMainLightFromLightmap); full strength instead changes shadowed texels.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), params.x);",
-        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), 1.0);",
+        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
+        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), 1.0);",
     ) else {
         return;
     };
@@ -146,8 +148,8 @@ fn an_ignored_shadow_fade_is_caught_only_where_the_main_light_is_shadowed() {
     // camera; the check's fade ramps across the shadowed texels.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), params.x);",
-        "return vec2f(realtime, params.x);",
+        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
+        "return realtime;",
     ) else {
         return;
     };
@@ -163,7 +165,7 @@ fn an_ignored_cascade_selection_is_caught_only_with_cascades() {
     // cascade 0 everywhere puts the shadow of cascade 1's half (and of the points in no
     // cascade) in the wrong place.
     let Some(bad) = mismatching(
-        "universal/main_light_shadow.wgsl",
+        "universal/main_light_shadow_map.wgsl",
         "let c = cascade_coords(main_light_cascades, p);",
         "let c = shadow_coords(main_light_cascades.world_to_shadow[0], p);",
     ) else {
@@ -171,6 +173,23 @@ fn an_ignored_cascade_selection_is_caught_only_with_cascades() {
     };
     for k in &bad {
         assert!(k.contains("_MAIN_LIGHT_SHADOWS_CASCADE"), "{k}");
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn the_screen_space_shadow_read_at_another_pixel_is_caught_only_with_screen_shadows() {
+    // URP's SampleScreenSpaceShadowmap reads the texel at the fragment's own pixel; the check's
+    // stand-in texture differs from pixel to pixel.
+    let Some(bad) = mismatching(
+        "universal/main_light_shadow.wgsl",
+        "textureLoad(main_light_screen_shadow, pixel, 0)",
+        "textureLoad(main_light_screen_shadow, pixel + vec2i(1, 0), 0)",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS_SCREEN"), "{k}");
         assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
     }
 }

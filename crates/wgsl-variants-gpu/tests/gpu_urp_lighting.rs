@@ -1,9 +1,10 @@
 //! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (8)
-//! and `stencil_deferred/DirectionalLit` (24), drawn over G-buffers `universal_lit`'s
+//! and `stencil_deferred/DirectionalLit` (28), drawn over G-buffers `universal_lit`'s
 //! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
 //! reference (`wgsl_variants_shaders::reference::urp::lighting`), each keyword proven to change at
 //! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
-//! the older URP's diffuse formula, the shadow fade dropped, the cascade selection ignored)
+//! the older URP's diffuse formula, the shadow fade dropped, the cascade selection ignored,
+//! the screen-space shadow read at another pixel)
 //! are caught where, and only where, the bug shows.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
@@ -26,7 +27,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 fn every_lighting_variant_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
-    for (pass, variants, keywords) in [("PunctualLit", 8, 3), ("DirectionalLit", 24, 6)] {
+    for (pass, variants, keywords) in [("PunctualLit", 8, 3), ("DirectionalLit", 28, 7)] {
         let Some(report) = run(&lib, pass) else {
             return;
         };
@@ -113,8 +114,8 @@ fn an_ignored_shadow_fade_is_caught_only_in_the_main_lights_shadowed_variants() 
     // fade ramps across the pixels, so dropping it shows where the shadow falls.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime, 1.0, urp_main_light_shadow_fade(p, camera)), params.x);",
-        "return vec2f(realtime, params.x);",
+        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
+        "return realtime;",
         "DirectionalLit",
     ) else {
         return;
@@ -128,7 +129,7 @@ fn an_ignored_shadow_fade_is_caught_only_in_the_main_lights_shadowed_variants() 
 fn an_ignored_cascade_selection_is_caught_only_in_the_cascaded_variants() {
     // Cascade 0 for every point instead of URP's ComputeCascadeIndex.
     let Some(bad) = mismatching(
-        "universal/main_light_shadow.wgsl",
+        "universal/main_light_shadow_map.wgsl",
         "let c = cascade_coords(main_light_cascades, p);",
         "let c = shadow_coords(main_light_cascades.world_to_shadow[0], p);",
         "DirectionalLit",
@@ -137,6 +138,21 @@ fn an_ignored_cascade_selection_is_caught_only_in_the_cascaded_variants() {
     };
     for k in &bad {
         assert!(k.contains("_MAIN_LIGHT_SHADOWS_CASCADE"), "{k}");
+    }
+}
+
+#[test]
+fn the_screen_space_shadow_read_at_another_pixel_is_caught_only_with_screen_shadows() {
+    let Some(bad) = mismatching(
+        "universal/main_light_shadow.wgsl",
+        "textureLoad(main_light_screen_shadow, pixel, 0)",
+        "textureLoad(main_light_screen_shadow, pixel + vec2i(1, 0), 0)",
+        "DirectionalLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_MAIN_LIGHT_SHADOWS_SCREEN"), "{k}");
     }
 }
 

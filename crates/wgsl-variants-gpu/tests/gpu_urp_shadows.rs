@@ -3,6 +3,9 @@
 //! plane pancakes it) or a spot light's map, every texel compared with the reference
 //! (`wgsl_variants_shaders::reference::urp::shadow`); and planted bugs — no depth bias, the directional
 //! formula for a punctual light, no pancaking — are caught where, and only where, they show.
+//! Then URP's screen-space shadow pass (`universal_screen_space_shadows/ScreenSpaceShadows`,
+//! 4 variants): the main light's map or cascades turned into a shadow per pixel of the rig's
+//! view, every pixel against the reference, and a pass that reads no depth caught.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
 
@@ -12,9 +15,13 @@ use wgsl_variants::Library;
 use wgsl_variants_gpu::check::{self, CheckOptions, CheckReport};
 
 fn run(lib: &Library) -> Option<CheckReport> {
+    run_pass(lib, "universal_lit", "ShadowCaster")
+}
+
+fn run_pass(lib: &Library, shader: &str, pass: &str) -> Option<CheckReport> {
     let mut options = CheckOptions::default();
-    options.shader = Some("universal_lit".to_owned());
-    options.pass = Some("ShadowCaster".to_owned());
+    options.shader = Some(shader.to_owned());
+    options.pass = Some(pass.to_owned());
     options.adapter = common::gpu::adapter_filter();
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
@@ -83,4 +90,45 @@ fn a_missing_pancake_is_caught_only_in_the_directional_maps() {
     for k in &bad {
         assert!(!k.contains("_CASTING_PUNCTUAL_LIGHT_SHADOW"), "{k}");
     }
+}
+
+const SCREEN: (&str, &str) = ("universal_screen_space_shadows", "ScreenSpaceShadows");
+
+#[test]
+fn every_urp_screen_space_shadow_variant_matches_the_reference() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let Some(report) = run_pass(&lib, SCREEN.0, SCREEN.1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    println!("{report}");
+    assert!(p.passed(), "{report}");
+    assert_eq!(p.mismatches, 0, "{report}");
+    assert_eq!((p.variants_run, p.pixels_compared), (4, 4 * 256));
+    // _MAIN_LIGHT_SHADOWS_CASCADE (against the map) and _SHADOWS_SOFT.
+    assert_eq!(p.keywords.len(), 2, "{report}");
+    assert!(p.keywords.iter().all(|k| k.pairs_changed > 0), "{report}");
+    assert!(
+        !p.notes[0].contains(" 0 shadowed"),
+        "some pixels must be shadowed: {report}"
+    );
+}
+
+#[test]
+fn a_screen_space_pass_that_reads_no_depth_is_caught() {
+    // Every pixel rebuilt on the far plane: the shadowed pixels come out lit. (The report
+    // lists the first mismatches only, all of the map's variants, which come first.)
+    let lib = common::mutate::bundled_with(
+        "internal/universal_screen_space_shadows.wgsl",
+        "let depth = textureLoad(depth_tex, pixel, 0).r;",
+        "let depth = 1.0;",
+    );
+    let Some(report) = run_pass(&lib, SCREEN.0, SCREEN.1) else {
+        return;
+    };
+    let caught = common::mutate::caught_in(&report);
+    assert!(
+        caught.iter().all(|k| k.contains("_MAIN_LIGHT_SHADOWS")),
+        "{caught:?}"
+    );
 }

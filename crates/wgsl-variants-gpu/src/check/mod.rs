@@ -31,9 +31,10 @@
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants_shaders::reference::urp::gbuffer`] |
-//! | [`urp_forward`] | `universal_lit/UniversalForward` (55,296 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (with its shadow map) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
+//! | [`urp_forward`] | `universal_lit/UniversalForward` (110,592 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (its map, its cascades or a stand-in screen-space texture) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
-//! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 24 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map of [`screen_shadows`] |
+//! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 36 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map, the cascades or the screen-space texture of [`screen_shadows`] |
+//! | `urp_screen_shadows` | `universal_screen_space_shadows/ScreenSpaceShadows` (all 4 variants): the main light's map or cascades turned into URP's screen-space shadow over the rig's depth, every pixel against the reference |
 //! | [`urp_frame`] | URP's frame (five objects, a main light with its shadow and three additional lights on rendering layers) through `UniversalForward` and through `UniversalGBuffer` + `stencil_deferred` (the punctual lights as their volumes after URP's stencil volume pass), every pixel against the reference and forward against deferred (the `gpu_urp_frame` test; `render --frame urp`) |
 //! | [`skybox`] | `skybox/Cubemap` (its one variant) through a wide view over five faces, their edges and a corner, HDR and LDR |
 //! | [`volumes`] | one light drawn as its volume after the `stencil_write/StencilWrite` pre-pass or full-screen ([`crate::light_volume`]), and the comparison of the two (the `gpu_volumes` test; not part of `check-gpu`) |
@@ -89,6 +90,7 @@ pub mod urp_caster;
 pub mod urp_forward;
 pub mod urp_frame;
 pub mod urp_lighting;
+mod urp_screen_shadows;
 mod volume_draw;
 pub mod volumes;
 mod workers;
@@ -108,7 +110,7 @@ use pass_check::{Needs, PassCheck, Setup};
 use wgsl_variants::Library;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 15] = [
+pub const PASSES: [(&str, &str); 16] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -123,6 +125,7 @@ pub const PASSES: [(&str, &str); 15] = [
     ("universal_lit", "ShadowCaster"),
     ("stencil_deferred", "PunctualLit"),
     ("stencil_deferred", "DirectionalLit"),
+    ("universal_screen_space_shadows", "ScreenSpaceShadows"),
     ("skybox", "Cubemap"),
 ];
 
@@ -144,6 +147,7 @@ static CHECKS: &[&dyn PassCheck] = &[
     &urp_caster::URP_SHADOW_CASTER,
     &urp_lighting::PUNCTUAL_LIT,
     &urp_lighting::DIRECTIONAL_LIT,
+    &urp_screen_shadows::URP_SCREEN_SHADOWS,
     &skybox::CUBEMAP,
     &deferred::CHAIN,
 ];

@@ -6,12 +6,13 @@
 //! The `Collect` check compares these masks; the lighting and forward checks read the
 //! 4-cascade mask. Each light also keeps one map over the region around the scene and URP's
 //! cascades over the test quad ([`urp_split_spheres`]): URP's main light reads them
-//! (`_MAIN_LIGHT_SHADOWS`, `_MAIN_LIGHT_SHADOWS_CASCADE`).
+//! (`_MAIN_LIGHT_SHADOWS`, `_MAIN_LIGHT_SHADOWS_CASCADE`), and a stand-in for the target URP's
+//! screen-space pass writes ([`ScreenShadowTexture`], `_MAIN_LIGHT_SHADOWS_SCREEN`).
 
 use glam::{Mat4, Vec3};
 
 use super::camera::{LightingCamera, depth_camera_resources};
-use super::scene::{TestScene, texture};
+use super::scene::{Rng, TestScene, texture};
 use super::shadows::{MAP_SIZE, SPOT_BIAS, refused, render_caster};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
@@ -34,6 +35,9 @@ pub const DIRECTIONAL_STRENGTH: f32 = 0.85;
 
 /// The radius of the region the directional maps cover, around the test floor's centre.
 pub const REGION_RADIUS: f32 = 2.0;
+
+/// The seed of each light's [`ScreenShadowTexture`] (with the light's index mixed in).
+const SCREEN_SHADOW_SEED: u64 = 0x5C8E_E45D;
 
 /// The cascade counts the masks are rendered with (Unity's choices): 1, 2 and 4.
 pub const CASCADE_COUNTS: [usize; 3] = [1, 2, 4];
@@ -162,17 +166,76 @@ pub struct ScreenShadow {
     /// URP's cascades over the test quad (its split spheres: `urp_split_spheres` of this
     /// module), with the region map's strength and bias.
     pub urp: CascadeAtlas,
+    /// What the receivers' `_MAIN_LIGHT_SHADOWS_SCREEN` variants read in the pass checks.
+    pub urp_screen: ScreenShadowTexture,
+}
+
+/// A stand-in for the camera-sized target URP's `ScreenSpaceShadows` pass writes, bound to the
+/// receivers' `_MAIN_LIGHT_SHADOWS_SCREEN` variants in the pass checks: one `Rgba8Unorm` texel
+/// per pixel, every channel the same pseudo-random code, so a receiver that reads another
+/// pixel's texel, or works the shadow out itself, fails. The pass that writes the real one is
+/// checked on its own (`check::urp_screen_shadows`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScreenShadowTexture {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// One code per texel, rows top to bottom.
+    pub codes: Vec<u8>,
+}
+
+impl ScreenShadowTexture {
+    /// `width × height` codes drawn from `seed`.
+    pub fn pseudo_random(width: u32, height: u32, seed: u64) -> ScreenShadowTexture {
+        let mut rng = Rng::new(seed);
+        let codes = (0..width * height)
+            .map(|_| rng.next_u64().to_le_bytes()[0])
+            .collect();
+        ScreenShadowTexture {
+            width,
+            height,
+            codes,
+        }
+    }
+
+    /// The realtime shadow a receiver reads at pixel `(x, y)`: the code over 255.
+    pub fn at(&self, x: u32, y: u32) -> f32 {
+        f32::from(self.codes[(y * self.width + x) as usize]) / 255.0
+    }
+
+    /// Binding 16 of `universal/main_light_shadow` (`main_light_screen_shadow`).
+    pub(crate) fn resource(&self) -> BoundResource {
+        let rgba: Vec<u8> = self.codes.iter().flat_map(|&c| [c; 4]).collect();
+        BoundResource::new(
+            0,
+            16,
+            texture(TargetFormat::Rgba8Unorm, self.width, self.height, &rgba),
+        )
+    }
 }
 
 impl ScreenShadow {
-    /// URP's realtime main-light shadow at `p` before the fade, as an interval (a tap or a
-    /// split within a hair of flipping gives both outcomes): 1 without a shadow, the region
-    /// map's ([`shadow_factor`]) with `_MAIN_LIGHT_SHADOWS`, the cascades'
-    /// ([`Cascades::factor`] with URP's split-sphere selection) with
-    /// `_MAIN_LIGHT_SHADOWS_CASCADE`; `soft`: `_SHADOWS_SOFT`.
-    pub fn urp_factor(&self, mode: MainLightShadows, soft: bool, p: Vec3) -> (f32, f32) {
+    /// URP's realtime main-light shadow at `p`, seen at pixel `(x, y)` of the rig's view,
+    /// before the fade, as an interval (a tap or a split within a hair of flipping gives both
+    /// outcomes): 1 without a shadow, the region map's ([`shadow_factor`]) with
+    /// `_MAIN_LIGHT_SHADOWS`, the cascades' ([`Cascades::factor`] with URP's split-sphere
+    /// selection) with `_MAIN_LIGHT_SHADOWS_CASCADE`, the [`ScreenShadowTexture`]'s texel with
+    /// `_MAIN_LIGHT_SHADOWS_SCREEN`; `soft`: `_SHADOWS_SOFT` (the screen-space pass's business
+    /// with `_SCREEN`).
+    pub fn urp_factor(
+        &self,
+        mode: MainLightShadows,
+        soft: bool,
+        p: Vec3,
+        (x, y): (u32, u32),
+    ) -> (f32, f32) {
         match mode {
             MainLightShadows::Off => (1.0, 1.0),
+            MainLightShadows::Screen => {
+                let s = self.urp_screen.at(x, y);
+                (s, s)
+            }
             MainLightShadows::Map => shadow_factor(
                 &self.params,
                 ShadowKeywords {
@@ -207,7 +270,7 @@ impl ScreenShadow {
             };
             let k = Cascades::picked(w).min(4);
             all[k] += 1;
-            let lit = self.urp_factor(MainLightShadows::Cascades, false, p).1;
+            let lit = self.urp.cascades.factor(spheres, &self.urp.map, p).1;
             shadowed[k] += usize::from(lit < 1.0);
         }
         let list = |v: [usize; 5]| v.map(|n| n.to_string()).join(", ");
@@ -218,15 +281,17 @@ impl ScreenShadow {
         )
     }
 
-    /// Bindings 10-12, 14 and 15 of URP's main-light shadow (`universal/main_light_shadow`):
+    /// Bindings 10-12 and 14-16 of URP's main-light shadow (`universal/main_light_shadow`):
     /// the region map's `Shadow` record and map (`_MAIN_LIGHT_SHADOWS`), the comparison
     /// sampler, the cascades' `CascadedShadow` record and atlas
-    /// (`_MAIN_LIGHT_SHADOWS_CASCADE`). A variant binds those it declares.
+    /// (`_MAIN_LIGHT_SHADOWS_CASCADE`), the screen-space texture
+    /// (`_MAIN_LIGHT_SHADOWS_SCREEN`). A variant binds those it declares.
     pub(crate) fn urp_resources(&self) -> Vec<BoundResource> {
         // The map's record and map (10, 11); the atlas brings the shared sampler (12).
         let mut out = shadow_map_resources(&self.params, &self.map_texels);
         out.retain(|r| r.binding != 12);
         out.extend(self.urp.urp_resources());
+        out.push(self.urp_screen.resource());
         out
     }
 }
@@ -362,6 +427,11 @@ impl ScreenShadows {
             )
             .map_err(&refused)?;
             let urp = cut_out_atlas(ctx, lib, urp)?;
+            let urp_screen = ScreenShadowTexture::pseudo_random(
+                scene.width,
+                scene.height,
+                SCREEN_SHADOW_SEED ^ lights.len() as u64,
+            );
             lights.push(ScreenShadow {
                 light: kind,
                 params,
@@ -370,6 +440,7 @@ impl ScreenShadows {
                 sets,
                 deep_sets,
                 urp,
+                urp_screen,
             });
         }
         Ok(ScreenShadows {

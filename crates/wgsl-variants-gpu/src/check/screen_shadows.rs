@@ -33,7 +33,7 @@ use wgsl_variants_shaders::reference::tolerance::unorm_within;
 
 pub use super::screen_masks::{
     CASCADE_COUNTS, CascadeAtlas, CascadeSet, DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow,
-    ScreenShadows,
+    ScreenShadowTexture, ScreenShadows,
 };
 
 impl ScreenShadows {

@@ -282,13 +282,15 @@ pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFa
 }
 
 /// The bindings of the main light's shadow in URP's passes: the map, the cascades and their
-/// atlas (10-12, 14, 15) and the fade (13).
+/// atlas, the screen-space texture (10-12, 14-16) and URP's `_MainLightShadowParams` (13: the
+/// strength and the fade).
 pub(crate) fn main_shadow_resources(
     shadow: &super::screen_masks::ScreenShadow,
     fade: &MainLightShadowFade,
 ) -> Vec<BoundResource> {
     let mut out = shadow.urp_resources();
-    out.push(BoundResource::new(0, 13, Resource::Uniform(fade.uniform())));
+    let params = fade.uniform(shadow.params.strength);
+    out.push(BoundResource::new(0, 13, Resource::Uniform(params)));
     out
 }
 

@@ -120,16 +120,21 @@ impl UrpForwardScene {
         }
     }
 
-    /// The main light's shadow at `p` for a variant: the interval of its outcomes
-    /// ([`ScreenShadow::urp_factor`]: the map or the cascades), `NONE` twice where the variant
-    /// reads no map.
-    fn main_light_shadow(&self, k: &UrpForwardKeywords, p: Vec3) -> [MainLightShadow; 2] {
-        if !k.reads_shadow_map() {
+    /// The main light's shadow at `p`, seen at `pixel`, for a variant: the interval of its
+    /// outcomes ([`ScreenShadow::urp_factor`]: the map, the cascades or the screen-space
+    /// texel), `NONE` twice where the variant reads no shadow.
+    fn main_light_shadow(
+        &self,
+        k: &UrpForwardKeywords,
+        p: Vec3,
+        pixel: (u32, u32),
+    ) -> [MainLightShadow; 2] {
+        if !k.reads_main_light_shadow() {
             return [MainLightShadow::NONE; 2];
         }
         let (lo, hi) = self
             .shadow
-            .urp_factor(k.main_light_shadows, k.shadows_soft, p);
+            .urp_factor(k.main_light_shadows, k.shadows_soft, p, pixel);
         let fade = self.fade.at(p, self.urp.lighting.camera_position);
         [lo, hi].map(|attenuation| {
             MainLightShadow {
@@ -147,7 +152,7 @@ impl UrpForwardScene {
         let tex = urp.texels(x, y);
         let vl = self.interpolated_vertex_lighting(k, x, y);
         let [lo, hi] = self
-            .main_light_shadow(k, pixel.geometry.world_position)
+            .main_light_shadow(k, pixel.geometry.world_position, (x, y))
             .map(|shadow| {
                 shade_forward(
                     k,
@@ -178,8 +183,7 @@ impl UrpColorPass for UrpForwardScene {
         &self.urp
     }
 
-    /// The URP scene's resources, the lights (0/4), the main light's map (0/10-12) and its
-    /// fade (0/13).
+    /// The URP scene's resources, the lights (0/4) and the main light's shadow (0/10-16).
     fn resources(&self) -> Vec<BoundResource> {
         let mut out = self.urp.resources();
         out.push(BoundResource::new(
@@ -223,8 +227,8 @@ impl UrpColorPass for UrpForwardScene {
                     main_light_shadows: MainLightShadows::Map,
                     ..UrpForwardKeywords::default()
                 };
-                let [lo, _] =
-                    self.main_light_shadow(&k, self.urp.pixel(x, y).geometry.world_position);
+                let p = self.urp.pixel(x, y).geometry.world_position;
+                let [lo, _] = self.main_light_shadow(&k, p, (x, y));
                 lo.attenuation < 1.0
             })
             .count();

@@ -191,6 +191,7 @@ impl LightingKeywords {
             "_DEFERRED_MAIN_LIGHT",
             "_MAIN_LIGHT_SHADOWS",
             "_MAIN_LIGHT_SHADOWS_CASCADE",
+            "_MAIN_LIGHT_SHADOWS_SCREEN",
             "_SHADOWS_SOFT",
             "_GBUFFER_NORMALS_OCT",
             "_LIGHT_LAYERS",
@@ -295,7 +296,7 @@ pub fn check_stencil_deferred(
                     });
                     let stored = unpack_rg11b10(u32::from_le_bytes(texel_bytes(3)));
                     let p = rig.deferred_position(scene, x, y);
-                    let (lo, hi) = main_shadow.urp_factor(k.shadows, k.soft, p);
+                    let (lo, hi) = main_shadow.urp_factor(k.shadows, k.soft, p, (x, y));
                     // URP's MainLightShadow fades the realtime shadow with the distance.
                     let f = if k.shadows != MainLightShadows::Off {
                         fade.at(p, scene.scene.camera_position)

@@ -22,12 +22,13 @@
 // those variants instead).
 #pragma multi_compile _DIRECTIONAL
 #pragma multi_compile _ _DEFERRED_MAIN_LIGHT
-#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE _MAIN_LIGHT_SHADOWS_SCREEN
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _GBUFFER_NORMALS_OCT
 #pragma multi_compile _ _LIGHT_LAYERS
 #pragma require _MAIN_LIGHT_SHADOWS _DEFERRED_MAIN_LIGHT
 #pragma require _MAIN_LIGHT_SHADOWS_CASCADE _DEFERRED_MAIN_LIGHT
+#pragma require _MAIN_LIGHT_SHADOWS_SCREEN _DEFERRED_MAIN_LIGHT
 #pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
 #import universal/stencil_deferred_pass
 #endpass

@@ -32,10 +32,11 @@
 #pass UniversalForward
 #tag LightMode UniversalForward
 // URP Lit's forward pass: the same material keywords; the pipeline keywords of the main
-// light's shadow (none, one map, cascades; hard or soft), the additional lights (none, per
-// vertex, per pixel), light layers and baked lighting (a lightmap, with subtractive mixing).
-// The soft-shadow and subtractive keywords change nothing without the keywords they refine,
-// so they require one of them: 1024 · 5 · 3 · 2 · 3 = 92160 variants.
+// light's shadow (none, one map, cascades, hard or soft; or the screen-space pass's texel),
+// the additional lights (none, per vertex, per pixel), light layers and baked lighting (a
+// lightmap, with subtractive mixing). The soft-shadow and subtractive keywords change nothing
+// without the keywords they refine (with _MAIN_LIGHT_SHADOWS_SCREEN the screen-space pass
+// filters), so they require one of them: 1024 · 6 · 3 · 2 · 3 = 110592 variants.
 #pragma shader_feature_local _NORMALMAP
 #pragma shader_feature_local _ALPHATEST_ON
 #pragma shader_feature_local _EMISSION
@@ -46,7 +47,7 @@
 #pragma shader_feature_local _RECEIVE_SHADOWS_OFF
 #pragma shader_feature_local _SPECULARHIGHLIGHTS_OFF
 #pragma shader_feature_local _ENVIRONMENTREFLECTIONS_OFF
-#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
+#pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE _MAIN_LIGHT_SHADOWS_SCREEN
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _ADDITIONAL_LIGHTS_VERTEX _ADDITIONAL_LIGHTS
 #pragma multi_compile _ _LIGHT_LAYERS

@@ -92,7 +92,8 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
     let specular_off = false;
 #endif
 
-    let shadow = urp_main_light_shadow(p, camera.position.xyz);
+    // The fragment's pixel: where a _MAIN_LIGHT_SHADOWS_SCREEN variant reads its shadow.
+    let shadow = urp_main_light_shadow(p, camera.position.xyz, vec2i(floor(in.clip_position.xy)));
     var color = urp_global_illumination(b, urp_baked_gi(in, n, shadow.x, shadow.y), n, v, s.occlusion);
 
 #if defined(_LIGHT_LAYERS)

@@ -8,8 +8,9 @@
 //            5 light (UrpLight; the additional light this draw shades),
 //            6 rendering_layers (texture_2d<u32>, the G-buffer's R32Uint target; _LIGHT_LAYERS),
 //            7 main_light (UrpLight; _DEFERRED_MAIN_LIGHT: the frame's main light),
-//            10-15 the main light's shadow (universal/main_light_shadow: _MAIN_LIGHT_SHADOWS
-//               or _MAIN_LIGHT_SHADOWS_CASCADE; the sampler nearest, LessEqual, clamp to edge)
+//            10-16 the main light's shadow (universal/main_light_shadow: _MAIN_LIGHT_SHADOWS,
+//               _MAIN_LIGHT_SHADOWS_CASCADE or _MAIN_LIGHT_SHADOWS_SCREEN; the sampler nearest,
+//               LessEqual, clamp to edge)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -50,10 +51,10 @@ fn vs_volume(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
 
 // The main light's shadow (universal/main_light_shadow), 1 for a texel whose material says
 // ReceiveShadowsOff.
-fn urp_deferred_shadow(p: vec3f, flags: u32) -> f32 {
-#if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE)
+fn urp_deferred_shadow(p: vec3f, pixel: vec2i, flags: u32) -> f32 {
+#if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE) || defined(_MAIN_LIGHT_SHADOWS_SCREEN)
     if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {
-        return urp_main_light_shadow(p, deferred_camera.position.xyz).x;
+        return urp_main_light_shadow(p, deferred_camera.position.xyz, pixel).x;
     }
 #endif
     return 1.0;
@@ -89,7 +90,7 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     // _POINT: no cone (URP's angle term is 1 for a point light's attenuation (0, 1)).
     let s = urp_punctual_sample(l, p);
 #endif
-    let attenuation = s.w * urp_deferred_shadow(p, flags);
+    let attenuation = s.w * urp_deferred_shadow(p, pixel, flags);
     let brdf = urp_brdf_from_gbuffer(g0.rgb, g1.rgb, g2.a, (flags & URP_FLAG_SPECULAR_SETUP) != 0u);
     let n = urp_unpack_normal(g2.rgb);
     let v = urp_safe_normalize(deferred_camera.position.xyz - p);

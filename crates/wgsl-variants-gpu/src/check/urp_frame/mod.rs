@@ -45,7 +45,8 @@ use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass,
-    GpuContext, GpuError, Resource, StencilTest, TargetFormat, VertexBuffer, render_pass,
+    GpuContext, GpuError, RenderJob, Resource, StencilTest, TargetFormat, VertexBuffer, render,
+    render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::world_from_depth;
@@ -209,6 +210,7 @@ fn light_draws(
     lib: &Library,
     frame: &UrpFrame,
     shadow: Option<&UrpFrameShadow>,
+    screen: Option<BoundResource>,
     shared: &Arc<[BoundResource]>,
 ) -> Result<(Vec<Draw>, usize), GpuError> {
     let lit = StencilTest::equal(STENCIL_LIT, STENCIL_MATERIAL_MASK);
@@ -224,9 +226,10 @@ fn light_draws(
     names.extend(common);
     let mut main_resources = light_resource(7, &frame.main_light);
     if let Some(s) = shadow {
-        names.extend(s.keywords());
+        names.extend(s.deferred_keywords());
         main_resources.extend(s.resources());
     }
+    main_resources.extend(screen);
     let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
     let mut draws = vec![
         Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
@@ -360,9 +363,14 @@ pub fn render_urp_deferred(
         ),
         BoundResource::new(0, 6, texture(TargetFormat::R32Uint, w, h, &targets[4])),
     ]);
-    let (light_draws, volumes) = light_draws(lib, frame, shadow, &shared)?;
+    let screen = match shadow.filter(|s| s.screen) {
+        Some(s) => Some(render_screen_shadow(ctx, lib, frame, s, &shared)?),
+        None => None,
+    };
+    let screen_draws = usize::from(screen.is_some());
+    let (light_draws, volumes) = light_draws(lib, frame, shadow, screen, &shared)?;
     lighting.draws.extend(light_draws);
-    let draws = gbuffer.draws.len() + lighting.draws.len() - 2;
+    let draws = gbuffer.draws.len() + screen_draws + lighting.draws.len() - 2;
     let lit = render_pass(ctx, &lighting)?.targets.remove(0);
     Ok(UrpDeferredImage {
         gbuffer: targets,
@@ -371,6 +379,38 @@ pub fn render_urp_deferred(
         draws,
         volumes,
     })
+}
+
+/// URP's `ScreenSpaceShadows` pass over the G-buffer pass's depth (in `shared`, with the
+/// camera): the main light's map or cascades as `shadow` holds them, with the forward
+/// receivers' keywords, into a camera-sized `Rgba8Unorm` target; the target as the
+/// `DirectionalLit` draw's binding 16.
+fn render_screen_shadow(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+    shadow: &UrpFrameShadow,
+    shared: &Arc<[BoundResource]>,
+) -> Result<BoundResource, GpuError> {
+    let g = &frame.geometry;
+    let (w, h) = (g.width, g.height);
+    let (label, wgsl) = text(
+        lib,
+        "universal_screen_space_shadows",
+        "ScreenSpaceShadows",
+        &shadow.keywords(),
+    )?;
+    let mut job = RenderJob::new(&label, &wgsl, "vs_main", "fs_main");
+    (job.width, job.height) = (w, h);
+    job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
+    job.resources = shared.to_vec();
+    job.resources.extend(shadow.resources());
+    let texels = render(ctx, &job)?.remove(0);
+    Ok(BoundResource::new(
+        0,
+        16,
+        texture(TargetFormat::Rgba8Unorm, w, h, &texels),
+    ))
 }
 
 /// Which of the four judgements a pixel failed.
@@ -755,7 +795,8 @@ pub fn compare(
         let stored = unpack_rg11b10(u32::from_le_bytes(word(&deferred.gbuffer[3], i)));
         let p = world_from_depth(inv_view_proj, x, y, g.width, g.height, deferred.depth[i]);
         // The main light's shadow at a position: its attenuation's two ends (1 without one).
-        let main_shadow = |p: Vec3| shadows_at(p).map_or([1.0; 2], |s| s.map(|s| s.attenuation));
+        let main_shadow =
+            |p: Vec3| shadow.map_or([1.0; 2], |s| s.at_deferred(p).map(|s| s.attenuation));
         let light_at = |t: &UrpGBufferTexel, p: Vec3, i: usize, end: usize| {
             let shadow = if i == 0 { main_shadow(p)[end] } else { 1.0 };
             stencil_deferred_light(t, p, camera, every_light[i], shadow, Some(layers))

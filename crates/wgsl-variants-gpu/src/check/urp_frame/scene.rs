@@ -204,6 +204,7 @@ impl UrpFrame {
             center: Vec3::new(0.4, 0.5, -1.0),
             radius: 7.0,
             cascade_splits: Some(geometry.cascade_splits.clone()),
+            screen: false,
             fade: MainLightShadowFade::between(9.0, 12.0),
         });
         UrpFrame {

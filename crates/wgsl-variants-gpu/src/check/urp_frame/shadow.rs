@@ -21,6 +21,7 @@ use wgsl_variants_shaders::reference::light::Light;
 use wgsl_variants_shaders::reference::shadow::{
     ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
 };
+use wgsl_variants_shaders::reference::tolerance::unorm_store_error;
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, MainLightShadowFade};
 
 /// Edge length of the main light's map in texels (of each cascade's tile with cascades).
@@ -45,6 +46,13 @@ pub struct UrpShadowSpec {
     /// cascades (the near plane, the splits, the shadow distance: 2, 3 or 5 depths,
     /// [`Cascades::fit`]), instead of the one map over `center` and `radius`.
     pub cascade_splits: Option<Vec<f32>>,
+    /// `_MAIN_LIGHT_SHADOWS_SCREEN` in the deferred path: URP's `ScreenSpaceShadows` pass
+    /// turns the map or the cascades into a shadow per pixel over the G-buffer pass's depth,
+    /// and the main light's `DirectionalLit` draw reads that texel. The forward path keeps
+    /// reading the map or the cascades (URP's forward path would need a depth prepass first,
+    /// and `universal_lit` has no `DepthOnly` pass yet), so forward against deferred also
+    /// holds the screen-space pass to the direct read.
+    pub screen: bool,
     /// How the realtime shadow fades with the distance from the camera (URP's
     /// `_MainLightShadowParams.zw`).
     pub fade: MainLightShadowFade,
@@ -75,6 +83,8 @@ pub struct UrpFrameShadow {
     pub soft: bool,
     /// The map or the cascades.
     pub maps: UrpShadowMaps,
+    /// The deferred path reads the screen-space pass's texel ([`UrpShadowSpec::screen`]).
+    pub screen: bool,
     /// The fade with the distance from the camera.
     pub fade: MainLightShadowFade,
     /// The camera the fade measures from.
@@ -95,6 +105,17 @@ impl UrpFrameShadow {
         out
     }
 
+    /// The main light's keywords in the deferred path's `DirectionalLit` draw: the
+    /// forward receivers' ([`UrpFrameShadow::keywords`]), or `_MAIN_LIGHT_SHADOWS_SCREEN` alone
+    /// (the screen-space pass, which takes the forward receivers' keywords, filters).
+    pub fn deferred_keywords(&self) -> Vec<&'static str> {
+        if self.screen {
+            vec!["_MAIN_LIGHT_SHADOWS_SCREEN"]
+        } else {
+            self.keywords()
+        }
+    }
+
     /// A receiver's bindings (`universal/main_light_shadow`): the `Shadow` uniform and the
     /// map (10, 11) or the `CascadedShadow` uniform and the atlas (14, 15), the comparison
     /// sampler (12) and the fade (13).
@@ -109,7 +130,7 @@ impl UrpFrameShadow {
         out.push(BoundResource::new(
             0,
             13,
-            Resource::Uniform(self.fade.uniform()),
+            Resource::Uniform(self.fade.uniform(self.params.strength)),
         ));
         out
     }
@@ -126,10 +147,41 @@ impl UrpFrameShadow {
         Some(Cascades::picked(w))
     }
 
+    /// The main light's shadow at world position `p` as the deferred path's lighting reads it:
+    /// [`UrpFrameShadow::at`], or with [`UrpFrameShadow::screen`] the realtime shadow through
+    /// the screen-space pass's 8-bit store (widened by one store's error) before the fade.
+    pub fn at_deferred(&self, p: Vec3) -> [MainLightShadow; 2] {
+        let stored = if self.screen {
+            unorm_store_error(8)
+        } else {
+            0.0
+        };
+        self.faded(self.realtime(p), stored, p)
+    }
+
     /// The main light's shadow at world position `p`, faded with the distance: the interval
     /// of its attenuation (its two ends differ where a tap lies within a hair of flipping).
     pub fn at(&self, p: Vec3) -> [MainLightShadow; 2] {
-        let (lo, hi) = match &self.maps {
+        self.faded(self.realtime(p), 0.0, p)
+    }
+
+    /// `realtime`'s interval widened by `widen` on both sides (within [0, 1]), then faded with
+    /// the distance of `p` from the camera.
+    fn faded(&self, (lo, hi): (f32, f32), widen: f32, p: Vec3) -> [MainLightShadow; 2] {
+        let (lo, hi) = ((lo - widen).max(0.0), (hi + widen).min(1.0));
+        let fade = self.fade.at(p, self.camera);
+        [lo, hi].map(|attenuation| {
+            MainLightShadow {
+                attenuation,
+                strength: self.params.strength,
+            }
+            .faded(fade)
+        })
+    }
+
+    /// The realtime shadow at `p` before the fade, as an interval.
+    fn realtime(&self, p: Vec3) -> (f32, f32) {
+        match &self.maps {
             UrpShadowMaps::Map { map, .. } => {
                 let keywords = ShadowKeywords {
                     depth: true,
@@ -147,15 +199,7 @@ impl UrpFrameShadow {
                     .cascades
                     .factor(CascadeKeywords::urp(self.soft), &atlas.map, p)
             }
-        };
-        let fade = self.fade.at(p, self.camera);
-        [lo, hi].map(|attenuation| {
-            MainLightShadow {
-                attenuation,
-                strength: self.params.strength,
-            }
-            .faded(fade)
-        })
+        }
     }
 }
 
@@ -203,6 +247,7 @@ pub fn render_urp_shadow(
         params,
         soft: spec.soft,
         maps,
+        screen: spec.screen,
         fade: spec.fade,
         camera: frame.lighting.camera_position,
     }))

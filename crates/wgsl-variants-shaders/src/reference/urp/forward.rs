@@ -41,7 +41,7 @@ use crate::reference::light::LightError;
 use crate::reference::surface::KeywordsError;
 
 /// The keywords of `universal_lit/UniversalForward`, in declaration order.
-pub const URP_FORWARD_KEYWORD_NAMES: [&str; 18] = [
+pub const URP_FORWARD_KEYWORD_NAMES: [&str; 19] = [
     "_NORMALMAP",
     "_ALPHATEST_ON",
     "_EMISSION",
@@ -54,6 +54,7 @@ pub const URP_FORWARD_KEYWORD_NAMES: [&str; 18] = [
     "_ENVIRONMENTREFLECTIONS_OFF",
     "_MAIN_LIGHT_SHADOWS",
     "_MAIN_LIGHT_SHADOWS_CASCADE",
+    "_MAIN_LIGHT_SHADOWS_SCREEN",
     "_SHADOWS_SOFT",
     "_ADDITIONAL_LIGHTS_VERTEX",
     "_ADDITIONAL_LIGHTS",
@@ -78,8 +79,8 @@ pub enum AdditionalLights {
 }
 
 /// Where the main light's realtime shadow comes from (`_ _MAIN_LIGHT_SHADOWS
-/// _MAIN_LIGHT_SHADOWS_CASCADE`, in `UniversalForward` and `stencil_deferred`'s
-/// `DirectionalLit`; URP's `Shadows.hlsl`).
+/// _MAIN_LIGHT_SHADOWS_CASCADE _MAIN_LIGHT_SHADOWS_SCREEN`, in `UniversalForward` and
+/// `stencil_deferred`'s `DirectionalLit`; URP's `Shadows.hlsl`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MainLightShadows {
     /// No shadow.
@@ -90,6 +91,10 @@ pub enum MainLightShadows {
     /// `_MAIN_LIGHT_SHADOWS_CASCADE`: the cascade of the first split sphere that holds the
     /// point (`ComputeCascadeIndex`), lit in none.
     Cascades,
+    /// `_MAIN_LIGHT_SHADOWS_SCREEN`: the texel at the pixel of the camera-sized target URP's
+    /// `ScreenSpaceShadows` pass wrote (`SampleScreenSpaceShadowmap`): the realtime shadow with
+    /// its strength and filtering applied there, from the map or the cascades.
+    Screen,
 }
 
 impl MainLightShadows {
@@ -102,7 +107,9 @@ impl MainLightShadows {
     /// assert_eq!(MainLightShadows::of(&["_SHADOWS_SOFT"]), MainLightShadows::Off);
     /// ```
     pub fn of(names: &[&str]) -> MainLightShadows {
-        if names.contains(&"_MAIN_LIGHT_SHADOWS_CASCADE") {
+        if names.contains(&"_MAIN_LIGHT_SHADOWS_SCREEN") {
+            MainLightShadows::Screen
+        } else if names.contains(&"_MAIN_LIGHT_SHADOWS_CASCADE") {
             MainLightShadows::Cascades
         } else if names.contains(&"_MAIN_LIGHT_SHADOWS") {
             MainLightShadows::Map
@@ -117,6 +124,7 @@ impl MainLightShadows {
             MainLightShadows::Off => None,
             MainLightShadows::Map => Some("_MAIN_LIGHT_SHADOWS"),
             MainLightShadows::Cascades => Some("_MAIN_LIGHT_SHADOWS_CASCADE"),
+            MainLightShadows::Screen => Some("_MAIN_LIGHT_SHADOWS_SCREEN"),
         }
     }
 }
@@ -127,7 +135,7 @@ pub struct UrpForwardKeywords {
     /// The surface keywords, shared with the G-buffer pass: the ten material keywords,
     /// `LIGHTMAP_ON` and `_MIXED_LIGHTING_SUBTRACTIVE` (at their [`kw`] indices).
     pub surface: UrpKeywords,
-    /// The main light's shadow: none, one map or cascades.
+    /// The main light's shadow: none, one map, cascades or the screen-space pass's texel.
     pub main_light_shadows: MainLightShadows,
     /// `_SHADOWS_SOFT`: the 3 × 3 tent instead of one tap.
     pub shadows_soft: bool,
@@ -156,6 +164,7 @@ impl UrpForwardKeywords {
                 "_MAIN_LIGHT_SHADOWS_CASCADE" => {
                     k.main_light_shadows = MainLightShadows::Cascades;
                 }
+                "_MAIN_LIGHT_SHADOWS_SCREEN" => k.main_light_shadows = MainLightShadows::Screen,
                 "_SHADOWS_SOFT" => k.shadows_soft = true,
                 "_ADDITIONAL_LIGHTS_VERTEX" => k.additional_lights = AdditionalLights::PerVertex,
                 "_ADDITIONAL_LIGHTS" => k.additional_lights = AdditionalLights::PerPixel,
@@ -172,10 +181,10 @@ impl UrpForwardKeywords {
         Ok(k)
     }
 
-    /// Whether the main light's shadow map is read: `_MAIN_LIGHT_SHADOWS` or
-    /// `_MAIN_LIGHT_SHADOWS_CASCADE` without `_RECEIVE_SHADOWS_OFF` (URP's
-    /// `MainLightRealtimeShadow` returns 1 then).
-    pub fn reads_shadow_map(&self) -> bool {
+    /// Whether the main light's shadow is read (the map, the cascades or the screen-space
+    /// texel): a shadow keyword without `_RECEIVE_SHADOWS_OFF` (URP's `MainLightRealtimeShadow`
+    /// returns 1 then).
+    pub fn reads_main_light_shadow(&self) -> bool {
         self.main_light_shadows != MainLightShadows::Off
             && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
     }
@@ -260,9 +269,18 @@ impl MainLightShadowFade {
         (d.dot(d) * self.scale + self.bias).clamp(0.0, 1.0)
     }
 
-    /// The WGSL `main_light_shadow_fade` uniform: `(scale, bias, 0, 0)`, little-endian.
-    pub fn uniform(&self) -> Vec<u8> {
-        [self.scale, self.bias, 0.0, 0.0]
+    /// The WGSL `main_light_shadow_params` uniform, URP's `_MainLightShadowParams` with this
+    /// fade: `(strength, 0, scale, bias)`, little-endian (the receivers read the strength there
+    /// with `_MAIN_LIGHT_SHADOWS_SCREEN` only; y, URP's soft flag, is the keyword's business).
+    ///
+    /// ```
+    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+    /// let bytes = MainLightShadowFade { scale: 0.5, bias: -1.0 }.uniform(0.8);
+    /// assert_eq!(bytes[..4], 0.8f32.to_le_bytes());
+    /// assert_eq!(bytes[12..], (-1.0f32).to_le_bytes());
+    /// ```
+    pub fn uniform(&self, strength: f32) -> Vec<u8> {
+        [strength, 0.0, self.scale, self.bias]
             .iter()
             .flat_map(|v| v.to_le_bytes())
             .collect()
@@ -378,7 +396,7 @@ pub fn vertex_lighting(
 
 /// The `UniversalForward` fragment at one pixel (rgb; the pass writes alpha 1): `None` where
 /// `_ALPHATEST_ON` discards. `shadow` is the main light's shadow at the pixel's position
-/// (used where [`UrpForwardKeywords::reads_shadow_map`]; [`MainLightShadow::NONE`] elsewhere),
+/// (used where [`UrpForwardKeywords::reads_main_light_shadow`]; [`MainLightShadow::NONE`] elsewhere),
 /// `vertex_lighting` the interpolated [`vertex_lighting`] (used with
 /// `_ADDITIONAL_LIGHTS_VERTEX`).
 #[allow(clippy::too_many_arguments)]
@@ -410,7 +428,7 @@ pub fn shade_forward(
     let p = pixel.geometry.world_position;
     let v = (light.camera_position - p).normalize();
     let specular_off = sk.on(kw::SPECULARHIGHLIGHTS_OFF);
-    let shadow = if k.reads_shadow_map() {
+    let shadow = if k.reads_main_light_shadow() {
         shadow
     } else {
         MainLightShadow::NONE
