@@ -186,7 +186,15 @@ pub struct ScreenShadowTexture {
 }
 
 impl ScreenShadowTexture {
-    /// `width × height` codes drawn from `seed`.
+    /// `width × height` codes drawn from `seed`, the same on every machine.
+    ///
+    /// ```
+    /// use wgsl_variants_gpu::check::screen_shadows::ScreenShadowTexture;
+    /// let t = ScreenShadowTexture::pseudo_random(4, 2, 7);
+    /// assert_eq!(t, ScreenShadowTexture::pseudo_random(4, 2, 7));
+    /// assert_eq!(t.codes.len(), 8);
+    /// assert_eq!(t.at(3, 1), f32::from(t.codes[7]) / 255.0);
+    /// ```
     pub fn pseudo_random(width: u32, height: u32, seed: u64) -> ScreenShadowTexture {
         let mut rng = Rng::new(seed);
         let codes = (0..width * height)

@@ -118,7 +118,9 @@ impl UrpFrameShadow {
 
     /// A receiver's bindings (`universal/main_light_shadow`): the `Shadow` uniform and the
     /// map (10, 11) or the `CascadedShadow` uniform and the atlas (14, 15), the comparison
-    /// sampler (12) and the fade (13).
+    /// sampler (12) and URP's `_MainLightShadowParams` (13: the strength and the fade). The
+    /// screen-space pass binds the same (it declares no 13); a `_SCREEN` receiver adds the
+    /// pass's target at 16.
     pub fn resources(&self) -> Vec<BoundResource> {
         let tile = MAIN_SHADOW_MAP_SIZE;
         let mut out = match &self.maps {
