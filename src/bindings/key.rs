@@ -174,8 +174,40 @@ pub(crate) fn struct_lit(
     }
 }
 
+/// A Rust condition over `k: &Keywords`, kept in parts until it is laid out: a long
+/// `matches!` breaks the way rustfmt breaks it.
+enum Cond {
+    /// Any other expression: `k.f`, `!k.f`, `true`, `!(A || B)`.
+    Expr(String),
+    /// `matches!(value, arms[0] | arms[1] | …)`, negated or not.
+    Matches {
+        /// Whether the condition is `!matches!(…)`.
+        negated: bool,
+        /// The matched value, `k.field`.
+        value: String,
+        /// The pattern's alternatives.
+        arms: Vec<String>,
+    },
+}
+
+impl std::fmt::Display for Cond {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cond::Expr(e) => f.write_str(e),
+            Cond::Matches {
+                negated,
+                value,
+                arms,
+            } => {
+                let not = if *negated { "!" } else { "" };
+                write!(f, "{not}matches!({value}, {})", arms.join(" | "))
+            }
+        }
+    }
+}
+
 /// Appends `if A && B {`, broken before `&&` the way rustfmt does past 100 columns.
-fn if_both(code: &mut String, a: &str, b: &str) {
+fn if_both(code: &mut String, a: &Cond, b: &Cond) {
     let line = format!("        if {a} && {b} {{");
     if line.len() <= 100 {
         let _ = writeln!(code, "{line}");
@@ -185,18 +217,22 @@ fn if_both(code: &mut String, a: &str, b: &str) {
         let _ = writeln!(code, "        {{");
     } else {
         let _ = writeln!(code, "        if {a}");
-        match b.split_once("matches!(") {
+        match b {
             // A `matches!` too long for its line: rustfmt puts each argument on a line of its
             // own, and a pattern still too long one arm per line.
-            Some((not, args)) if 15 + b.len() > 100 => {
-                let args = args.strip_suffix(')').unwrap_or(args);
-                let (value, pattern) = args.split_once(", ").unwrap_or((args, ""));
+            Cond::Matches {
+                negated,
+                value,
+                arms,
+            } if 15 + b.to_string().len() > 100 => {
+                let not = if *negated { "!" } else { "" };
+                let pattern = arms.join(" | ");
                 let _ = writeln!(code, "            && {not}matches!(");
                 let _ = writeln!(code, "                {value},");
                 if 16 + pattern.len() <= 100 {
                     let _ = writeln!(code, "                {pattern}");
                 } else {
-                    for (i, arm) in pattern.split(" | ").enumerate() {
+                    for (i, arm) in arms.iter().enumerate() {
                         let bar = if i == 0 { "" } else { "    | " };
                         let _ = writeln!(code, "                {bar}{arm}");
                     }
@@ -212,32 +248,32 @@ fn if_both(code: &mut String, a: &str, b: &str) {
 }
 
 /// The Rust condition "option `option` of set `set` is on" over `k: &Keywords`.
-fn on(fields: &[Field], set: usize, option: usize, negated: bool) -> String {
-    let not = if negated { "!" } else { "" };
+fn on(fields: &[Field], set: usize, option: usize, negated: bool) -> Cond {
     match &fields[set] {
-        Field::Always => (if negated { "false" } else { "true" }).to_string(),
+        Field::Always => Cond::Expr((if negated { "false" } else { "true" }).to_string()),
         Field::Flag { field, on } => {
             if (*on == option) != negated {
-                format!("k.{field}")
+                Cond::Expr(format!("k.{field}"))
             } else {
-                format!("!k.{field}")
+                Cond::Expr(format!("!k.{field}"))
             }
         }
         Field::Choice {
             field,
             name,
             variants,
-        } => format!(
-            "{not}matches!(k.{field}, keywords::{name}::{})",
-            variants[option]
-        ),
+        } => Cond::Matches {
+            negated,
+            value: format!("k.{field}"),
+            arms: vec![format!("keywords::{name}::{}", variants[option])],
+        },
     }
 }
 
 /// The Rust condition "none of `alternatives` is on" (options of one set, so of one enum
 /// field): the shorter of `!matches!(k.f, A | B)` and `matches!(k.f, C | D)` over the other
 /// options, so the line stays as rustfmt leaves it.
-fn none_of(fields: &[Field], alternatives: &[(usize, usize)]) -> String {
+fn none_of(fields: &[Field], alternatives: &[(usize, usize)]) -> Cond {
     let set = alternatives[0].0;
     let Field::Choice {
         field,
@@ -248,22 +284,23 @@ fn none_of(fields: &[Field], alternatives: &[(usize, usize)]) -> String {
         // Only a set of three or more options has alternatives; join the conditions.
         let any: Vec<String> = alternatives
             .iter()
-            .map(|&(s, o)| on(fields, s, o, false))
+            .map(|&(s, o)| on(fields, s, o, false).to_string())
             .collect();
-        return format!("!({})", any.join(" || "));
+        return Cond::Expr(format!("!({})", any.join(" || ")));
     };
-    let pattern = |options: Vec<usize>| {
-        let arms: Vec<String> = options
+    let pattern = |negated: bool, options: Vec<usize>| Cond::Matches {
+        negated,
+        value: format!("k.{field}"),
+        arms: options
             .iter()
             .map(|&o| format!("keywords::{name}::{}", variants[o]))
-            .collect();
-        format!("matches!(k.{field}, {})", arms.join(" | "))
+            .collect(),
     };
     let named: Vec<usize> = alternatives.iter().map(|&(_, o)| o).collect();
     let others: Vec<usize> = (0..variants.len()).filter(|o| !named.contains(o)).collect();
-    let negated = format!("!{}", pattern(named));
-    let complement = pattern(others);
-    if complement.len() < negated.len() {
+    let negated = pattern(true, named);
+    let complement = pattern(false, others);
+    if complement.to_string().len() < negated.to_string().len() {
         complement
     } else {
         negated

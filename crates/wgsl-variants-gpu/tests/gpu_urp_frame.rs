@@ -60,11 +60,11 @@ fn the_urp_frame_matches_the_reference_both_ways() {
     assert_eq!(all[5], 0, "{report}");
 }
 
-/// The deferred path's main light through URP's screen-space shadow pass
+/// The main light through URP's screen-space shadow pass in both paths
 /// (`_MAIN_LIGHT_SHADOWS_SCREEN`: the cascades turned into a shadow per pixel over the G-buffer
-/// pass's depth), the forward path reading the cascades directly: every pixel against the
-/// reference (the deferred one through the pass's 8-bit store) and forward against deferred.
-/// A screen-space pass that reads no depth fails the deferred lighting only.
+/// pass's depth, and over the forward path's `DepthOnly` prepass): every pixel against the
+/// reference (through the pass's 8-bit store) and forward against deferred. A screen-space
+/// pass that reads another pixel's depth fails both paths.
 #[test]
 fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
     let Some(ctx) = context() else {
@@ -79,21 +79,23 @@ fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
     println!("{report}");
     assert!(report.passed(), "{report}");
     assert!(report.compared > 2000 && report.shadowed > 50, "{report}");
-    // The screen-space pass is one more draw of the deferred path.
+    // The screen-space pass is one more draw of the deferred path; the prepass and the
+    // screen-space pass come before the forward path's five.
     assert_eq!(report.deferred_draws, 5 + 1 + 1 + 2 * 3, "{report}");
+    assert_eq!(report.forward_draws, 5 + 1 + 5, "{report}");
 
     let shadow = render_urp_shadow(&ctx, &lib, &frame).expect("shadow");
     let blind = common::mutate::bundled_with(
         "internal/universal_screen_space_shadows.wgsl",
-        "let depth = textureLoad(depth_tex, pixel, 0).r;",
-        "let depth = 1.0;",
+        "depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel)",
+        "depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel / 2)",
     );
     let forward = render_urp_forward(&ctx, &blind, &frame, shadow.as_ref()).expect("forward");
     let deferred = render_urp_deferred(&ctx, &blind, &frame, shadow.as_ref()).expect("deferred");
     let report = compare(&frame, shadow.as_ref(), &forward, &deferred).expect("compare");
     assert!(
-        report.failures[0] == 0 && report.failures[2] > 0 && report.failures[3] > 0,
-        "a screen-space pass that reads no depth: not caught\n{report}"
+        report.failures[0] > 0 && report.failures[2] > 0,
+        "a screen-space pass that reads another pixel's depth: not caught\n{report}"
     );
 }
 

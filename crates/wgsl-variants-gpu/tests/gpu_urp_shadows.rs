@@ -5,7 +5,10 @@
 //! formula for a punctual light, no pancaking — are caught where, and only where, they show.
 //! Then URP's screen-space shadow pass (`universal_screen_space_shadows/ScreenSpaceShadows`,
 //! 4 variants): the main light's map or cascades turned into a shadow per pixel of the rig's
-//! view, every pixel against the reference, and a pass that reads no depth caught.
+//! view, every pixel against the reference, and a pass that reads no depth caught. And URP
+//! Lit's depth prepass (`DepthOnly`, 4 variants): the quad's depth through the rig's camera
+//! and two light boxes, every texel against the reference; a prepass without the object's
+//! transform, and one without the alpha test, caught.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`).
 
@@ -116,11 +119,12 @@ fn every_urp_screen_space_shadow_variant_matches_the_reference() {
 
 #[test]
 fn a_screen_space_pass_that_reads_no_depth_is_caught() {
-    // Every pixel rebuilt on the far plane: the shadowed pixels come out lit. (The report
-    // lists the first mismatches only, all of the map's variants, which come first.)
+    // Every pixel rebuilt on the far plane (only this pass is run, so the shared depth
+    // module's fault shows in it alone): the shadowed pixels come out lit. (The report lists
+    // the first mismatches only, all of the map's variants, which come first.)
     let lib = common::mutate::bundled_with(
-        "internal/universal_screen_space_shadows.wgsl",
-        "let depth = textureLoad(depth_tex, pixel, 0).r;",
+        "deferred/depth.wgsl",
+        "let depth = textureLoad(depth_buffer, pixel, 0).r;",
         "let depth = 1.0;",
     );
     let Some(report) = run_pass(&lib, SCREEN.0, SCREEN.1) else {
@@ -129,6 +133,62 @@ fn a_screen_space_pass_that_reads_no_depth_is_caught() {
     let caught = common::mutate::caught_in(&report);
     assert!(
         caught.iter().all(|k| k.contains("_MAIN_LIGHT_SHADOWS")),
+        "{caught:?}"
+    );
+}
+
+const DEPTH_ONLY: (&str, &str) = ("universal_lit", "DepthOnly");
+
+#[test]
+fn every_urp_depth_only_variant_matches_the_reference() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let Some(report) = run_pass(&lib, DEPTH_ONLY.0, DEPTH_ONLY.1) else {
+        return;
+    };
+    let p = &report.passes[0];
+    println!("{report}");
+    assert!(p.passed(), "{report}");
+    assert_eq!(p.mismatches, 0, "{report}");
+    // 4 variants × the camera's view and two 64 × 64 light boxes.
+    assert_eq!((p.variants_run, p.draws), (4, 12));
+    // _ALPHATEST_ON, and the smoothness keyword that changes the cutout with it.
+    assert_eq!(p.keywords.len(), 2, "{report}");
+    assert!(p.untested_keywords.is_empty(), "{report}");
+    let note = &p.notes[0];
+    assert!(!note.contains(" 0 depth"), "{note}");
+    assert!(!note.contains("(0 discarded by the alpha test)"), "{note}");
+}
+
+#[test]
+fn a_depth_prepass_without_the_object_transform_is_caught_everywhere() {
+    let lib = common::mutate::bundled_with(
+        "universal/depth_only_pass.wgsl",
+        "camera.view_proj * (object.model * vec4f(in.position, 1.0))",
+        "camera.view_proj * vec4f(in.position, 1.0)",
+    );
+    let Some(report) = run_pass(&lib, DEPTH_ONLY.0, DEPTH_ONLY.1) else {
+        return;
+    };
+    let caught = common::mutate::caught_in(&report);
+    assert!(
+        caught.iter().any(|k| !k.contains("_ALPHATEST_ON")),
+        "{caught:?}"
+    );
+}
+
+#[test]
+fn a_depth_prepass_without_the_alpha_test_is_caught_only_there() {
+    let lib = common::mutate::bundled_with(
+        "universal/depth_only_pass.wgsl",
+        "urp_alpha(textureSample(base_map, material_sampler, in.uv).a);",
+        "_ = textureSample(base_map, material_sampler, in.uv).a;",
+    );
+    let Some(report) = run_pass(&lib, DEPTH_ONLY.0, DEPTH_ONLY.1) else {
+        return;
+    };
+    let caught = common::mutate::caught_in(&report);
+    assert!(
+        caught.iter().all(|k| k.contains("_ALPHATEST_ON")),
         "{caught:?}"
     );
 }

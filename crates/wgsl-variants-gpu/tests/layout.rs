@@ -35,6 +35,9 @@ fn wgpu_accepts_pipelines_with_layouts_from_reflection() {
                 urp_gbuffer_formats(&v.keywords())
             } else if depth_only {
                 Vec::new()
+            } else if pass.name == "DepthOnly" {
+                // URP's depth prepass writes the depth to its one channel too.
+                vec![wgpu::TextureFormat::R32Float]
             } else if pass.shader == "stencil_deferred" || pass.name == "UniversalForward" {
                 // URP's lighting passes add to GBuffer3; URP's forward pass draws into the
                 // HDR camera target of URP's default format.

@@ -43,6 +43,14 @@ pub fn texel_within(format: TargetFormat, raw: [u32; 4], expected: Vec4) -> bool
     }
 }
 
+/// Whether the 8-bit code of a shadow mask is within 1 LSB of the reference's factor, the
+/// interval between `lo` and `hi` (either order; an interval where a tap or a cascade split is
+/// within a hair of flipping): the value of the interval nearest the code is the one compared.
+pub fn mask_code_within(code: u8, lo: f32, hi: f32) -> bool {
+    let nearest = (f32::from(code) / 255.0).clamp(lo.min(hi), lo.max(hi));
+    unorm_within(u32::from(code), nearest, 8)
+}
+
 /// The clear colour as the shader-side value a cleared texel is compared with.
 pub fn clear_value(clear: [f64; 4]) -> Vec4 {
     Vec4::from_array(clear.map(|c| c as f32))

@@ -33,6 +33,7 @@
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants_shaders::reference::urp::gbuffer`] |
 //! | [`urp_forward`] | `universal_lit/UniversalForward` (110,592 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (its map, its cascades or a stand-in screen-space texture) and three additional lights, every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
+//! | `urp_depth_only` | `universal_lit/DepthOnly` (all 4 variants): the URP quad through the rig's camera and two light boxes (one clipping it), every texel of the `R32Float` target and the depth buffer against the alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 36 variants) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map, the cascades or the screen-space texture of [`screen_shadows`] |
 //! | `urp_screen_shadows` | `universal_screen_space_shadows/ScreenSpaceShadows` (all 4 variants): the main light's map or cascades turned into URP's screen-space shadow over the rig's depth, every pixel against the reference |
 //! | [`urp_frame`] | URP's frame (five objects, a main light with its shadow and three additional lights on rendering layers) through `UniversalForward` and through `UniversalGBuffer` + `stencil_deferred` (the punctual lights as their volumes after URP's stencil volume pass), every pixel against the reference and forward against deferred (the `gpu_urp_frame` test; `render --frame urp`) |
@@ -53,6 +54,7 @@
 //! | `standard` | what a standard variant writes ([`StandardOutput`]) and the job that draws it ([`standard_job`]) |
 //! | `camera` | what the full-screen deferred passes see of the camera, and its bindings |
 //! | `volume_draw` | draws limited to a light's or probe's volume over the scene's depth |
+//! | `quad_raster` | the URP quad rasterized at texel centres with the alpha test (the `ShadowCaster` and `DepthOnly` references) |
 //! | `coverage` | keyword coverage, covering-set partners, the small passes run whole |
 //! | `workers` | one device per GPU worker and the jobs spread over them |
 //! | [`shadows`] | the spot map and point cube `standard/ShadowCaster` renders of an occluder scene, read back for the reference, and the analytic shadow of that scene (the `gpu_shadows` test) |
@@ -77,6 +79,7 @@ mod options;
 mod pass_check;
 pub(crate) mod passes;
 pub mod pictures;
+mod quad_raster;
 pub mod report;
 mod rig;
 pub mod scene;
@@ -87,6 +90,7 @@ pub mod skybox;
 mod standard;
 pub mod urp;
 pub mod urp_caster;
+mod urp_depth_only;
 pub mod urp_forward;
 pub mod urp_frame;
 pub mod urp_lighting;
@@ -110,7 +114,7 @@ use pass_check::{Needs, PassCheck, Setup};
 use wgsl_variants::Library;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 16] = [
+pub const PASSES: [(&str, &str); 17] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -123,6 +127,7 @@ pub const PASSES: [(&str, &str); 16] = [
     ("universal_lit", "UniversalGBuffer"),
     ("universal_lit", "UniversalForward"),
     ("universal_lit", "ShadowCaster"),
+    ("universal_lit", "DepthOnly"),
     ("stencil_deferred", "PunctualLit"),
     ("stencil_deferred", "DirectionalLit"),
     ("universal_screen_space_shadows", "ScreenSpaceShadows"),
@@ -145,6 +150,7 @@ static CHECKS: &[&dyn PassCheck] = &[
     &screen_shadows::COLLECT,
     &lights::LIGHTING,
     &urp_caster::URP_SHADOW_CASTER,
+    &urp_depth_only::URP_DEPTH_ONLY,
     &urp_lighting::PUNCTUAL_LIT,
     &urp_lighting::DIRECTIONAL_LIT,
     &urp_screen_shadows::URP_SCREEN_SHADOWS,

@@ -529,18 +529,39 @@ impl Collect<'_> {
                     pass: self.pass,
                     choice: choice.clone(),
                 };
-                let mut job =
-                    RenderJob::new(&variant.label(), &lib.wgsl(&variant), "vs_main", "fs_main");
-                (job.width, job.height) = self.size;
-                job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
-                job.resources = depth_camera_resources(self.size, camera);
-                job.resources.extend(atlas.resources());
-                masks.push(render(ctx, &job)?.remove(0));
+                let mut resources = depth_camera_resources(self.size, camera);
+                resources.extend(atlas.resources());
+                masks.push(render_mask(
+                    ctx,
+                    &variant.label(),
+                    &lib.wgsl(&variant),
+                    self.size,
+                    resources,
+                )?);
             }
             sets.push(CascadeSet { atlas, masks });
         }
         Ok(sets)
     }
+}
+
+/// A full-screen mask pass — `wgsl`'s `vs_main` and `fs_main` over `resources` (the depth
+/// buffer, the camera, the shadow maps) — into one `Rgba8Unorm` target of `size`: its texels.
+///
+/// # Errors
+/// A GPU failure or a shader that does not compile.
+pub(crate) fn render_mask(
+    ctx: &GpuContext,
+    label: &str,
+    wgsl: &str,
+    size: (u32, u32),
+    resources: Vec<BoundResource>,
+) -> Result<Vec<u8>, GpuError> {
+    let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
+    (job.width, job.height) = size;
+    job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
+    job.resources = resources;
+    Ok(render(ctx, &job)?.remove(0))
 }
 
 /// The cascades' view of `camera`.

@@ -19,6 +19,7 @@
 
 use std::time::Instant;
 
+use super::compare::mask_code_within;
 use super::coverage::keyword_coverage;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
@@ -29,7 +30,6 @@ use crate::{CheckError, GpuContext, GpuError};
 use glam::Vec3;
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades};
-use wgsl_variants_shaders::reference::tolerance::unorm_within;
 
 pub use super::screen_masks::{
     CASCADE_COUNTS, CascadeAtlas, CascadeSet, DIRECTIONAL_STRENGTH, REGION_RADIUS, ScreenShadow,
@@ -116,11 +116,9 @@ pub fn check_collect(
                         uncertain += usize::from(lo != hi);
                         shadowed += usize::from(hi < 1.0);
                         let got = mask[i * 4];
-                        let want = (f32::from(got) / 255.0).clamp(lo.min(hi), lo.max(hi));
                         let rest = [mask[i * 4 + 1], mask[i * 4 + 2], mask[i * 4 + 3]];
-                        report.record(
-                            unorm_within(u32::from(got), want, 8) && rest == [255; 3],
-                            || Mismatch {
+                        report.record(mask_code_within(got, lo, hi) && rest == [255; 3], || {
+                            Mismatch {
                                 shader: "screen_space_shadows".to_owned(),
                                 pass: "Collect".to_owned(),
                                 keywords: format!(
@@ -136,8 +134,8 @@ pub fn check_collect(
                                     .iter()
                                     .map(|&b| u32::from(b))
                                     .collect(),
-                            },
-                        );
+                            }
+                        });
                     }
                     report.draws += 1;
                 }

@@ -15,6 +15,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::coverage::{keyword_coverage, small_pass};
 use super::pass_check::{PassCheck, Setup};
+use super::quad_raster::{AlphaTest, Expected, rasterize_quad};
 use super::report::{Mismatch, PassReport};
 use super::scene::{TestScene, push_mat4, push_vec4};
 use super::screen_masks::REGION_RADIUS;
@@ -39,23 +40,21 @@ pub const SPOT_BIAS: Vec2 = Vec2::new(-0.03, -0.05);
 /// (pancaking) and its far plane clips it.
 pub const TIGHT_RADIUS: f32 = 0.25;
 
-/// Barycentric margin: texel centres closer than this to a triangle edge are not compared.
-const EDGE_MARGIN: f32 = 1e-4;
-
-/// Texel margin: a uv closer than this (in base-map texels) to a texel edge is not compared.
-const UV_MARGIN: f32 = 1e-3;
-
 /// One light's map: view-projection, caster light and bias.
 #[derive(Clone, Copy, Debug)]
-struct CasterView {
-    view_proj: Mat4,
+pub(crate) struct CasterView {
+    /// The light's view-projection.
+    pub(crate) view_proj: Mat4,
     light: CasterLight,
     bias: Vec2,
 }
 
 /// The views of the check from the rig's lights: directional, directional in a box tighter than
 /// the quad, spot.
-fn views(rig: &super::rig::LightRig, scene: &TestScene) -> Result<[CasterView; 3], GpuError> {
+pub(crate) fn views(
+    rig: &super::rig::LightRig,
+    scene: &TestScene,
+) -> Result<[CasterView; 3], GpuError> {
     let refused = |message: &str| {
         GpuError::from(CheckError::UnknownToReference {
             variant: "universal_lit/ShadowCaster".to_owned(),
@@ -115,17 +114,6 @@ fn resources(urp: &UrpScene, view: &CasterView) -> Vec<BoundResource> {
     out
 }
 
-/// What the reference says of one texel.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Expected {
-    /// The quad's depth there.
-    Depth(f32),
-    /// Nothing drawn (not covered, or discarded): the clear value.
-    Clear,
-    /// Within a hair of an edge: not compared.
-    Edge,
-}
-
 /// The reference map of one variant (`alpha_test`, `albedo_alpha_smoothness` as its keywords)
 /// and how many of its depth texels lie on a triangle with a pancaked vertex.
 fn reference_map(
@@ -134,93 +122,14 @@ fn reference_map(
     alpha_test: bool,
     albedo_alpha_smoothness: bool,
 ) -> (Vec<Expected>, usize) {
-    let s = &urp.scene;
-    let n = (s.normal_matrix * s.object_normal.extend(0.0))
-        .truncate()
-        .normalize();
-    // Object corners and uvs as the quad's vertex buffer (top-left is uv (0, 0)).
-    let corner = |ox: f32, oy: f32| {
-        let p = (s.model * Vec4::new(ox, oy, 0.0, 1.0)).truncate();
+    let place = |p: Vec3, n: Vec3| {
         let clip = caster_clip(view.view_proj, p, n, view.light, view.bias);
         let unclamped = view.view_proj
             * apply_shadow_bias(p, n, view.light.direction(p), view.bias).extend(1.0);
-        let size = MAP_SIZE as f32;
-        let ndc = clip.truncate() / clip.w;
-        (
-            Vec2::new((ndc.x * 0.5 + 0.5) * size, (0.5 - ndc.y * 0.5) * size),
-            ndc.z,
-            1.0 / clip.w,
-            Vec2::new((ox + 1.0) * 0.5, (1.0 - oy) * 0.5),
-            unclamped.z < 0.0,
-        )
+        (clip, unclamped.z < 0.0)
     };
-    let (tl, tr, bl, br) = (
-        corner(-1.0, 1.0),
-        corner(1.0, 1.0),
-        corner(-1.0, -1.0),
-        corner(1.0, -1.0),
-    );
-    let triangles = [[tl, bl, tr], [tr, bl, br]];
-    let base = &s.maps.main_tex;
-    let cutoff = urp.material.cutoff;
-    let base_alpha = urp.material.base_color.w;
-    let mut pancaked = 0usize;
-    let map = (0..MAP_SIZE * MAP_SIZE)
-        .map(|i| {
-            let c = Vec2::new((i % MAP_SIZE) as f32 + 0.5, (i / MAP_SIZE) as f32 + 0.5);
-            let mut out = Expected::Clear;
-            for t in &triangles {
-                let cross = |a: Vec2, b: Vec2, p: Vec2| (b - a).perp_dot(p - a);
-                let area = cross(t[0].0, t[1].0, t[2].0);
-                if area.abs() < 1e-12 {
-                    continue;
-                }
-                let b = [
-                    cross(t[1].0, t[2].0, c) / area,
-                    cross(t[2].0, t[0].0, c) / area,
-                    cross(t[0].0, t[1].0, c) / area,
-                ];
-                if b.iter().any(|&x| x < -EDGE_MARGIN) {
-                    continue;
-                }
-                if b.iter().any(|&x| x < EDGE_MARGIN) {
-                    return Expected::Edge;
-                }
-                let depth: f32 = (0..3).map(|k| b[k] * t[k].1).sum();
-                // Beyond the far plane the GPU clips; at it, either way.
-                if depth > 1.0 + 1e-4 {
-                    continue;
-                }
-                if depth > 1.0 - 1e-4 {
-                    return Expected::Edge;
-                }
-                let inv_w: f32 = (0..3).map(|k| b[k] * t[k].2).sum();
-                let uv = (0..3).map(|k| t[k].3 * b[k] * t[k].2).sum::<Vec2>() / inv_w;
-                let texel = uv * Vec2::new(base.width as f32, base.height as f32);
-                let frac = texel - texel.floor();
-                if alpha_test
-                    && (frac.min_element() < UV_MARGIN || frac.max_element() > 1.0 - UV_MARGIN)
-                {
-                    return Expected::Edge;
-                }
-                let alpha = if albedo_alpha_smoothness {
-                    base_alpha
-                } else {
-                    let tx = (texel.x.floor() as u32).min(base.width - 1);
-                    let ty = (texel.y.floor() as u32).min(base.height - 1);
-                    base.get(tx, ty).w * base_alpha
-                };
-                out = if alpha_test && alpha < cutoff {
-                    Expected::Clear
-                } else {
-                    pancaked += usize::from(t.iter().any(|v| v.4));
-                    Expected::Depth(depth)
-                };
-            }
-            out
-        })
-        .collect();
-    (map, pancaked)
+    let alpha = AlphaTest::of(urp, alpha_test, albedo_alpha_smoothness);
+    rasterize_quad(urp, place, (MAP_SIZE, MAP_SIZE), alpha, false)
 }
 
 /// Checks every variant of `universal_lit/ShadowCaster` against the reference map (module docs).
@@ -282,10 +191,10 @@ pub fn check_urp_shadow_caster(
                     }
                     Expected::Clear => {
                         clear += 1;
-                        discarded += usize::from(matches!(plain[i], Expected::Depth(_)));
+                        discarded += usize::from(matches!(plain[i], Expected::Depth { .. }));
                         got == u16::MAX
                     }
-                    Expected::Depth(d) => unorm_within(u32::from(got), d, 16),
+                    Expected::Depth { depth, .. } => unorm_within(u32::from(got), depth, 16),
                 };
                 report.record(ok, || Mismatch {
                     shader: "universal_lit".to_owned(),
@@ -294,7 +203,7 @@ pub fn check_urp_shadow_caster(
                     target: "shadow map Depth16Unorm".to_owned(),
                     pixel: [x, y],
                     expected: match *want {
-                        Expected::Depth(d) => vec![d],
+                        Expected::Depth { depth, .. } => vec![depth],
                         _ => vec![1.0],
                     },
                     got: vec![f32::from(got) / 65535.0],

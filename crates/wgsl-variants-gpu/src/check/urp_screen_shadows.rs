@@ -12,13 +12,13 @@
 use std::time::Instant;
 
 use super::camera::depth_camera_resources;
+use super::compare::mask_code_within;
 use super::coverage::keyword_coverage;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
-use super::screen_masks::ScreenShadow;
+use super::screen_masks::{ScreenShadow, render_mask};
 use super::urp_lighting::main_light_shadow;
-use crate::{ColorTarget, GpuError, RenderJob, TargetFormat, render};
-use wgsl_variants_shaders::reference::tolerance::unorm_within;
+use crate::GpuError;
 use wgsl_variants_shaders::reference::urp::forward::MainLightShadows;
 
 /// The shader and pass.
@@ -55,25 +55,21 @@ pub(crate) fn check_urp_screen_shadows(setup: &Setup<'_>) -> Result<PassReport, 
         let names = variant.keywords();
         let mode = MainLightShadows::of(&names);
         let soft = names.contains(&"_SHADOWS_SOFT");
-        let mut job = RenderJob::new(
+        let image = render_mask(
+            setup.ctx,
             &variant.label(),
             &setup.lib.wgsl(&variant),
-            "vs_main",
-            "fs_main",
-        );
-        (job.width, job.height) = size;
-        job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
-        job.resources = resources.clone();
-        let image = render(setup.ctx, &job)?.remove(0);
+            size,
+            resources.clone(),
+        )?;
         for (i, (x, y)) in scene.pixels().enumerate() {
             let (lo, hi) = shadow.urp_factor(mode, soft, positions[i], (x, y));
             shadowed += usize::from(hi < 1.0);
             uncertain += usize::from(lo != hi);
             let px = &image[i * 4..i * 4 + 4];
             let got = f32::from(px[0]) / 255.0;
-            let want = got.clamp(lo.min(hi), lo.max(hi));
             report.record(
-                unorm_within(u32::from(px[0]), want, 8) && px.iter().all(|&c| c == px[0]),
+                mask_code_within(px[0], lo, hi) && px.iter().all(|&c| c == px[0]),
                 || Mismatch {
                     shader: PASS.0.to_owned(),
                     pass: PASS.1.to_owned(),

@@ -15,6 +15,7 @@
 //! | `f32` outputs of compute kernels | [`F32_ULP`] = 8 ULP, or [`F32_ABS`] = 2^-20 absolute | see [`F32_ULP`] and [`F32_ABS`] |
 //! | forward light (ForwardAdd) against deferred light (G-buffer + lighting pass) | [`gbuffer_light_bound`] per pixel, plus [`F16_ULP`] on each side | the deferred pass reads the surface through the 8- and 10-bit G-buffer; the bound propagates those quantization steps through the direct-light formula |
 //! | reflection probes blended SrcAlpha / OneMinusSrcAlpha into the `Rgba16Float` reflection buffer | [`f16_store_error`] + [`f16_blend_error`] | Vulkan may blend a float target at the format's precision: the source, alpha and both products may each be rounded to f16 before the sum is stored |
+//! | `universal_lit/DepthOnly` depth (`R32Float`, and the `Depth32Float` buffer the same bits) | [`F32_ULP`] / [`F32_ABS`] from the nearest depth the reference takes over the texel's [`SUBPIXEL_WINDOW`] ([`depth_within`]) | as the shadow casters' row below: depth is affine over the triangle, so the window's range is the centre's depth ± its steps along x and y times the window |
 //! | `standard/ShadowCaster` depth (16-bit unorm) and cube distance (f16) | [`UNORM_LSB`] / [`F16_ULP`] from the nearest value the reference takes over the texel's [`SUBPIXEL_WINDOW`] ([`window_offsets`]) | the rasterizer interpolates depth over vertices snapped to its sub-pixel grid; on a surface seen at a grazing angle one sixteenth of a pixel is several depth steps |
 //! | the frame (docs/shading.md §12): forward and deferred against the reference and each other | per pixel and channel: [`f16_store_error`] of each partial sum (HDR) or [`unorm_store_error`] per draw (forward LDR) or [`ldr_chain_range`] (deferred LDR), plus [`gbuffer_light_bound`] of every deferred light, around the reference's range over [`SUBPIXEL_WINDOW`] ([`window_range`]) | every draw rounds the target once; the rasterizer evaluates a pixel's attributes on vertices snapped to its sub-pixel grid, i.e. at a point up to [`SUBPIXEL_WINDOW`] from the centre; pixels whose window sees two objects (silhouettes) are left out and counted |
 //!
@@ -29,6 +30,19 @@ use glam::{Vec3, Vec4};
 
 use super::brdf::{Brdf, DirectFactors, Dots};
 use super::quantize::{f32_to_f16_bits, unorm_max};
+
+/// Whether a depth read back as `f32` is within [`f32_within`] of the nearest value of the
+/// reference's range `depth ± window` (`expected` = `(depth, window)`: the depth at the texel's
+/// centre and how far it moves over the [`SUBPIXEL_WINDOW`]).
+///
+/// ```
+/// use wgsl_variants_shaders::reference::tolerance::depth_within;
+/// assert!(depth_within(0.5004, (0.5, 0.001)));
+/// assert!(!depth_within(0.502, (0.5, 0.001)));
+/// ```
+pub fn depth_within(got: f32, (depth, window): (f32, f32)) -> bool {
+    f32_within(got, got.clamp(depth - window, depth + window))
+}
 
 /// Allowed difference, in integer steps, between a unorm channel read back from the GPU and
 /// either correct rounding of the reference value (applies to 8-bit, 10-bit and 2-bit channels).

@@ -4,7 +4,8 @@
 //
 // Provides:
 //   struct DeferredCamera
-//   fn depth_world_position(inv_view_proj: mat4x4f, pixel: vec2i, size: vec2u, depth: f32) -> vec3f
+//   fn depth_world_position(depth_buffer: texture_2d<f32>, inv_view_proj: mat4x4f, pixel: vec2i) -> vec3f
+//       depth = depth_buffer[pixel] (the screen-sized depth buffer or its R32Float copy, (w, h) its size);
 //       ndc = ((x + 0.5) / w · 2 - 1, 1 - (y + 0.5) / h · 2, depth) (wgpu: y up, depth in [0, 1]);
 //       h = inv_view_proj · (ndc, 1); p = h.xyz / h.w
 
@@ -16,8 +17,9 @@ struct DeferredCamera {
     view_proj: mat4x4f,
 }
 
-fn depth_world_position(inv_view_proj: mat4x4f, pixel: vec2i, size: vec2u, depth: f32) -> vec3f {
-    let uv = (vec2f(pixel) + 0.5) / vec2f(size);
+fn depth_world_position(depth_buffer: texture_2d<f32>, inv_view_proj: mat4x4f, pixel: vec2i) -> vec3f {
+    let depth = textureLoad(depth_buffer, pixel, 0).r;
+    let uv = (vec2f(pixel) + 0.5) / vec2f(textureDimensions(depth_buffer));
     let ndc = vec4f(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
     let h = inv_view_proj * ndc;
     return h.xyz / h.w;

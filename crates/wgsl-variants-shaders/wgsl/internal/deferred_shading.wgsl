@@ -89,8 +89,7 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let gbuffer0 = textureLoad(rt0, pixel, 0);
     let gbuffer1 = textureLoad(rt1, pixel, 0);
     let gbuffer2 = textureLoad(rt2, pixel, 0);
-    let depth = textureLoad(depth_tex, pixel, 0).r;
-    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+    let p = depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel);
 
     let n = gbuffer_decode_normal(gbuffer2.rgb);
     let v = brdf_view_dir(deferred_camera.position.xyz, p);

@@ -39,8 +39,7 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f
 @fragment
 fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let pixel = fullscreen_pixel(frag_position);
-    let depth = textureLoad(depth_tex, pixel, 0).r;
-    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+    let p = depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel);
     // Lit where the receiver's depth minus the bias is <= the caster's (LessEqual).
     let c = cascade_coords(cascades, p);
     let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - cascades.params.y);

@@ -30,8 +30,7 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f
 @fragment
 fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let pixel = fullscreen_pixel(frag_position);
-    let depth = textureLoad(depth_tex, pixel, 0).r;
-    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+    let p = depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel);
     return vec4f(urp_main_light_realtime_shadow(p).x);
 }
 #endpass

@@ -1,6 +1,7 @@
 #shader universal_lit
 // Unity URP's Lit shader: the UniversalGBuffer pass (docs/urp.md), the UniversalForward pass
-// (docs/urp.md §11) and the ShadowCaster pass (docs/urp.md §10). Material
+// (docs/urp.md §11), the ShadowCaster pass (docs/urp.md §10) and the DepthOnly pass (docs/urp.md
+// §13). Material
 // keywords are shader_feature_local as in URP's Lit.shader; the pipeline keywords that change
 // what the G-buffer pass writes are multi_compile. G-buffer: 2^10 · 2^6 = 65536 combinations, of which
 // 49152 are variants: URP's mixed-lighting setup is one of None, ShadowMask and Subtractive
@@ -67,4 +68,14 @@
 #pragma shader_feature_local _SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A
 #pragma multi_compile _ _CASTING_PUNCTUAL_LIGHT_SHADOW
 #import universal/shadow_caster_pass
+#endpass
+
+#pass DepthOnly
+#tag LightMode DepthOnly
+// URP Lit's depth prepass: the camera's depth, the alpha test as in the ShadowCaster (the
+// smoothness-in-albedo-alpha keyword matters only with _ALPHATEST_ON). URP's LOD cross-fade
+// and instancing keywords are not built.
+#pragma shader_feature_local _ALPHATEST_ON
+#pragma shader_feature_local _SMOOTHNESS_TEXTURE_ALBEDO_CHANNEL_A
+#import universal/depth_only_pass
 #endpass

@@ -77,8 +77,7 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let g0 = textureLoad(gbuffer0, pixel, 0);
     let g1 = textureLoad(gbuffer1, pixel, 0);
     let g2 = textureLoad(gbuffer2, pixel, 0);
-    let depth = textureLoad(depth_tex, pixel, 0).r;
-    let p = depth_world_position(deferred_camera.inv_view_proj, pixel, textureDimensions(depth_tex), depth);
+    let p = depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel);
     let flags = urp_unpack_flags(g0.a);
 
 #if defined(_DIRECTIONAL)

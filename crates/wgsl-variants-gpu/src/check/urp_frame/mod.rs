@@ -4,7 +4,9 @@
 //! camera target (`Rg11b10Ufloat`), after the main light's map ([`render_urp_shadow`]):
 //!
 //! - **forward** ([`render_urp_forward`]): `universal_lit/UniversalForward` per object, every
-//!   light per pixel (`_ADDITIONAL_LIGHTS`, `_LIGHT_LAYERS`);
+//!   light per pixel (`_ADDITIONAL_LIGHTS`, `_LIGHT_LAYERS`); with screen-space shadows after
+//!   URP's depth prepass (`universal_lit/DepthOnly` per object) and the screen-space pass over
+//!   its depth;
 //! - **deferred** ([`render_urp_deferred`]): `universal_lit/UniversalGBuffer` per object
 //!   (octahedral normals, rendering layers; each object stamps the Lit material type into the
 //!   stencil), then `stencil_deferred`'s `DirectionalLit` for the main light, full screen,
@@ -37,6 +39,7 @@ pub use shadow::{
 
 use super::camera::deferred_camera;
 use super::scene::{push_mat4, texture};
+use super::screen_masks::render_mask;
 use super::urp::urp_targets;
 use super::urp_lighting::{
     STENCIL_LIGHT, STENCIL_LIT, STENCIL_MATERIAL_MASK, STENCIL_UNLIT, add_blend,
@@ -45,8 +48,7 @@ use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
     BoundResource, CheckError, ColorTarget, DEPTH_STENCIL_FORMAT, DepthTest, Draw, DrawPass,
-    GpuContext, GpuError, RenderJob, Resource, StencilTest, TargetFormat, VertexBuffer, render,
-    render_pass,
+    GpuContext, GpuError, Resource, StencilTest, TargetFormat, VertexBuffer, render_pass,
 };
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::world_from_depth;
@@ -74,11 +76,15 @@ pub const GBUFFER_KEYWORDS: [&str; 2] = ["_GBUFFER_NORMALS_OCT", "_WRITE_RENDERI
 /// The camera target's format in both paths (URP's default HDR colour format; GBuffer3).
 const TARGET: TargetFormat = TargetFormat::Rg11b10Ufloat;
 
-/// The forward path's image: the camera target's bytes and the draws that made it.
+/// The forward path's image: the camera target's bytes, the depth prepass's depths and the
+/// draws that made it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UrpForwardImage {
     /// The `Rg11b10Ufloat` camera target, row by row.
     pub bytes: Vec<u8>,
+    /// The `DepthOnly` prepass's depths, one `f32` per pixel, with screen-space shadows (what
+    /// the screen-space pass rebuilt its positions from).
+    pub depth: Option<Vec<f32>>,
     /// Draws made.
     pub draws: usize,
 }
@@ -112,24 +118,38 @@ fn text(
     Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
 }
 
-/// Object `o`'s draw of a `universal_lit` pass with the pass's own keywords `extra`, and the
-/// main light's `shadow` (the forward pass's receivers).
+/// The main light's shadow as a receiver takes it: its keywords and bindings.
+#[derive(Clone, Debug, Default)]
+struct Receiver {
+    keywords: Vec<&'static str>,
+    resources: Vec<BoundResource>,
+}
+
+/// Object `o`'s draw of a `universal_lit` pass: the object's material keywords the pass
+/// declares (as Unity applies a material's keywords to each pass), the pass's own keywords
+/// `extra`, and the main light's shadow as `receiver` takes it.
 fn object_draw(
     lib: &Library,
     frame: &UrpFrame,
     o: usize,
     pass: &str,
     extra: &[&str],
-    shadow: Option<&UrpFrameShadow>,
+    receiver: &Receiver,
 ) -> Result<Draw, GpuError> {
     let object = &frame.geometry.objects[o];
-    let mut names = frame.objects[o].keywords.to_vec();
+    let declared = lib
+        .pass("universal_lit", pass)
+        .map_err(|e| CheckError::lookup(format!("universal_lit/{pass}"), e))?;
+    let mut names: Vec<&str> = frame.objects[o]
+        .keywords
+        .iter()
+        .copied()
+        .filter(|k| declared.keyword(k).is_some())
+        .collect();
     names.extend(extra);
+    names.extend(&receiver.keywords);
     let mut resources = frame.object_resources(o)?;
-    if let Some(s) = shadow {
-        names.extend(s.keywords());
-        resources.extend(s.resources());
-    }
+    resources.extend(receiver.resources.iter().cloned());
     let (label, wgsl) = text(lib, "universal_lit", pass, &names)?;
     Ok(Draw::fullscreen(
         &format!("{} {label}", object.name),
@@ -142,8 +162,22 @@ fn object_draw(
     .with_depth(DepthTest::OPAQUE))
 }
 
+/// Every object's [`object_draw`] of a `universal_lit` pass, in the frame's order.
+fn object_draws(
+    lib: &Library,
+    frame: &UrpFrame,
+    pass: &str,
+    extra: &[&str],
+    receiver: &Receiver,
+) -> Result<Vec<Draw>, GpuError> {
+    (0..frame.geometry.objects.len())
+        .map(|o| object_draw(lib, frame, o, pass, extra, receiver))
+        .collect()
+}
+
 /// Renders the forward path: `UniversalForward` per object into the camera target, reading
-/// the main light's `shadow` ([`render_urp_shadow`]).
+/// the main light's `shadow` ([`render_urp_shadow`]); with screen-space shadows, after URP's
+/// depth prepass (`DepthOnly` per object) and the screen-space pass over its depth.
 pub fn render_urp_forward(
     ctx: &GpuContext,
     lib: &Library,
@@ -151,6 +185,27 @@ pub fn render_urp_forward(
     shadow: Option<&UrpFrameShadow>,
 ) -> Result<UrpForwardImage, GpuError> {
     let g = &frame.geometry;
+    let (mut receiver, mut draws, mut depth) = (Receiver::default(), 0, None);
+    if let Some(s) = shadow {
+        receiver.keywords = s.receiver_keywords();
+        receiver.resources = s.resources();
+        if s.screen {
+            let prepass = render_depth_prepass(ctx, lib, frame)?;
+            let inputs = [
+                BoundResource::new(0, 3, depth_texture(g.width, g.height, &prepass)),
+                BoundResource::new(
+                    0,
+                    4,
+                    Resource::Uniform(deferred_camera(g.view_proj, g.scene.camera_position)),
+                ),
+            ];
+            receiver
+                .resources
+                .push(render_screen_shadow(ctx, lib, frame, s, &inputs)?);
+            draws += g.objects.len() + 1;
+            depth = Some(prepass);
+        }
+    }
     let mut pass = DrawPass::new(
         "URP frame: forward",
         g.width,
@@ -158,21 +213,46 @@ pub fn render_urp_forward(
         vec![ColorTarget::new(TARGET)],
     );
     pass.depth = true;
-    for o in 0..g.objects.len() {
-        pass.draws.push(object_draw(
-            lib,
-            frame,
-            o,
-            "UniversalForward",
-            &FORWARD_KEYWORDS,
-            shadow,
-        )?);
-    }
-    let draws = pass.draws.len();
+    pass.draws = object_draws(lib, frame, "UniversalForward", &FORWARD_KEYWORDS, &receiver)?;
+    draws += pass.draws.len();
     Ok(UrpForwardImage {
         bytes: render_pass(ctx, &pass)?.targets.remove(0),
+        depth,
         draws,
     })
+}
+
+/// URP's depth prepass of the forward path: `universal_lit/DepthOnly` per object, depth
+/// tested, into an `R32Float` target cleared to the far plane: its depths, row by row.
+fn render_depth_prepass(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<Vec<f32>, GpuError> {
+    let g = &frame.geometry;
+    let mut pass = DrawPass::new(
+        "URP frame: depth prepass",
+        g.width,
+        g.height,
+        vec![ColorTarget::new(TargetFormat::R32Float).with_clear([1.0, 0.0, 0.0, 0.0])],
+    );
+    pass.depth = true;
+    pass.draws = object_draws(lib, frame, "DepthOnly", &[], &Receiver::default())?;
+    let bytes = render_pass(ctx, &pass)?.targets.remove(0);
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect())
+}
+
+/// A camera's depths as the `R32Float` texture the full-screen passes read (binding 3).
+fn depth_texture(width: u32, height: u32, depth: &[f32]) -> Resource {
+    Resource::Texture2d {
+        format: wgpu::TextureFormat::R32Float,
+        width,
+        height,
+        data: depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
+    }
 }
 
 /// URP's stencil volume pass (`StencilDeferred.shader`, "Stencil Volume"; docs/urp.md §9): a
@@ -226,7 +306,7 @@ fn light_draws(
     names.extend(common);
     let mut main_resources = light_resource(7, &frame.main_light);
     if let Some(s) = shadow {
-        names.extend(s.deferred_keywords());
+        names.extend(s.receiver_keywords());
         main_resources.extend(s.resources());
     }
     main_resources.extend(screen);
@@ -306,12 +386,16 @@ pub fn render_urp_deferred(
         write_mask: STENCIL_MATERIAL_MASK,
         ..StencilTest::set(STENCIL_LIT)
     };
-    for o in 0..g.objects.len() {
-        gbuffer.draws.push(
-            object_draw(lib, frame, o, "UniversalGBuffer", &GBUFFER_KEYWORDS, None)?
-                .with_stencil(stamp),
-        );
-    }
+    gbuffer.draws = object_draws(
+        lib,
+        frame,
+        "UniversalGBuffer",
+        &GBUFFER_KEYWORDS,
+        &Receiver::default(),
+    )?
+    .into_iter()
+    .map(|d| d.with_stencil(stamp))
+    .collect();
     let out = render_pass(ctx, &gbuffer)?;
     let depth = out.depth.unwrap_or_default();
     let marks = out.stencil.unwrap_or_default();
@@ -331,12 +415,7 @@ pub fn render_urp_deferred(
     );
     lighting.depth = true;
     lighting.depth_format = DEPTH_STENCIL_FORMAT;
-    let depth_texture = Resource::Texture2d {
-        format: wgpu::TextureFormat::R32Float,
-        width: w,
-        height: h,
-        data: depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
-    };
+    let depth_texture = depth_texture(w, h, &depth);
     lighting.draws.push(depth_fill_draw(depth_texture.clone()));
     lighting.draws.push(stencil_fill_draw(
         Resource::Texture2d {
@@ -381,16 +460,16 @@ pub fn render_urp_deferred(
     })
 }
 
-/// URP's `ScreenSpaceShadows` pass over the G-buffer pass's depth (in `shared`, with the
-/// camera): the main light's map or cascades as `shadow` holds them, with the forward
-/// receivers' keywords, into a camera-sized `Rgba8Unorm` target; the target as the
-/// `DirectionalLit` draw's binding 16.
+/// URP's `ScreenSpaceShadows` pass over the camera's depth (in `inputs`, binding 3, with the
+/// camera at 4: the G-buffer pass's or the depth prepass's): the main light's map or cascades
+/// as `shadow` holds them, with their keywords, into a camera-sized `Rgba8Unorm` target; the
+/// target as the receivers' binding 16.
 fn render_screen_shadow(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
     shadow: &UrpFrameShadow,
-    shared: &Arc<[BoundResource]>,
+    inputs: &[BoundResource],
 ) -> Result<BoundResource, GpuError> {
     let g = &frame.geometry;
     let (w, h) = (g.width, g.height);
@@ -398,14 +477,11 @@ fn render_screen_shadow(
         lib,
         "universal_screen_space_shadows",
         "ScreenSpaceShadows",
-        &shadow.keywords(),
+        &shadow.map_keywords(),
     )?;
-    let mut job = RenderJob::new(&label, &wgsl, "vs_main", "fs_main");
-    (job.width, job.height) = (w, h);
-    job.targets = vec![ColorTarget::new(TargetFormat::Rgba8Unorm)];
-    job.resources = shared.to_vec();
-    job.resources.extend(shadow.resources());
-    let texels = render(ctx, &job)?.remove(0);
+    let mut resources = inputs.to_vec();
+    resources.extend(shadow.resources());
+    let texels = render_mask(ctx, &label, &wgsl, (w, h), resources)?;
     Ok(BoundResource::new(
         0,
         16,
@@ -720,12 +796,18 @@ pub fn compare(
         let tex = frame.texels(o);
 
         // Forward: the reference over the window (both ends of an uncertain shadow tap), stored
-        // once.
+        // once; with screen-space shadows, the pass's texel at the position the prepass's depth
+        // rebuilds.
         let shadows_at = |p: Vec3| shadow.map(|s| s.at(p));
+        let prepass = forward
+            .depth
+            .as_ref()
+            .map(|d| world_from_depth(inv_view_proj, x, y, g.width, g.height, d[i]));
         let values: Vec<Vec3> = geos
             .iter()
             .flat_map(|geo| {
-                let s = shadows_at(geo.world_position);
+                let p = geo.world_position;
+                let s = shadow.map(|s| s.received(prepass.unwrap_or(p), p));
                 [0, 1].map(|k| forward_reference(frame, &lights, o, geo, s.map(|s| s[k])))
             })
             .collect();
@@ -796,7 +878,7 @@ pub fn compare(
         let p = world_from_depth(inv_view_proj, x, y, g.width, g.height, deferred.depth[i]);
         // The main light's shadow at a position: its attenuation's two ends (1 without one).
         let main_shadow =
-            |p: Vec3| shadow.map_or([1.0; 2], |s| s.at_deferred(p).map(|s| s.attenuation));
+            |p: Vec3| shadow.map_or([1.0; 2], |s| s.received(p, p).map(|s| s.attenuation));
         let light_at = |t: &UrpGBufferTexel, p: Vec3, i: usize, end: usize| {
             let shadow = if i == 0 { main_shadow(p)[end] } else { 1.0 };
             stencil_deferred_light(t, p, camera, every_light[i], shadow, Some(layers))

@@ -46,12 +46,10 @@ pub struct UrpShadowSpec {
     /// cascades (the near plane, the splits, the shadow distance: 2, 3 or 5 depths,
     /// [`Cascades::fit`]), instead of the one map over `center` and `radius`.
     pub cascade_splits: Option<Vec<f32>>,
-    /// `_MAIN_LIGHT_SHADOWS_SCREEN` in the deferred path: URP's `ScreenSpaceShadows` pass
-    /// turns the map or the cascades into a shadow per pixel over the G-buffer pass's depth,
-    /// and the main light's `DirectionalLit` draw reads that texel. The forward path keeps
-    /// reading the map or the cascades (URP's forward path would need a depth prepass first,
-    /// and `universal_lit` has no `DepthOnly` pass yet), so forward against deferred also
-    /// holds the screen-space pass to the direct read.
+    /// `_MAIN_LIGHT_SHADOWS_SCREEN`: URP's `ScreenSpaceShadows` pass turns the map or the
+    /// cascades into a shadow per pixel over the camera's depth — the G-buffer pass's in the
+    /// deferred path, the `DepthOnly` prepass's in the forward path — and the receivers
+    /// (`DirectionalLit`, `UniversalForward`) read that texel.
     pub screen: bool,
     /// How the realtime shadow fades with the distance from the camera (URP's
     /// `_MainLightShadowParams.zw`).
@@ -83,7 +81,7 @@ pub struct UrpFrameShadow {
     pub soft: bool,
     /// The map or the cascades.
     pub maps: UrpShadowMaps,
-    /// The deferred path reads the screen-space pass's texel ([`UrpShadowSpec::screen`]).
+    /// The receivers read the screen-space pass's texel ([`UrpShadowSpec::screen`]).
     pub screen: bool,
     /// The fade with the distance from the camera.
     pub fade: MainLightShadowFade,
@@ -92,9 +90,10 @@ pub struct UrpFrameShadow {
 }
 
 impl UrpFrameShadow {
-    /// The receivers' keywords: `_MAIN_LIGHT_SHADOWS` or `_MAIN_LIGHT_SHADOWS_CASCADE`, and
-    /// `_SHADOWS_SOFT` as specified.
-    pub fn keywords(&self) -> Vec<&'static str> {
+    /// The keywords of the map or the cascades: `_MAIN_LIGHT_SHADOWS` or
+    /// `_MAIN_LIGHT_SHADOWS_CASCADE`, and `_SHADOWS_SOFT` as specified (the receivers' that read
+    /// them, and the screen-space pass's).
+    pub fn map_keywords(&self) -> Vec<&'static str> {
         let mut out = vec![match self.maps {
             UrpShadowMaps::Cascades(_) => "_MAIN_LIGHT_SHADOWS_CASCADE",
             UrpShadowMaps::Map { .. } => "_MAIN_LIGHT_SHADOWS",
@@ -105,14 +104,15 @@ impl UrpFrameShadow {
         out
     }
 
-    /// The main light's keywords in the deferred path's `DirectionalLit` draw: the
-    /// forward receivers' ([`UrpFrameShadow::keywords`]), or `_MAIN_LIGHT_SHADOWS_SCREEN` alone
-    /// (the screen-space pass, which takes the forward receivers' keywords, filters).
-    pub fn deferred_keywords(&self) -> Vec<&'static str> {
+    /// The main light's keywords in both paths' receivers (`UniversalForward`,
+    /// `DirectionalLit`): [`UrpFrameShadow::map_keywords`], or with [`UrpFrameShadow::screen`]
+    /// `_MAIN_LIGHT_SHADOWS_SCREEN` alone (the screen-space pass, which takes the map's
+    /// keywords, filters).
+    pub fn receiver_keywords(&self) -> Vec<&'static str> {
         if self.screen {
             vec!["_MAIN_LIGHT_SHADOWS_SCREEN"]
         } else {
-            self.keywords()
+            self.map_keywords()
         }
     }
 
@@ -149,16 +149,17 @@ impl UrpFrameShadow {
         Some(Cascades::picked(w))
     }
 
-    /// The main light's shadow at world position `p` as the deferred path's lighting reads it:
-    /// [`UrpFrameShadow::at`], or with [`UrpFrameShadow::screen`] the realtime shadow through
-    /// the screen-space pass's 8-bit store (widened by one store's error) before the fade.
-    pub fn at_deferred(&self, p: Vec3) -> [MainLightShadow; 2] {
-        let stored = if self.screen {
-            unorm_store_error(8)
+    /// The main light's shadow a receiver at world position `p` reads, in a pixel whose depth
+    /// (the G-buffer pass's or the depth prepass's) rebuilds `rebuilt`: [`UrpFrameShadow::at`]
+    /// `p`, or with [`UrpFrameShadow::screen`] the screen-space pass's texel — the realtime
+    /// shadow at `rebuilt` through the pass's 8-bit store (widened by one store's error) —
+    /// faded at `p` (URP fades at the receiver's own position).
+    pub fn received(&self, rebuilt: Vec3, p: Vec3) -> [MainLightShadow; 2] {
+        if self.screen {
+            self.faded(self.realtime(rebuilt), unorm_store_error(8), p)
         } else {
-            0.0
-        };
-        self.faded(self.realtime(p), stored, p)
+            self.at(p)
+        }
     }
 
     /// The main light's shadow at world position `p`, faded with the distance: the interval
