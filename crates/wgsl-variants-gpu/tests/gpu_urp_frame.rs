@@ -161,3 +161,50 @@ fn a_wrong_light_is_caught_both_ways() {
         "a light volume half its size: not caught\n{report}"
     );
 }
+
+/// URP's `BEYOND_SHADOW_FAR`: with one map whose box (radius 3: 6 units along the light on
+/// either side of its centre) ends short of the far floor, the receivers beyond its far plane
+/// read as lit, both ways and in the reference; a receiver that compares them with the map
+/// anyway (the rule dropped) darkens them and fails both paths.
+#[test]
+fn receivers_beyond_the_shadow_maps_far_plane_are_lit() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let lib = wgsl_variants_shaders::library().expect("bundled library");
+    let mut frame = UrpFrame::new();
+    if let Some(spec) = &mut frame.main_shadow {
+        spec.cascade_splits = None;
+        spec.radius = 3.0;
+    }
+    let shadow = render_urp_shadow(&ctx, &lib, &frame).expect("shadow");
+    let params = &shadow
+        .as_ref()
+        .expect("the frame's main light casts")
+        .params;
+    let g = &frame.geometry;
+    let beyond = g
+        .pixels()
+        .filter_map(|(x, y)| g.cast(f64::from(x) + 0.5, f64::from(y) + 0.5))
+        .filter(|hit| params.coords(hit.geometry.world_position).z >= 1.0)
+        .count();
+    println!("{beyond} pixels see a surface beyond the map's far plane");
+    assert!(beyond > 100, "{beyond}");
+    let report = check_urp_frame(&ctx, &lib, &frame).expect("the URP frame renders");
+    println!("{report}");
+    assert!(report.passed(), "{report}");
+
+    let unruled = common::mutate::bundled_with(
+        "universal/main_light_shadow_map.wgsl",
+        "if c.z <= 0.0 || c.z >= 1.0 {",
+        "if false {",
+    );
+    let forward = render_urp_forward(&ctx, &unruled, &frame, shadow.as_ref()).expect("forward");
+    let deferred = render_urp_deferred(&ctx, &unruled, &frame, shadow.as_ref()).expect("deferred");
+    let report = compare(&frame, shadow.as_ref(), &forward, &deferred).expect("compare");
+    println!("with the rule dropped: {:?}", report.failures);
+    assert!(
+        report.failures[0] > 0 && report.failures[2] > 0,
+        "BEYOND_SHADOW_FAR dropped: not caught\n{report}"
+    );
+}

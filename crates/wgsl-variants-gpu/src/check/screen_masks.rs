@@ -25,10 +25,9 @@ use wgsl_variants_shaders::reference::cascades::{
 use wgsl_variants_shaders::reference::light::{
     Light, LightType, look_at_rh, perspective_rh, world_from_depth,
 };
-use wgsl_variants_shaders::reference::shadow::{
-    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
-};
+use wgsl_variants_shaders::reference::shadow::{ShadowMap2d, ShadowParams};
 use wgsl_variants_shaders::reference::urp::forward::MainLightShadows;
+use wgsl_variants_shaders::reference::urp::shadow::main_light_map_factor;
 
 /// The directional shadows' strength.
 pub const DIRECTIONAL_STRENGTH: f32 = 0.85;
@@ -226,7 +225,7 @@ impl ScreenShadowTexture {
 impl ScreenShadow {
     /// URP's realtime main-light shadow at `p`, seen at pixel `(x, y)` of the rig's view,
     /// before the fade, as an interval (a tap or a split within a hair of flipping gives both
-    /// outcomes): 1 without a shadow, the region map's ([`shadow_factor`]) with
+    /// outcomes): 1 without a shadow, the region map's ([`main_light_map_factor`]) with
     /// `_MAIN_LIGHT_SHADOWS`, the cascades' ([`Cascades::factor`] with URP's split-sphere
     /// selection) with `_MAIN_LIGHT_SHADOWS_CASCADE`, the [`ScreenShadowTexture`]'s texel with
     /// `_MAIN_LIGHT_SHADOWS_SCREEN`; `soft`: `_SHADOWS_SOFT` (the screen-space pass's business
@@ -244,19 +243,7 @@ impl ScreenShadow {
                 let s = self.urp_screen.at(x, y);
                 (s, s)
             }
-            MainLightShadows::Map => shadow_factor(
-                &self.params,
-                ShadowKeywords {
-                    depth: true,
-                    soft,
-                    ..ShadowKeywords::default()
-                },
-                ShadowMaps {
-                    map: Some(&self.map),
-                    cube: None,
-                },
-                p,
-            ),
+            MainLightShadows::Map => main_light_map_factor(&self.params, &self.map, soft, p),
             MainLightShadows::Cascades => {
                 self.urp
                     .cascades

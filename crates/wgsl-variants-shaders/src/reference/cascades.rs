@@ -13,7 +13,9 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use super::light::Light;
-use super::shadow::{ShadowError, ShadowMap2d, ShadowParams, shadow_coords, shadow_mix};
+use super::shadow::{
+    ShadowError, ShadowMap2d, ShadowParams, lit_beyond_shadow_far, shadow_coords, shadow_mix,
+};
 
 /// Most cascades (Unity's four).
 pub const MAX_CASCADES: usize = 4;
@@ -32,6 +34,9 @@ pub struct CascadeKeywords {
     pub split_spheres: bool,
     /// `SHADOWS_SOFT`: the 3 × 3 tent of each cascade's tile.
     pub soft: bool,
+    /// URP's `BEYOND_SHADOW_FAR`: a coordinate outside the light's depth range reads as lit
+    /// ([`lit_beyond_shadow_far`]); Unity's collector has no such test.
+    pub lit_beyond_far: bool,
 }
 
 impl CascadeKeywords {
@@ -47,22 +52,25 @@ impl CascadeKeywords {
             single: names.contains(&"SHADOWS_SINGLE_CASCADE"),
             split_spheres: names.contains(&"SHADOWS_SPLIT_SPHERES"),
             soft: names.contains(&"SHADOWS_SOFT"),
+            lit_beyond_far: false,
         }
     }
 
     /// URP's selection (`ComputeCascadeIndex` in URP's `Shadows.hlsl`): always by the split
-    /// spheres, never one cascade alone; `soft`: `_SHADOWS_SOFT`.
+    /// spheres, never one cascade alone, lit beyond the light's depth range
+    /// (`SampleShadowmap`'s `BEYOND_SHADOW_FAR`); `soft`: `_SHADOWS_SOFT`.
     ///
     /// ```
     /// use wgsl_variants_shaders::reference::cascades::CascadeKeywords;
     /// let k = CascadeKeywords::urp(true);
-    /// assert!(k.split_spheres && k.soft && !k.single);
+    /// assert!(k.split_spheres && k.soft && !k.single && k.lit_beyond_far);
     /// ```
     pub fn urp(soft: bool) -> CascadeKeywords {
         CascadeKeywords {
             single: false,
             split_spheres: true,
             soft,
+            lit_beyond_far: true,
         }
     }
 }
@@ -363,7 +371,8 @@ impl Cascades {
     /// The shadow factor at `p` as an interval, from `atlas` (the tiles as rendered, read
     /// back): over every candidate weighting ([`Cascades::candidates`]), the tap interval of
     /// [`ShadowMap2d::visibility`] at its coordinate ([`Cascades::coords`]; no cascade reads
-    /// `(0, 0, 0)`, in front of every caster: lit), mixed by the strength.
+    /// `(0, 0, 0)`, in front of every caster: lit), mixed by the strength; with
+    /// [`CascadeKeywords::lit_beyond_far`], lit outside the light's depth range.
     pub fn factor(&self, keywords: CascadeKeywords, atlas: &ShadowMap2d, p: Vec3) -> (f32, f32) {
         let first = &self.cascades[0].params;
         let mut lo = f32::INFINITY;
@@ -371,8 +380,15 @@ impl Cascades {
         for w in self.candidates(keywords, p) {
             let c = self.coords(w, p);
             let v = atlas.visibility(Vec3::new(c.x, c.y, c.z - first.bias), keywords.soft);
-            lo = lo.min(shadow_mix(first.strength, v.lo));
-            hi = hi.max(shadow_mix(first.strength, v.hi));
+            let mut f = (
+                shadow_mix(first.strength, v.lo),
+                shadow_mix(first.strength, v.hi),
+            );
+            if keywords.lit_beyond_far {
+                f = lit_beyond_shadow_far(c.z, f);
+            }
+            lo = lo.min(f.0);
+            hi = hi.max(f.1);
         }
         (lo, hi)
     }

@@ -88,6 +88,27 @@ pub const DEPTH_MARGIN: f32 = 2e-5;
 /// A cube comparison whose two distances (over the range) are this close may go either way.
 pub const DISTANCE_MARGIN: f32 = 1e-4;
 
+/// URP's `BEYOND_SHADOW_FAR` (URP's `Shadows.hlsl`, `SampleShadowmap`): a receiver whose map
+/// coordinate lies outside the light's depth range (`z ≤ 0` or `z ≥ 1`; wgpu's range, depth not
+/// reversed) reads as lit, whatever the map holds. The factor `(lo, hi)` at map depth `z`:
+/// `(1, 1)` beyond, unchanged inside, and both outcomes within [`DEPTH_MARGIN`] of either end.
+///
+/// ```
+/// use wgsl_variants_shaders::reference::shadow::lit_beyond_shadow_far;
+/// assert_eq!(lit_beyond_shadow_far(1.2, (0.1, 0.1)), (1.0, 1.0));
+/// assert_eq!(lit_beyond_shadow_far(0.5, (0.1, 0.1)), (0.1, 0.1));
+/// assert_eq!(lit_beyond_shadow_far(1.0 - 1e-6, (0.1, 0.1)), (0.1, 1.0));
+/// ```
+pub fn lit_beyond_shadow_far(z: f32, (lo, hi): (f32, f32)) -> (f32, f32) {
+    let beyond = z <= 0.0 || z >= 1.0;
+    let near_an_end = z.abs() < DEPTH_MARGIN || (z - 1.0).abs() < DEPTH_MARGIN;
+    match (beyond, near_an_end) {
+        (_, true) => (lo.min(1.0), 1.0),
+        (true, false) => (1.0, 1.0),
+        (false, false) => (lo, hi),
+    }
+}
+
 /// Why a light's shadow cannot be set up, or a shadow map is unusable.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]

@@ -1,7 +1,7 @@
 // universal/main_light_shadow_map: URP's realtime main-light shadow read from the light's map
 // or its cascades (docs/urp.md §9; URP's Shadows.hlsl: TransformWorldToShadowCoord,
 // ComputeCascadeIndex, MainLightRealtimeShadow without _MAIN_LIGHT_SHADOWS_SCREEN and
-// SampleShadowmap's LerpWhiteTo). Two readers: the receivers (universal/main_light_shadow, with
+// SampleShadowmap's LerpWhiteTo and BEYOND_SHADOW_FAR). Two readers: the receivers (universal/main_light_shadow, with
 // _MAIN_LIGHT_SHADOWS or _MAIN_LIGHT_SHADOWS_CASCADE) and URP's ScreenSpaceShadows pass, which
 // writes this value per pixel for the _MAIN_LIGHT_SHADOWS_SCREEN receivers
 // (internal/universal_screen_space_shadows). Its bindings exist with _MAIN_LIGHT_SHADOWS or
@@ -18,7 +18,8 @@
 // Provides:
 //   fn urp_main_light_realtime_shadow(p: vec3f) -> vec2f
 //       x the realtime attenuation at p, 1 - strength + strength · visibility (_SHADOWS_SOFT:
-//       the 3 x 3 tent), before the distance fade; y the shadow's strength
+//       the 3 x 3 tent), 1 where p's map depth lies outside [0, 1] (BEYOND_SHADOW_FAR), before
+//       the distance fade; y the shadow's strength
 
 #if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE)
 #import lighting/shadow
@@ -46,6 +47,10 @@ fn urp_main_light_realtime_shadow(p: vec3f) -> vec2f {
     let params = shadow.params;
     let visibility = shadow_map_visibility(shadow_map, shadow_map_sampler, c.xy, c.z - params.y);
 #endif
+    // BEYOND_SHADOW_FAR: outside the light's depth range the map says nothing; lit.
+    if c.z <= 0.0 || c.z >= 1.0 {
+        return vec2f(1.0, params.x);
+    }
     return vec2f(shadow_mix(params.x, visibility), params.x);
 }
 #endif

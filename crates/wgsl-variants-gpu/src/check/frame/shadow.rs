@@ -417,6 +417,7 @@ fn render_cascades(
         single: false,
         split_spheres: spec.split_spheres,
         soft: spec.soft,
+        lit_beyond_far: false,
     };
     Ok(FrameShadow {
         keywords: ShadowKeywords {

@@ -18,11 +18,10 @@ use crate::{BoundResource, Draw, DrawPass, GpuContext, GpuError, Resource, rende
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades, MAX_CASCADES};
 use wgsl_variants_shaders::reference::light::Light;
-use wgsl_variants_shaders::reference::shadow::{
-    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, shadow_factor,
-};
+use wgsl_variants_shaders::reference::shadow::{ShadowMap2d, ShadowParams};
 use wgsl_variants_shaders::reference::tolerance::unorm_store_error;
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, MainLightShadowFade};
+use wgsl_variants_shaders::reference::urp::shadow::main_light_map_factor;
 
 /// Edge length of the main light's map in texels (of each cascade's tile with cascades).
 pub const MAIN_SHADOW_MAP_SIZE: u32 = 512;
@@ -186,16 +185,7 @@ impl UrpFrameShadow {
     fn realtime(&self, p: Vec3) -> (f32, f32) {
         match &self.maps {
             UrpShadowMaps::Map { map, .. } => {
-                let keywords = ShadowKeywords {
-                    depth: true,
-                    soft: self.soft,
-                    ..ShadowKeywords::default()
-                };
-                let maps = ShadowMaps {
-                    map: Some(map),
-                    cube: None,
-                };
-                shadow_factor(&self.params, keywords, maps, p)
+                main_light_map_factor(&self.params, map, self.soft, p)
             }
             UrpShadowMaps::Cascades(atlas) => {
                 atlas

@@ -1,6 +1,7 @@
 //! URP Lit's ShadowCaster pass (docs/urp.md §10; URP's `ShadowCasterPass.hlsl`
 //! `GetShadowPositionHClip` and `Shadows.hlsl` `ApplyShadowBias`): where a caster's vertex
-//! lands in a light's depth map.
+//! lands in a light's depth map; and how a receiver reads the main light's one map
+//! ([`main_light_map_factor`], docs/urp.md §9).
 //!
 //! ```
 //! use glam::{Mat4, Vec2, Vec3};
@@ -13,6 +14,10 @@
 //! ```
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use crate::reference::shadow::{
+    ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams, lit_beyond_shadow_far, shadow_factor,
+};
 
 /// The light a ShadowCaster variant renders for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,6 +68,30 @@ pub fn caster_clip(view_proj: Mat4, p: Vec3, n: Vec3, light: CasterLight, bias: 
     let mut clip = view_proj * apply_shadow_bias(p, n, l, bias).extend(1.0);
     clip.z = clip.z.max(0.0);
     clip
+}
+
+/// The main light's realtime shadow at `p` from its one map (`_MAIN_LIGHT_SHADOWS`; URP's
+/// `MainLightRealtimeShadow` and `SampleShadowmap`): the tap (`soft`: the 3 × 3 tent) mixed by
+/// the strength, as an interval where a tap is within a hair of flipping, and lit beyond the
+/// light's depth range ([`lit_beyond_shadow_far`]). The cascades' counterpart is
+/// [`crate::reference::cascades::Cascades::factor`] with
+/// [`crate::reference::cascades::CascadeKeywords::urp`].
+pub fn main_light_map_factor(
+    params: &ShadowParams,
+    map: &ShadowMap2d,
+    soft: bool,
+    p: Vec3,
+) -> (f32, f32) {
+    let keywords = ShadowKeywords {
+        depth: true,
+        soft,
+        ..ShadowKeywords::default()
+    };
+    let maps = ShadowMaps {
+        map: Some(map),
+        cube: None,
+    };
+    lit_beyond_shadow_far(params.coords(p).z, shadow_factor(params, keywords, maps, p))
 }
 
 #[cfg(test)]
