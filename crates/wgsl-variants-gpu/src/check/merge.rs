@@ -131,6 +131,23 @@ pub fn merge_reports(inputs: &[(String, String)]) -> Result<(String, bool), Merg
             first.extend(list(theirs, "first_mismatches").iter().cloned());
             first.truncate(MAX_LISTED_MISMATCHES);
             mine["first_mismatches"] = Value::Array(first);
+            // Every mismatch per variant: the shards' tallies summed by variant.
+            let mut tally = mine
+                .get("mismatches_by_variant")
+                .and_then(Value::as_object)
+                .cloned()
+                .unwrap_or_default();
+            if let Some(t) = theirs
+                .get("mismatches_by_variant")
+                .and_then(Value::as_object)
+            {
+                for (variant, n) in t {
+                    let sum = tally.get(variant).and_then(Value::as_u64).unwrap_or(0)
+                        + n.as_u64().unwrap_or(0);
+                    tally.insert(variant.clone(), Value::from(sum));
+                }
+            }
+            mine["mismatches_by_variant"] = Value::Object(tally);
             let mut keywords = list(mine, "keywords").to_vec();
             for (k, t) in keywords.iter_mut().zip(list(theirs, "keywords")) {
                 add(k, t, "pairs");
@@ -225,6 +242,28 @@ mod tests {
                 .as_str()
                 .unwrap()
                 .starts_with("merged from 2 shards")
+        );
+    }
+
+    #[test]
+    fn the_mismatches_per_variant_are_summed_by_variant() {
+        let with = |shard: &str, tally: Value| {
+            let mut v: Value = serde_json::from_str(&report(shard, "f", 4, 0)).unwrap();
+            v["passes"][0]["mismatches_by_variant"] = tally;
+            v.to_string()
+        };
+        let inputs = [
+            ("a".to_string(), with("1/2", serde_json::json!({"{A}": 2}))),
+            (
+                "b".to_string(),
+                with("2/2", serde_json::json!({"{A}": 1, "{B}": 4})),
+            ),
+        ];
+        let (text, _) = merge_reports(&inputs).unwrap();
+        let v: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(
+            v["passes"][0]["mismatches_by_variant"],
+            serde_json::json!({"{A}": 3, "{B}": 4})
         );
     }
 

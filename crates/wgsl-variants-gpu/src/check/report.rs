@@ -1,5 +1,6 @@
 //! What the GPU check compared and what did not match, as text and as JSON.
 
+use std::collections::BTreeMap;
 use std::fmt;
 
 use serde::Serialize;
@@ -82,6 +83,9 @@ pub struct PassReport {
     pub mismatches: usize,
     /// The first [`MAX_LISTED_MISMATCHES`] mismatches.
     pub first_mismatches: Vec<Mismatch>,
+    /// Every mismatch counted per variant, by the keyword label the check gives it
+    /// ([`Mismatch::keywords`]): where a fault shows, all of it, not only the listed ones.
+    pub mismatches_by_variant: BTreeMap<String, usize>,
     /// Per keyword of the pass: whether toggling it changed an output.
     pub keywords: Vec<KeywordCoverage>,
     /// Keywords whose toggling changed nothing in any variant pair (a failure: a path the
@@ -106,6 +110,7 @@ impl PassReport {
             discarded_compared: 0,
             mismatches: 0,
             first_mismatches: Vec::new(),
+            mismatches_by_variant: BTreeMap::new(),
             keywords: Vec::new(),
             untested_keywords: Vec::new(),
             notes: Vec::new(),
@@ -129,8 +134,13 @@ impl PassReport {
         self.pixels_compared += 1;
         if !ok {
             self.mismatches += 1;
+            let m = mismatch();
+            *self
+                .mismatches_by_variant
+                .entry(m.keywords.clone())
+                .or_default() += 1;
             if self.first_mismatches.len() < MAX_LISTED_MISMATCHES {
-                self.first_mismatches.push(mismatch());
+                self.first_mismatches.push(m);
             }
         }
     }
