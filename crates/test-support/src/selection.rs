@@ -6,7 +6,7 @@
 //! this selection instead: every variant of a pass whose space holds at most [`FULL_UP_TO`]
 //! variants, and a t = [`COVER_T`] covering set of a larger one (the standard shader's three
 //! lit passes, 55,296, 18,432 and 110,592 variants; URP's `UniversalGBuffer`, 49,152, and
-//! `UniversalForward`, 55,296). The full-space form of each such test is an `#[ignore]`d test of its own,
+//! `UniversalForward`, 196,608). The full-space form of each such test is an `#[ignore]`d test of its own,
 //! run by `cargo test --release -- --ignored` (the README gives the command and its time).
 
 use wgsl_variants::Library;

@@ -1,13 +1,14 @@
 //! The GPU proof of URP's `universal_lit/UniversalForward`: the default selection (a t = 3
 //! covering set plus one partner per keyword) rendered on the URP scene lit by the main light
 //! (with its shadow map, its four cascades, or a screen-space shadow texture) and three
-//! additional lights, every texel of the `Rg11b10Ufloat`
-//! camera target compared with `reference::urp::forward`, every keyword shown to change a
-//! texel; and libraries with planted bugs (the per-vertex light not multiplied by the diffuse
-//! colour, light layers ignored by the per-pixel loop, the subtractive mix's shadow strength
-//! wrong, the shadow fade dropped, the cascade selection ignored, the screen-space shadow read
-//! at another pixel) caught where, and only where, the bug shows. The full space (110,592
-//! variants) is the
+//! additional lights (two casting shadows from the additional lights' atlas), every texel of
+//! the `Rg11b10Ufloat` camera target compared with `reference::urp::forward`, every keyword
+//! shown to change a texel; and libraries with planted bugs (the per-vertex light not
+//! multiplied by the diffuse colour, light layers ignored by the per-pixel loop, the
+//! subtractive mix's shadow strength wrong, the shadow fade dropped, the cascade selection
+//! ignored, the screen-space shadow read at another pixel, a point light's shadow read from
+//! the opposite cube face, a hard light filtered as soft, the additional lights' fade dropped)
+//! caught where, and only where, the bug shows. The full space (196,608 variants) is the
 //! ignored test `every_universal_forward_variant_matches_the_reference`
 //! (`cargo test --release -p wgsl-variants-gpu --test gpu_urp_forward -- --ignored`).
 //!
@@ -41,8 +42,8 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
     assert!(p.discarded_compared > 0, "the alpha test discarded nothing");
     // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS,
     // _MAIN_LIGHT_SHADOWS_CASCADE and _MAIN_LIGHT_SHADOWS_SCREEN, _SHADOWS_SOFT, the two
-    // additional-light options, _LIGHT_LAYERS, subtractive, lightmap.
-    assert_eq!(p.keywords.len(), 19);
+    // additional-light options, their shadows, _LIGHT_LAYERS, subtractive, lightmap.
+    assert_eq!(p.keywords.len(), 20);
     assert!(p.untested_keywords.is_empty(), "{:?}", p.untested_keywords);
     assert!(
         p.keywords.iter().all(|k| k.pairs_changed > 0),
@@ -54,6 +55,14 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
             .iter()
             .any(|n| n.contains("hard shadow covers") && !n.contains("covers 0 of")),
         "some pixels must be in the main light's shadow: {report}"
+    );
+    assert!(
+        p.notes
+            .iter()
+            .any(|n| n.contains("the point light's covers")
+                && !n.contains("covers 0 pixels")
+                && !n.contains("the spot light's 0")),
+        "some pixels must be in the additional lights' shadows: {report}"
     );
     assert!(report.passed());
 }
@@ -67,16 +76,16 @@ fn covering_set_of_universal_forward_matches_the_reference() {
     let pass = lib.pass("universal_lit", "UniversalForward").unwrap();
     let cover = Space::full(pass).covering(3).unwrap().len();
     assert_passes(&report, cover);
-    assert!(report.passes[0].variants_run <= cover + 19);
+    assert!(report.passes[0].variants_run <= cover + 20);
 }
 
 #[test]
-#[ignore = "110,592 variants: run with --ignored (docs/urp.md gives the time)"]
+#[ignore = "196,608 variants: run with --ignored (docs/urp.md gives the time)"]
 fn every_universal_forward_variant_matches_the_reference() {
     let Some(report) = run(&wgsl_variants_shaders::library().unwrap(), true) else {
         return;
     };
-    assert_passes(&report, 110_592);
+    assert_passes(&report, 196_608);
 }
 
 /// Runs the forward pass's default selection over the bundled library with one planted bug
@@ -125,8 +134,8 @@ fn a_wrong_subtractive_shadow_strength_is_caught_only_under_subtractive_shadows(
     // SubtractDirectMainLightFromLightmap); full strength instead changes shadowed texels.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
-        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), 1.0);",
+        "return vec2f(mix(realtime.x, 1.0, urp_shadow_fade(p, camera, main_light_shadow_params.zw)), realtime.y);",
+        "return vec2f(mix(realtime.x, 1.0, urp_shadow_fade(p, camera, main_light_shadow_params.zw)), 1.0);",
     ) else {
         return;
     };
@@ -148,7 +157,7 @@ fn an_ignored_shadow_fade_is_caught_only_where_the_main_light_is_shadowed() {
     // camera; the check's fade ramps across the shadowed texels.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
+        "return vec2f(mix(realtime.x, 1.0, urp_shadow_fade(p, camera, main_light_shadow_params.zw)), realtime.y);",
         "return realtime;",
     ) else {
         return;
@@ -190,6 +199,58 @@ fn the_screen_space_shadow_read_at_another_pixel_is_caught_only_with_screen_shad
     };
     for k in &bad {
         assert!(k.contains("_MAIN_LIGHT_SHADOWS_SCREEN"), "{k}");
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn a_point_light_reading_the_opposite_cube_face_is_caught_only_with_additional_shadows() {
+    // URP's AdditionalLightRealtimeShadow picks the slice of CubeMapFaceID(-lightDirection):
+    // the face from the light to the receiver. The face towards the light sees no occluder.
+    let Some(bad) = mismatching(
+        "universal/additional_light_shadow.wgsl",
+        "slice += urp_cube_map_face_id(-to_light);",
+        "slice += urp_cube_map_face_id(to_light);",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_ADDITIONAL_LIGHT_SHADOWS"), "{k}");
+        assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+    }
+}
+
+#[test]
+fn soft_filtering_of_a_hard_light_is_caught_only_under_soft_additional_shadows() {
+    // Under _SHADOWS_SOFT a light is filtered only if its own flag says soft (URP's
+    // _AdditionalShadowParams.y); the check's point light is hard, its spot light soft.
+    let Some(bad) = mismatching(
+        "universal/additional_light_shadow.wgsl",
+        "if params.y > 0.0 {",
+        "if params.y >= 0.0 {",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_ADDITIONAL_LIGHT_SHADOWS"), "{k}");
+        assert!(k.contains("_SHADOWS_SOFT"), "{k}");
+    }
+}
+
+#[test]
+fn an_ignored_additional_shadow_fade_is_caught_only_with_additional_shadows() {
+    // URP's AdditionalLightShadow lerps the realtime shadow towards 1 with the distance from
+    // the camera (_AdditionalShadowFadeParams); the check's fade ramps across the texels the
+    // additional lights shadow.
+    let Some(bad) = mismatching(
+        "universal/additional_light_shadow.wgsl",
+        "return mix(urp_additional_light_realtime_shadow(light, p, to_light), 1.0, fade);",
+        "return urp_additional_light_realtime_shadow(light, p, to_light);",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_ADDITIONAL_LIGHT_SHADOWS"), "{k}");
         assert!(!k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
     }
 }

@@ -8,7 +8,7 @@ mod common;
 
 use wgsl_variants_gpu::GpuContext;
 use wgsl_variants_gpu::check::urp_frame::{
-    UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward, render_urp_shadow,
+    UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward, render_urp_shadows,
 };
 use wgsl_variants_shaders::reference::light::LightShape;
 use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
@@ -58,6 +58,10 @@ fn the_urp_frame_matches_the_reference_both_ways() {
         "{report}"
     );
     assert_eq!(all[5], 0, "{report}");
+    // The cool point light (six cube-face slices) and the spot cast their own shadows on what
+    // they light; the warm point light casts none.
+    let own = &report.additional_shadowed;
+    assert!(own[0] == 0 && own[1] > 50 && own[2] > 50, "{report}");
 }
 
 /// The main light through URP's screen-space shadow pass in both paths
@@ -84,15 +88,15 @@ fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
     assert_eq!(report.deferred_draws, 5 + 1 + 1 + 2 * 3, "{report}");
     assert_eq!(report.forward_draws, 5 + 1 + 5, "{report}");
 
-    let shadow = render_urp_shadow(&ctx, &lib, &frame).expect("shadow");
+    let shadow = render_urp_shadows(&ctx, &lib, &frame).expect("shadow");
     let blind = common::mutate::bundled_with(
         "internal/universal_screen_space_shadows.wgsl",
         "depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel)",
         "depth_world_position(depth_tex, deferred_camera.inv_view_proj, pixel / 2)",
     );
-    let forward = render_urp_forward(&ctx, &blind, &frame, shadow.as_ref()).expect("forward");
-    let deferred = render_urp_deferred(&ctx, &blind, &frame, shadow.as_ref()).expect("deferred");
-    let report = compare(&frame, shadow.as_ref(), &forward, &deferred).expect("compare");
+    let forward = render_urp_forward(&ctx, &blind, &frame, &shadow).expect("forward");
+    let deferred = render_urp_deferred(&ctx, &blind, &frame, &shadow).expect("deferred");
+    let report = compare(&frame, &shadow, &forward, &deferred).expect("compare");
     assert!(
         report.failures[0] > 0 && report.failures[2] > 0,
         "a screen-space pass that reads another pixel's depth: not caught\n{report}"
@@ -102,7 +106,8 @@ fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
 /// The frame rendered with a fault, compared with the reference of the true frame: a light
 /// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
 /// on every layer), the main light's shadow missing, not fading with the distance or drawn
-/// from one map where the frame has cascades — each
+/// from one map where the frame has cascades, the additional lights' shadows missing or the
+/// spot's hard where it is soft — each
 /// fails on both paths; a light volume too small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
@@ -111,7 +116,7 @@ fn a_wrong_light_is_caught_both_ways() {
     };
     let lib = wgsl_variants_shaders::library().expect("bundled library");
     let truth = UrpFrame::new();
-    let truth_shadow = render_urp_shadow(&ctx, &lib, &truth).expect("shadow");
+    let truth_shadow = render_urp_shadows(&ctx, &lib, &truth).expect("shadow");
     let mut brighter = truth.clone();
     brighter.lights[2].params.color *= 1.25;
     let mut no_main = truth.clone();
@@ -129,6 +134,12 @@ fn a_wrong_light_is_caught_both_ways() {
     if let Some(spec) = &mut one_map.main_shadow {
         spec.cascade_splits = None;
     }
+    let mut no_additional = truth.clone();
+    no_additional.additional_shadows = None;
+    let mut hard_spot = truth.clone();
+    if let Some(spec) = &mut hard_spot.additional_shadows {
+        spec.casting[2] = spec.casting[2].map(|(strength, _)| (strength, false));
+    }
     for (what, wrong) in [
         ("spot 25 % brighter", &brighter),
         ("no main light", &no_main),
@@ -136,11 +147,13 @@ fn a_wrong_light_is_caught_both_ways() {
         ("no main-light shadow", &unshadowed),
         ("the shadow's fade ignored", &unfaded),
         ("one map instead of the cascades", &one_map),
+        ("no additional-light shadows", &no_additional),
+        ("the spot's shadow hard", &hard_spot),
     ] {
-        let shadow = render_urp_shadow(&ctx, &lib, wrong).expect("shadow");
-        let forward = render_urp_forward(&ctx, &lib, wrong, shadow.as_ref()).expect("forward");
-        let deferred = render_urp_deferred(&ctx, &lib, wrong, shadow.as_ref()).expect("deferred");
-        let report = compare(&truth, truth_shadow.as_ref(), &forward, &deferred).expect("compare");
+        let shadow = render_urp_shadows(&ctx, &lib, wrong).expect("shadow");
+        let forward = render_urp_forward(&ctx, &lib, wrong, &shadow).expect("forward");
+        let deferred = render_urp_deferred(&ctx, &lib, wrong, &shadow).expect("deferred");
+        let report = compare(&truth, &truth_shadow, &forward, &deferred).expect("compare");
         assert!(
             report.failures[0] > 0 && report.failures[2] > 0,
             "{what}: not caught\n{report}"
@@ -152,10 +165,9 @@ fn a_wrong_light_is_caught_both_ways() {
     if let LightShape::Point { range, .. } = &mut small.lights[0].light.shape {
         *range *= 0.5;
     }
-    let forward = render_urp_forward(&ctx, &lib, &small, truth_shadow.as_ref()).expect("forward");
-    let deferred =
-        render_urp_deferred(&ctx, &lib, &small, truth_shadow.as_ref()).expect("deferred");
-    let report = compare(&truth, truth_shadow.as_ref(), &forward, &deferred).expect("compare");
+    let forward = render_urp_forward(&ctx, &lib, &small, &truth_shadow).expect("forward");
+    let deferred = render_urp_deferred(&ctx, &lib, &small, &truth_shadow).expect("deferred");
+    let report = compare(&truth, &truth_shadow, &forward, &deferred).expect("compare");
     assert!(
         report.failures[0] == 0 && report.failures[2] > 0 && report.failures[3] > 0,
         "a light volume half its size: not caught\n{report}"
@@ -177,8 +189,9 @@ fn receivers_beyond_the_shadow_maps_far_plane_are_lit() {
         spec.cascade_splits = None;
         spec.radius = 3.0;
     }
-    let shadow = render_urp_shadow(&ctx, &lib, &frame).expect("shadow");
+    let shadow = render_urp_shadows(&ctx, &lib, &frame).expect("shadow");
     let params = &shadow
+        .main
         .as_ref()
         .expect("the frame's main light casts")
         .params;
@@ -199,9 +212,9 @@ fn receivers_beyond_the_shadow_maps_far_plane_are_lit() {
         "if c.z <= 0.0 || c.z >= 1.0 {",
         "if false {",
     );
-    let forward = render_urp_forward(&ctx, &unruled, &frame, shadow.as_ref()).expect("forward");
-    let deferred = render_urp_deferred(&ctx, &unruled, &frame, shadow.as_ref()).expect("deferred");
-    let report = compare(&frame, shadow.as_ref(), &forward, &deferred).expect("compare");
+    let forward = render_urp_forward(&ctx, &unruled, &frame, &shadow).expect("forward");
+    let deferred = render_urp_deferred(&ctx, &unruled, &frame, &shadow).expect("deferred");
+    let report = compare(&frame, &shadow, &forward, &deferred).expect("compare");
     println!("with the rule dropped: {:?}", report.failures);
     assert!(
         report.failures[0] > 0 && report.failures[2] > 0,

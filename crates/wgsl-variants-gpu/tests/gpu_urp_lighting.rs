@@ -27,7 +27,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 fn every_lighting_variant_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
-    for (pass, variants, keywords) in [("PunctualLit", 8, 3), ("DirectionalLit", 28, 7)] {
+    for (pass, variants, keywords) in [("PunctualLit", 24, 5), ("DirectionalLit", 28, 7)] {
         let Some(report) = run(&lib, pass) else {
             return;
         };
@@ -58,14 +58,15 @@ fn every_lighting_variant_matches_the_reference() {
         for k in &p.keywords {
             assert!(k.pairs_changed > 0, "{report}");
         }
-        if pass == "DirectionalLit" {
-            assert!(
-                p.notes
-                    .iter()
-                    .any(|n| n.contains("in the main light's shadow")),
-                "some pixels must be shadowed: {report}"
-            );
-        }
+        let shadowed = if pass == "DirectionalLit" {
+            "in the main light's shadow"
+        } else {
+            "in a point or spot light's own shadow"
+        };
+        assert!(
+            p.notes.iter().any(|n| n.contains(shadowed)),
+            "some pixels must be shadowed: {report}"
+        );
     }
 }
 
@@ -92,19 +93,42 @@ fn a_wrong_specular_constant_is_caught() {
 
 #[test]
 fn an_ignored_receive_shadows_off_flag_is_caught_only_where_it_matters() {
+    // Both passes: the main light's shadow and a punctual light's own.
+    for (pass, shadow) in [
+        ("DirectionalLit", "_MAIN_LIGHT_SHADOWS"),
+        ("PunctualLit", "_ADDITIONAL_LIGHT_SHADOWS"),
+    ] {
+        let Some(bad) = mismatching(
+            "universal/stencil_deferred_pass.wgsl",
+            "if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) != 0u {",
+            "if flags != flags {",
+            pass,
+        ) else {
+            return;
+        };
+        for k in &bad {
+            // Only the shadowed variants over the G-buffer whose flags say ReceiveShadowsOff.
+            assert!(k.contains(shadow), "{k}");
+            assert!(k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+        }
+    }
+}
+
+#[test]
+fn a_punctual_light_reading_another_lights_shadow_is_caught_only_for_the_spot() {
+    // URP's _ShadowLightIndex names the drawn light's record; record 0 is the point light's
+    // (six cube-face slices), so the point light's variants read their own either way.
     let Some(bad) = mismatching(
         "universal/stencil_deferred_pass.wgsl",
-        "if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {",
-        "if flags == flags {",
-        "DirectionalLit",
+        "urp_additional_light_shadow(shadow_light_index.x,",
+        "urp_additional_light_shadow(0u,",
+        "PunctualLit",
     ) else {
         return;
     };
     for k in &bad {
-        // Only the main light's shadowed variants over the G-buffer whose flags say
-        // ReceiveShadowsOff.
-        assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
-        assert!(k.contains("_RECEIVE_SHADOWS_OFF"), "{k}");
+        assert!(k.contains("_SPOT"), "{k}");
+        assert!(k.contains("_ADDITIONAL_LIGHT_SHADOWS"), "{k}");
     }
 }
 
@@ -114,7 +138,7 @@ fn an_ignored_shadow_fade_is_caught_only_in_the_main_lights_shadowed_variants() 
     // fade ramps across the pixels, so dropping it shows where the shadow falls.
     let Some(bad) = mismatching(
         "universal/main_light_shadow.wgsl",
-        "return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);",
+        "return vec2f(mix(realtime.x, 1.0, urp_shadow_fade(p, camera, main_light_shadow_params.zw)), realtime.y);",
         "return realtime;",
         "DirectionalLit",
     ) else {

@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::coverage::keyword_coverage;
+use super::coverage::judge_every_variant;
 use super::pass_check::{PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::shadows::{
@@ -260,11 +260,8 @@ pub fn check_shadow_caster(
             images.push((image.depth, distances));
         }
         outputs.push(images);
-        report.variants_run += 1;
     }
-    report.distinct_shaders = report.variants_run;
-    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &outputs);
     report.notes.push(format!(
         "SHADOWS_DEPTH: the spot's {MAP_SIZE}x{MAP_SIZE} Depth16Unorm map; SHADOWS_CUBE: the \
          point light's six {CUBE_SIZE}x{CUBE_SIZE} faces (Rgba16Float distance and depth); \

@@ -4,7 +4,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::report::KeywordCoverage;
+use super::report::{KeywordCoverage, PassReport};
 use crate::{CheckError, GpuError};
 use wgsl_variants::Library;
 use wgsl_variants::shader::Pass;
@@ -46,6 +46,22 @@ pub fn keyword_coverage(
         }
     }
     out
+}
+
+/// Closes a check that built and ran every variant in `choices` as its own shader, one output
+/// each in `outputs`: counts them and judges each keyword by whether turning it off changed
+/// the output of some pair.
+pub(crate) fn judge_every_variant<T: PartialEq>(
+    report: &mut PassReport,
+    pass: &Pass,
+    choices: &[Choice],
+    outputs: &[T],
+) {
+    debug_assert_eq!(choices.len(), outputs.len(), "one output per variant");
+    report.variants_run += choices.len();
+    report.distinct_shaders += choices.len();
+    report.keywords = keyword_coverage(pass, choices, |a, b| outputs[a] != outputs[b]);
+    report.judge_keywords();
 }
 
 /// For each keyword: the first variant with it on whose reference changes when it is turned

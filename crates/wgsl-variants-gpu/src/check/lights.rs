@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 use super::compare::{compare_texel, format_name, pixel};
-use super::coverage::{keyword_coverage, small_pass};
+use super::coverage::{judge_every_variant, small_pass};
 use super::gbuffer::{CHAIN_INPUTS, GBufferImage, render_gbuffer};
 use super::lighting::render_lighting;
 use super::pass_check::{Needs, PassCheck, Setup};
@@ -181,11 +181,8 @@ pub fn check_deferred_shading(
             )?);
         }
         outputs.push(per_input);
-        report.variants_run += 1;
-        report.distinct_shaders += 1;
     }
-    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &outputs);
     report.notes.push(format!(
         "full-screen draws over {} G-buffers (LDR and HDR, with RT4 for SHADOWS_SHADOWMASK and without); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
         gbuffers.len()

@@ -159,14 +159,13 @@ pub fn urp_frame_pictures(
 ) -> Result<Vec<Picture>, GpuError> {
     let g = &frame.geometry;
     let (w, h) = (g.width, g.height);
-    let shadow = urp_frame::render_urp_shadow(ctx, lib, frame)?;
-    let shadow = shadow.as_ref();
+    let shadows = urp_frame::render_urp_shadows(ctx, lib, frame)?;
     let reference = g
         .pixels()
-        .map(|(x, y)| Ok(urp_frame::reference_rgb(frame, shadow, x, y)?.unwrap_or(Vec3::ZERO)))
+        .map(|(x, y)| Ok(urp_frame::reference_rgb(frame, &shadows, x, y)?.unwrap_or(Vec3::ZERO)))
         .collect::<Result<Vec<Vec3>, GpuError>>()?;
-    let forward = urp_frame::render_urp_forward(ctx, lib, frame, shadow)?;
-    let deferred = urp_frame::render_urp_deferred(ctx, lib, frame, shadow)?;
+    let forward = urp_frame::render_urp_forward(ctx, lib, frame, &shadows)?;
+    let deferred = urp_frame::render_urp_deferred(ctx, lib, frame, &shadows)?;
     let read = |bytes: &[u8], i: usize| {
         let c = TargetFormat::Rg11b10Ufloat.decode_pixel_f32(&bytes[i * 4..i * 4 + 4]);
         Vec3::new(c[0], c[1], c[2])
@@ -391,7 +390,8 @@ pub fn render_pictures(
                 .map_err(|e| CheckError::lookup(format!("{shader}/{pass}"), e))?;
             let mut rig = LightRig::new(scene);
             rig.render_screen_shadows(ctx, lib, scene)?;
-            let forward = UrpForwardScene::new(&UrpScene::new(scene, DEFAULT_SEED), &rig)?;
+            let forward =
+                UrpForwardScene::new(ctx, lib, &UrpScene::new(scene, DEFAULT_SEED), &rig)?;
             let mut job = forward.job(&variant.label(), &lib.wgsl(&variant), &variant.keywords());
             job.resources = forward.resources();
             let out = render(ctx, &job)?.remove(0);

@@ -13,7 +13,7 @@ use glam::{Mat4, Vec3};
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::scene::{Rng, TestScene, texture};
-use super::shadows::{MAP_SIZE, SPOT_BIAS, refused, render_caster};
+use super::shadows::{MAP_SIZE, SPOT_BIAS, lay_tiles, refused, render_caster};
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource,
     TargetFormat, render,
@@ -600,20 +600,10 @@ fn cut_out_atlas(
 fn lay_atlas(
     cascades: &Cascades,
     tile: u32,
-    mut render: impl FnMut(&Cascade) -> Result<Vec<u16>, GpuError>,
+    render: impl FnMut(&Cascade) -> Result<Vec<u16>, GpuError>,
 ) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
-    let (cols, rows) = Cascades::grid(cascades.cascades.len());
-    let (w, h) = (cols * tile, rows * tile);
-    let mut atlas = vec![u16::MAX; (w * h) as usize];
-    for (i, c) in cascades.cascades.iter().enumerate() {
-        let texels = render(c)?;
-        let (x0, y0) = ((i as u32 % 2) * tile, (i as u32 / 2) * tile);
-        for (row, texels) in texels.chunks(tile as usize).enumerate() {
-            let at = ((y0 + row as u32) * w + x0) as usize;
-            atlas[at..at + tile as usize].copy_from_slice(texels);
-        }
-    }
-    Ok((atlas, (w, h)))
+    let grid = Cascades::grid(cascades.cascades.len());
+    lay_tiles(grid, tile, cascades.cascades.iter().map(render))
 }
 
 /// Bindings 10-12 of a directional light's shadow (`lighting/shadow`): the `Shadow` uniform of

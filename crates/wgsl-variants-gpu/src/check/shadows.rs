@@ -19,6 +19,8 @@ use crate::{
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::quantize::f16_bits_to_f32;
+#[cfg(doc)]
+use wgsl_variants_shaders::reference::shadow::atlas_tile;
 use wgsl_variants_shaders::reference::shadow::{
     ShadowCube, ShadowError, ShadowKeywords, ShadowMap2d, ShadowMaps, ShadowParams,
     cube_face_view_proj, shadow_factor,
@@ -156,6 +158,27 @@ pub fn render_caster(
         size,
         keywords.contains(&"SHADOWS_CUBE"),
     )
+}
+
+/// Lays `tile × tile` maps (each row by row, in tile order) into an atlas of `cols × rows`
+/// tiles, row-major (the layout of [`atlas_tile`]); tiles without a map stay clear (the far
+/// plane). Returns the atlas's texels and size. Stops at the first map that failed.
+pub(crate) fn lay_tiles(
+    (cols, rows): (u32, u32),
+    tile: u32,
+    maps: impl IntoIterator<Item = Result<Vec<u16>, GpuError>>,
+) -> Result<(Vec<u16>, (u32, u32)), GpuError> {
+    let (w, h) = (cols * tile, rows * tile);
+    let mut atlas = vec![u16::MAX; (w * h) as usize];
+    for (i, texels) in maps.into_iter().enumerate() {
+        let texels = texels?;
+        let (x0, y0) = ((i as u32 % cols) * tile, (i as u32 / cols) * tile);
+        for (row, texels) in texels.chunks(tile as usize).enumerate() {
+            let at = ((y0 + row as u32) * w + x0) as usize;
+            atlas[at..at + tile as usize].copy_from_slice(texels);
+        }
+    }
+    Ok((atlas, (w, h)))
 }
 
 /// Draws `mesh` with a caster program (`vs_main`, `fs_main`) into a `size × size`

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::coverage::{keyword_coverage, small_pass};
+use super::coverage::{judge_every_variant, small_pass};
 use super::pass_check::{PassCheck, Setup};
 use super::quad_raster::{AlphaTest, Expected, rasterize_quad};
 use super::report::{Mismatch, PassReport};
@@ -213,11 +213,8 @@ pub fn check_urp_shadow_caster(
             per_view.push(image.depth);
         }
         outputs.push(per_view);
-        report.variants_run += 1;
-        report.distinct_shaders += 1;
     }
-    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &outputs);
     report.notes.push(format!(
         "{MAP_SIZE}x{MAP_SIZE} Depth16Unorm maps of the URP scene's quad: directional light (orthographic boxes of radius {REGION_RADIUS} and {TIGHT_RADIUS}, bias {DIRECTIONAL_BIAS}; {pancaked} texels on a triangle with a vertex pancaked onto the near plane) without _CASTING_PUNCTUAL_LIGHT_SHADOW, spot light (perspective, bias {SPOT_BIAS}) with it; {clear} clear texel comparisons ({discarded} discarded by the alpha test), {edges} edge texels left to the rasterizer"
     ));

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::coverage::{keyword_coverage, small_pass};
+use super::coverage::{judge_every_variant, small_pass};
 use super::pass_check::{PassCheck, Setup};
 use super::quad_raster::{AlphaTest, Expected, rasterize_quad};
 use super::report::{Mismatch, PassReport};
@@ -159,11 +159,8 @@ pub(crate) fn check_urp_depth_only(setup: &Setup<'_>) -> Result<PassReport, GpuE
             per_view.push(color);
         }
         outputs.push(per_view);
-        report.variants_run += 1;
-        report.distinct_shaders += 1;
     }
-    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &outputs);
     report.notes.push(format!(
         "the URP scene's quad through the rig's {}x{} perspective camera and the directional light's {MAP_SIZE}x{MAP_SIZE} boxes (the tight one clips the quad at its near plane); {depths} depth and {clear} clear texel comparisons ({discarded} discarded by the alpha test), {edges} edge texels left to the rasterizer",
         scene.width, scene.height

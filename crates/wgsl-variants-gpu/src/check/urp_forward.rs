@@ -10,8 +10,12 @@
 //! a layer the mesh has, and a second point light on a layer it does not (lit only without
 //! `_LIGHT_LAYERS`). `_ADDITIONAL_LIGHTS_VERTEX` is checked against the reference evaluated at
 //! the quad's four corners and interpolated across its two triangles as the rasterizer does
-//! (the camera is orthographic, so screen-linear). Where a shadow-map tap at a pixel is within
-//! a hair of flipping, the texel is compared within the interval of both outcomes.
+//! (the camera is orthographic, so screen-linear). `_ADDITIONAL_LIGHT_SHADOWS`: the point
+//! light (hard, six slices) and the spot light (soft under `_SHADOWS_SOFT`, one slice) cast
+//! the occluders' shadows from [`super::urp_additional_shadows`]'s atlas, the second point
+//! light casts none; their fade ramps across the pixels they shadow. Where a shadow-map tap at
+//! a pixel is within a hair of flipping (or a point light's receiver within a hair of another
+//! cube face), the texel is compared within the interval of both outcomes.
 
 use glam::{Vec3, Vec4};
 
@@ -25,11 +29,16 @@ use super::urp::{
     DEFAULT_SEED, RENDERING_LAYERS, UrpColorPass, UrpScene, check_color_entry, fade_across,
     main_shadow_resources,
 };
+use super::urp_additional_shadows::{AdditionalAtlas, rig_casting};
 use super::urp_lighting::{
     MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, shadowed, spot_inner_degrees,
 };
-use crate::{BoundResource, CheckError, ColorTarget, GpuError, RenderJob, Resource, TargetFormat};
+use crate::{
+    BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource, TargetFormat,
+};
+use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
+use wgsl_variants_shaders::reference::urp::additional_shadow::cube_map_face_id;
 use wgsl_variants_shaders::reference::urp::forward::{
     MainLightShadow, MainLightShadowFade, MainLightShadows, UrpForwardKeywords, UrpForwardLights,
     shade_forward, vertex_lighting,
@@ -51,12 +60,21 @@ pub struct UrpForwardScene {
     pub shadow: ScreenShadow,
     /// The main light's shadow fade (ramped across the pixels its map shadows).
     pub fade: MainLightShadowFade,
+    /// The additional lights' shadows (`_ADDITIONAL_LIGHT_SHADOWS`), their fade ramped across
+    /// the pixels they shadow.
+    pub additional_shadows: AdditionalAtlas,
 }
 
 impl UrpForwardScene {
     /// The forward scene over `urp` with `rig`'s lights; the rig must have its screen shadows
-    /// rendered ([`LightRig::render_screen_shadows`]).
-    pub fn new(urp: &UrpScene, rig: &LightRig) -> Result<UrpForwardScene, GpuError> {
+    /// rendered ([`LightRig::render_screen_shadows`]). Renders the additional lights' shadow
+    /// atlas.
+    pub fn new(
+        ctx: &GpuContext,
+        lib: &Library,
+        urp: &UrpScene,
+        rig: &LightRig,
+    ) -> Result<UrpForwardScene, GpuError> {
         let refused = |e: LightError| {
             GpuError::from(CheckError::UnknownToReference {
                 variant: "universal_lit/UniversalForward".to_owned(),
@@ -83,12 +101,25 @@ impl UrpForwardScene {
             .map(|(x, y)| urp.scene.world_position(x, y))
             .collect();
         let shadow = main_light_shadow(rig, "universal_lit/UniversalForward")?.clone();
-        let fade = fade_across(&shadowed(&shadow, &positions), urp.lighting.camera_position);
+        let camera = urp.lighting.camera_position;
+        let fade = fade_across(&shadowed(&shadow, &positions), camera);
+        let [point, spot] = rig_casting(rig);
+        let casting = [point, spot, (other, None)];
+        let atlas = AdditionalAtlas::render(
+            ctx,
+            lib,
+            "universal_lit/UniversalForward",
+            &casting,
+            MainLightShadowFade::NONE,
+        )?;
+        let in_shadow: Vec<Vec3> = (0..2).flat_map(|i| atlas.shadowed(i, &positions)).collect();
+        let additional_shadows = atlas.faded(fade_across(&in_shadow, camera));
         Ok(UrpForwardScene {
             urp,
             lights,
             shadow,
             fade,
+            additional_shadows,
         })
     }
 
@@ -145,15 +176,41 @@ impl UrpForwardScene {
         })
     }
 
-    /// The reference texel at pixel `(x, y)`; `None` where the variant discards it.
+    /// Each additional light's shadow at `p` for a variant: the lower and the upper ends of
+    /// their intervals (1 where the variant reads none).
+    fn additional_light_shadows(&self, k: &UrpForwardKeywords, p: Vec3) -> [Vec<f32>; 2] {
+        if !k.reads_additional_light_shadows() {
+            return [Vec::new(), Vec::new()];
+        }
+        let camera = self.urp.lighting.camera_position;
+        let (lo, hi) = self
+            .lights
+            .additional()
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let (to_light, _) = l.sample(p);
+                self.additional_shadows
+                    .shadows
+                    .attenuation(i, k.shadows_soft, p, to_light, camera)
+            })
+            .unzip();
+        [lo, hi]
+    }
+
+    /// The reference texel at pixel `(x, y)`; `None` where the variant discards it. Shading
+    /// grows with every shadow attenuation, so the texels at the lower and at the upper ends
+    /// of all of them bound every outcome.
     pub fn reference(&self, k: &UrpForwardKeywords, x: u32, y: u32) -> Option<UrpTexel> {
         let urp = &self.urp;
         let pixel = urp.pixel(x, y);
         let tex = urp.texels(x, y);
         let vl = self.interpolated_vertex_lighting(k, x, y);
-        let [lo, hi] = self
-            .main_light_shadow(k, pixel.geometry.world_position, (x, y))
-            .map(|shadow| {
+        let p = pixel.geometry.world_position;
+        let additional = self.additional_light_shadows(k, p);
+        let [lo, hi] = [0, 1]
+            .map(|end| (self.main_light_shadow(k, p, (x, y))[end], &additional[end]))
+            .map(|(shadow, additional)| {
                 shade_forward(
                     k,
                     &urp.material,
@@ -164,6 +221,7 @@ impl UrpForwardScene {
                     shadow,
                     &self.lights,
                     vl,
+                    additional,
                 )
             });
         match (lo?, hi?) {
@@ -183,7 +241,8 @@ impl UrpColorPass for UrpForwardScene {
         &self.urp
     }
 
-    /// The URP scene's resources, the lights (0/4) and the main light's shadow (0/10-16).
+    /// The URP scene's resources, the lights (0/4), the main light's shadow (0/10-16) and the
+    /// additional lights' shadows (0/17-19).
     fn resources(&self) -> Vec<BoundResource> {
         let mut out = self.urp.resources();
         out.push(BoundResource::new(
@@ -192,6 +251,7 @@ impl UrpColorPass for UrpForwardScene {
             Resource::Uniform(self.lights.uniform()),
         ));
         out.extend(main_shadow_resources(&self.shadow, &self.fade));
+        out.extend(self.additional_shadows.resources());
         out
     }
 
@@ -233,12 +293,21 @@ impl UrpColorPass for UrpForwardScene {
             })
             .count();
         let positions: Vec<Vec3> = s.pixels().map(|(x, y)| s.world_position(x, y)).collect();
+        let lights = self.lights.additional();
+        let in_shadow = |i: usize| self.additional_shadows.shadowed(i, &positions);
+        let point = in_shadow(0);
+        let mut faces = [0usize; 6];
+        for &p in &point {
+            faces[cube_map_face_id(p - lights[0].position)] += 1;
+        }
         format!(
-            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; URP's {}; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners",
+            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; URP's {}; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners; additional-light shadows: the point light's covers {} pixels (by cube face +X, -X, +Y, -Y, +Z, -Z: {faces:?}), the spot light's {}",
             s.width,
             s.height,
             self.shadow.urp_cascade_census(&positions),
-            self.lights.additional().len()
+            lights.len(),
+            point.len(),
+            in_shadow(1).len()
         )
     }
 }
@@ -269,7 +338,7 @@ impl PassCheck for UniversalForward {
         _selected: &[(&str, &str)],
     ) -> Result<Vec<PassReport>, GpuError> {
         let urp = UrpScene::new(setup.scene, DEFAULT_SEED);
-        let forward = UrpForwardScene::new(&urp, setup.rig)?;
+        let forward = UrpForwardScene::new(setup.ctx, setup.lib, &urp, setup.rig)?;
         check_color_entry(setup, "UniversalForward", &forward)
     }
 }

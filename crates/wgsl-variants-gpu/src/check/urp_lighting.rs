@@ -25,7 +25,7 @@ use glam::Vec3;
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
-use super::coverage::{keyword_coverage, small_pass};
+use super::coverage::{judge_every_variant, small_pass};
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::rig::LightRig;
@@ -33,6 +33,7 @@ use super::scene::{TestScene, texture};
 use super::screen_masks::ScreenShadow;
 use super::shadows::within;
 use super::urp::{UrpScene, fade_across, main_shadow_resources};
+use super::urp_additional_shadows::{AdditionalAtlas, rig_casting};
 use super::volumes::{LightPipelineInput, StencilScheme, render_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -168,6 +169,7 @@ struct LightingKeywords {
     main: bool,
     shadows: MainLightShadows,
     soft: bool,
+    additional_shadows: bool,
     oct: bool,
     layers: bool,
 }
@@ -193,6 +195,7 @@ impl LightingKeywords {
             "_MAIN_LIGHT_SHADOWS_CASCADE",
             "_MAIN_LIGHT_SHADOWS_SCREEN",
             "_SHADOWS_SOFT",
+            "_ADDITIONAL_LIGHT_SHADOWS",
             "_GBUFFER_NORMALS_OCT",
             "_LIGHT_LAYERS",
         ];
@@ -204,6 +207,7 @@ impl LightingKeywords {
             main: has("_DEFERRED_MAIN_LIGHT"),
             shadows: MainLightShadows::of(names),
             soft: has("_SHADOWS_SOFT"),
+            additional_shadows: has("_ADDITIONAL_LIGHT_SHADOWS"),
             oct: has("_GBUFFER_NORMALS_OCT"),
             layers: has("_LIGHT_LAYERS"),
         })
@@ -224,6 +228,7 @@ pub fn check_stencil_deferred(
     let (pass, choices) = small_pass(lib, "stencil_deferred", pass_name)?;
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let fade = lighting_fade(rig, scene, main_shadow);
+    let additional = additional_shadows(ctx, lib, scene, rig)?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -242,6 +247,7 @@ pub fn check_stencil_deferred(
     let mut outputs: Vec<Vec<Vec<u8>>> = Vec::new();
     let mut uncertain = 0usize;
     let mut shadowed = 0usize;
+    let mut additional_shadowed = 0usize;
     for choice in &choices {
         let variant = wgsl_variants::Variant {
             pass,
@@ -256,6 +262,12 @@ pub fn check_stencil_deferred(
             })
         })?;
         let wgsl = lib.wgsl(&variant);
+        // The light's record in the additional shadows: the rig's point light, then its spot.
+        let shadow_index = match k.kind {
+            UrpLightKind::Point => Some(0),
+            UrpLightKind::Spot => Some(1),
+            UrpLightKind::Directional => None,
+        };
         let mut per_draw = Vec::new();
         for gbuffer in gbuffers.iter().filter(|g| g.oct == k.oct) {
             for mask in [MATCHING_LAYERS, OTHER_LAYERS] {
@@ -268,6 +280,7 @@ pub fn check_stencil_deferred(
                     gbuffer,
                     (&light, k.main),
                     (main_shadow, &fade),
+                    shadow_index.map(|i| (&additional, i)),
                     gbuffer.targets[3].clone(),
                 )?;
                 report.draws += 1;
@@ -304,8 +317,25 @@ pub fn check_stencil_deferred(
                         0.0
                     };
                     let (lo, hi) = (lo * (1.0 - f) + f, hi * (1.0 - f) + f);
-                    uncertain += usize::from(lo != hi && !texel.flags.receive_shadows_off);
                     shadowed += usize::from(hi < 1.0 && !texel.flags.receive_shadows_off);
+                    // A punctual light's own shadow (URP's AdditionalLightShadow, faded).
+                    let (lo, hi) = match shadow_index {
+                        Some(index) if k.additional_shadows => {
+                            let (to_light, _) = light.sample(p);
+                            let (a, b) = additional.shadows.attenuation(
+                                index as usize,
+                                k.soft,
+                                p,
+                                to_light,
+                                scene.scene.camera_position,
+                            );
+                            additional_shadowed +=
+                                usize::from(b < 1.0 && !texel.flags.receive_shadows_off);
+                            (lo * a, hi * b)
+                        }
+                        _ => (lo, hi),
+                    };
+                    uncertain += usize::from(lo != hi && !texel.flags.receive_shadows_off);
                     let [want_lo, want_hi] = [lo, hi].map(|shadow| {
                         stored
                             + stencil_deferred_light(
@@ -336,14 +366,16 @@ pub fn check_stencil_deferred(
             }
         }
         outputs.push(per_draw);
-        report.variants_run += 1;
-        report.distinct_shaders += 1;
     }
-    report.keywords = keyword_coverage(pass, &choices, |a, b| outputs[a] != outputs[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &outputs);
     if shadowed > 0 {
         report.notes.push(format!(
             "{shadowed} pixel comparisons in the main light's shadow, {uncertain} of them with a tap within a hair of flipping (compared within the interval of its outcomes)"
+        ));
+    }
+    if additional_shadowed > 0 {
+        report.notes.push(format!(
+            "{additional_shadowed} pixel comparisons in a point or spot light's own shadow (the additional lights' atlas: the point light hard over six cube-face slices, the spot light soft under _SHADOWS_SOFT), {uncertain} with a tap or a cube face within a hair of flipping (compared within the interval of the outcomes)"
         ));
     }
     report.notes.push(format!(
@@ -406,6 +438,7 @@ pub(crate) fn light_gbuffer(
             gbuffer,
             (&light, main),
             (main_shadow, &fade),
+            None,
             gbuffer3,
         )?;
     }
@@ -413,8 +446,10 @@ pub(crate) fn light_gbuffer(
 }
 
 /// Draws one lighting variant (`label`, `wgsl`) full-screen over `gbuffer` with `light` (the
-/// main light's binding when `main`) and the main light's shadow map, One/One onto `gbuffer3`
-/// (the GBuffer3 contents to start from); returns GBuffer3 after the draw.
+/// main light's binding when `main`), the main light's shadow map and, for a punctual light,
+/// the additional lights' shadows with the light's index in them (URP's `_ShadowLightIndex`),
+/// One/One onto `gbuffer3` (the GBuffer3 contents to start from); returns GBuffer3 after the
+/// draw.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_light(
     ctx: &GpuContext,
@@ -424,6 +459,7 @@ pub(crate) fn draw_light(
     gbuffer: &UrpGBuffer,
     (light, main): (&UrpLightParams, bool),
     main_shadow: (&ScreenShadow, &MainLightShadowFade),
+    additional: Option<(&AdditionalAtlas, u32)>,
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
@@ -437,7 +473,40 @@ pub(crate) fn draw_light(
     job.resources = resources(scene, camera, gbuffer, light, main);
     job.resources
         .extend(main_shadow_resources(main_shadow.0, main_shadow.1));
+    if let Some((atlas, index)) = additional {
+        job.resources.extend(atlas.resources());
+        job.resources
+            .push(AdditionalAtlas::shadow_light_index(index));
+    }
     Ok(render(ctx, &job)?.remove(0))
+}
+
+/// The rig's point and spot lights' shadows ([`rig_casting`]) for the lighting checks, their
+/// fade ramped across the positions the pass rebuilds from the rig's depth that they shadow.
+pub(crate) fn additional_shadows(
+    ctx: &GpuContext,
+    lib: &Library,
+    scene: &TestScene,
+    rig: &LightRig,
+) -> Result<AdditionalAtlas, GpuError> {
+    let casting = rig_casting(rig);
+    let atlas = AdditionalAtlas::render(
+        ctx,
+        lib,
+        "stencil_deferred/PunctualLit",
+        &casting,
+        MainLightShadowFade::NONE,
+    )?;
+    let positions: Vec<Vec3> = scene
+        .pixels()
+        .map(|(x, y)| rig.deferred_position(scene, x, y))
+        .collect();
+    let in_shadow: Vec<Vec3> = casting
+        .iter()
+        .enumerate()
+        .flat_map(|(i, _)| atlas.shadowed(i, &positions))
+        .collect();
+    Ok(atlas.faded(fade_across(&in_shadow, scene.scene.camera_position)))
 }
 
 /// The main light's shadow fade of the lighting checks: [`fade_across`] the positions the
@@ -688,6 +757,7 @@ pub fn compare_urp_volume(
         &gbuffer,
         (&light, false),
         (main_shadow, &fade),
+        None,
         initial.clone(),
     )?;
     let input = LightPipelineInput {

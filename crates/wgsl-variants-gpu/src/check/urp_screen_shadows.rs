@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use super::camera::depth_camera_resources;
 use super::compare::mask_code_within;
-use super::coverage::keyword_coverage;
+use super::coverage::judge_every_variant;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::screen_masks::{ScreenShadow, render_mask};
@@ -84,11 +84,8 @@ pub(crate) fn check_urp_screen_shadows(setup: &Setup<'_>) -> Result<PassReport, 
         }
         images.push(image);
         report.draws += 1;
-        report.variants_run += 1;
-        report.distinct_shaders += 1;
     }
-    report.keywords = keyword_coverage(pass, &choices, |a, b| images[a] != images[b]);
-    report.judge_keywords();
+    judge_every_variant(&mut report, pass, &choices, &images);
     report.notes.push(format!(
         "full-screen draws over the {}x{} depth of the rig's perspective camera, the main light's map and URP's four cascades (its {}); {shadowed} shadowed and {uncertain} uncertain pixel comparisons",
         scene.width,

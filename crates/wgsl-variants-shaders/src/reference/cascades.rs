@@ -14,7 +14,8 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::light::Light;
 use super::shadow::{
-    ShadowError, ShadowMap2d, ShadowParams, lit_beyond_shadow_far, shadow_coords, shadow_mix,
+    ShadowError, ShadowMap2d, ShadowParams, atlas_tile, lit_beyond_shadow_far, shadow_coords,
+    shadow_mix,
 };
 
 /// Most cascades (Unity's four).
@@ -285,22 +286,7 @@ impl Cascades {
     /// assert_eq!((c.x, c.y, c.z), (0.75, 0.75, 0.5));
     /// ```
     pub fn tile(count: usize, i: usize) -> Mat4 {
-        let (cols, rows) = Cascades::grid(count);
-        let (cols, rows) = (cols as f32, rows as f32);
-        let (tx, ty) = ((i as u32 % 2) as f32, (i as u32 / 2) as f32);
-        // u' = (u + tx) / cols with u = x/2 + 1/2; v' = (v + ty) / rows with v = 1/2 − y/2.
-        let (sx, sy) = (1.0 / cols, 1.0 / rows);
-        Mat4::from_cols(
-            Vec4::new(sx, 0.0, 0.0, 0.0),
-            Vec4::new(0.0, sy, 0.0, 0.0),
-            Vec4::Z,
-            Vec4::new(
-                sx * (1.0 + 2.0 * tx) - 1.0,
-                1.0 - sy * (1.0 + 2.0 * ty),
-                0.0,
-                1.0,
-            ),
-        )
+        atlas_tile(Cascades::grid(count), i)
     }
 
     /// The view depth of `p`.

@@ -177,6 +177,18 @@ pub enum ShadowError {
         /// Fade distance where the realtime shadow is gone.
         end: f32,
     },
+    /// URP's additional-light shadows with more lights or slices than the receivers' record
+    /// holds, or a light whose slices are not all there
+    /// ([`crate::reference::urp::additional_shadow::AdditionalShadows::new`]).
+    #[error(
+        "additional-light shadows of {lights} lights over {slices} slices: at most 8 lights and 48 slices, and every light's slices (six for a point light) among them"
+    )]
+    AdditionalSlices {
+        /// Lights given.
+        lights: usize,
+        /// Slices given.
+        slices: usize,
+    },
     /// A map texel that is NaN or infinite.
     #[error("shadow map texel {index} is not finite: {value}")]
     NonFiniteTexel {
@@ -409,6 +421,35 @@ pub fn cube_face_view_proj(position: Vec3, face: usize, range: f32) -> Mat4 {
     let (x, y, w) = (row(sc, 0.0), row(-tc, 0.0), row(ma, 0.0));
     let z = w * a + Vec4::new(0.0, 0.0, 0.0, b);
     Mat4::from_cols(x, y, z, w).transpose()
+}
+
+/// The clip-space transform that puts a whole map's view into tile `i` of an atlas of
+/// `cols × rows` tiles (row-major): texture coordinates `(uv + tile) / grid`. Folded into a
+/// view-projection (`atlas_tile(grid, i) * view_proj`), it gives the matrix a receiver reads
+/// the atlas with (URP's cascades and additional-light slices).
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants_shaders::reference::shadow::{atlas_tile, shadow_coords};
+/// // The map's centre lands in the centre of tile 5 (second row, second column) of 4 × 2.
+/// let c = shadow_coords(atlas_tile((4, 2), 5), Vec3::new(0.0, 0.0, 0.5));
+/// assert_eq!((c.x, c.y, c.z), (0.375, 0.75, 0.5));
+/// ```
+pub fn atlas_tile((cols, rows): (u32, u32), i: usize) -> Mat4 {
+    let (tx, ty) = ((i as u32 % cols) as f32, (i as u32 / cols) as f32);
+    // u' = (u + tx) / cols with u = x/2 + 1/2; v' = (v + ty) / rows with v = 1/2 − y/2.
+    let (sx, sy) = (1.0 / cols as f32, 1.0 / rows as f32);
+    Mat4::from_cols(
+        Vec4::new(sx, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, sy, 0.0, 0.0),
+        Vec4::Z,
+        Vec4::new(
+            sx * (1.0 + 2.0 * tx) - 1.0,
+            1.0 - sy * (1.0 + 2.0 * ty),
+            0.0,
+            1.0,
+        ),
+    )
 }
 
 /// What `standard/ShadowCaster` writes into a `SHADOWS_CUBE` face for the surface point `p`:

@@ -9,9 +9,14 @@
 
 #pass PunctualLit
 #tag UniversalMaterialType Lit
+// _ADDITIONAL_LIGHT_SHADOWS: the light's shadow from the additional lights' atlas; soft per
+// light under _SHADOWS_SOFT, which changes nothing without it (URP strips those variants).
 #pragma multi_compile _POINT _SPOT
+#pragma multi_compile _ _ADDITIONAL_LIGHT_SHADOWS
+#pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _GBUFFER_NORMALS_OCT
 #pragma multi_compile _ _LIGHT_LAYERS
+#pragma require _SHADOWS_SOFT _ADDITIONAL_LIGHT_SHADOWS
 #import universal/stencil_deferred_pass
 #endpass
 

@@ -20,6 +20,8 @@
 //       SHADOWS_DEPTH (lighting/light_bindings) and the directional light's screen-space pass
 //       (internal/screen_space_shadows) both read their maps through it, and so does URP's main
 //       light in internal/stencil_deferred (_MAIN_LIGHT_SHADOWS).
+//   fn shadow_map_tent(map, sampler, uv: vec2f, z: f32) -> f32
+//       the 3 x 3 tent whatever the keywords (URP's additional lights choose it per light)
 
 struct Shadow {
     world_to_shadow: mat4x4f,
@@ -41,6 +43,14 @@ fn shadow_coords(world_to_shadow: mat4x4f, p: vec3f) -> vec3f {
 
 fn shadow_map_visibility(map: texture_depth_2d, map_sampler: sampler_comparison, uv: vec2f, z: f32) -> f32 {
 #if defined(SHADOWS_SOFT) || defined(_SHADOWS_SOFT)
+    return shadow_map_tent(map, map_sampler, uv, z);
+#else
+    return textureSampleCompareLevel(map, map_sampler, uv, z);
+#endif
+}
+
+// The 3 x 3 tent whatever the keywords say: URP's additional lights choose it per light.
+fn shadow_map_tent(map: texture_depth_2d, map_sampler: sampler_comparison, uv: vec2f, z: f32) -> f32 {
     var v = 0.0;
     v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(-1, -1));
     v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, -1));
@@ -52,7 +62,4 @@ fn shadow_map_visibility(map: texture_depth_2d, map_sampler: sampler_comparison,
     v += 2.0 * textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(0, 1));
     v += textureSampleCompareLevel(map, map_sampler, uv, z, vec2i(1, 1));
     return v / 16.0;
-#else
-    return textureSampleCompareLevel(map, map_sampler, uv, z);
-#endif
 }

@@ -12,6 +12,8 @@
 //                            specular_setup: bool) -> UrpBrdfData
 //   fn urp_lighting_physically_based(brdf: UrpBrdfData, color: vec3f, attenuation: f32,
 //       l: vec3f, n: vec3f, v: vec3f, specular_highlights_off: bool) -> vec3f
+//   fn urp_shadow_fade(p: vec3f, camera: vec3f, scale_bias: vec2f) -> f32
+//       URP's shadow distance fade (the main light's and the additional lights')
 
 // position.xyz (punctual); color.rgb; attenuation: x 1/range², z, w the spot's scale and
 // offset (0, 1 for a point light); direction.xyz: to the light (directional) or the spot's
@@ -103,4 +105,12 @@ fn urp_lighting_physically_based(b: UrpBrdfData, color: vec3f, attenuation: f32,
         brdf += b.specular * urp_direct_specular(b, n, l, v);
     }
     return brdf * radiance;
+}
+
+// GetMainLightShadowFade and GetAdditionalLightShadowFade: saturate(|p - camera|² · scale + bias),
+// a ramp in the squared distance from the camera that the host sets to end at the shadow
+// distance (_MainLightShadowParams.zw, _AdditionalShadowFadeParams.xy).
+fn urp_shadow_fade(p: vec3f, camera: vec3f, scale_bias: vec2f) -> f32 {
+    let d = p - camera;
+    return saturate(dot(d, d) * scale_bias.x + scale_bias.y);
 }

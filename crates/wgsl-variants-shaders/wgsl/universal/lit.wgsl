@@ -34,10 +34,14 @@
 #tag LightMode UniversalForward
 // URP Lit's forward pass: the same material keywords; the pipeline keywords of the main
 // light's shadow (none, one map, cascades, hard or soft; or the screen-space pass's texel),
-// the additional lights (none, per vertex, per pixel), light layers and baked lighting (a
-// lightmap, with subtractive mixing). The soft-shadow and subtractive keywords change nothing
-// without the keywords they refine (with _MAIN_LIGHT_SHADOWS_SCREEN the screen-space pass
-// filters), so they require one of them: 1024 · 6 · 3 · 2 · 3 = 110592 variants.
+// the additional lights (none, per vertex, per pixel) and their shadows, light layers and baked
+// lighting (a lightmap, with subtractive mixing). The additional lights' shadows and
+// subtractive mixing change nothing without the keyword they refine (only the per-pixel
+// lights read their shadows), so they require it: 1024 · 4 · 2 · (3 + 1) · 2 · 3 = 196608
+// variants. _SHADOWS_SOFT softens the main light's map or cascades and the additional lights'
+// shadows, so it is declared on its own as URP declares it; a pairwise require cannot say
+// "a main-light map, the cascades or additional shadows", and the variants where it changes
+// nothing (no map read) are identical code, which audit's distinct count shows.
 #pragma shader_feature_local _NORMALMAP
 #pragma shader_feature_local _ALPHATEST_ON
 #pragma shader_feature_local _EMISSION
@@ -51,10 +55,11 @@
 #pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE _MAIN_LIGHT_SHADOWS_SCREEN
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _ADDITIONAL_LIGHTS_VERTEX _ADDITIONAL_LIGHTS
+#pragma multi_compile _ _ADDITIONAL_LIGHT_SHADOWS
 #pragma multi_compile _ _LIGHT_LAYERS
 #pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
 #pragma multi_compile _ LIGHTMAP_ON
-#pragma require _SHADOWS_SOFT _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE
+#pragma require _ADDITIONAL_LIGHT_SHADOWS _ADDITIONAL_LIGHTS
 #pragma require _MIXED_LIGHTING_SUBTRACTIVE LIGHTMAP_ON
 #import universal/lit_forward_pass
 #endpass

@@ -1,13 +1,15 @@
 // universal/lit_forward_pass: URP Lit's UniversalForward program (URP's LitForwardPass.hlsl,
 // Lighting.hlsl UniversalFragmentPBR, RealtimeLights.hlsl; docs/urp.md §11): the surface lit
 // in one pass — global illumination (universal/gi), the main directional light with its
-// shadow, the additional point and spot lights per pixel (_ADDITIONAL_LIGHTS) or per vertex
-// (_ADDITIONAL_LIGHTS_VERTEX), and the emission — into the HDR camera target.
+// shadow, the additional point and spot lights per pixel (_ADDITIONAL_LIGHTS, with their
+// shadows under _ADDITIONAL_LIGHT_SHADOWS) or per vertex (_ADDITIONAL_LIGHTS_VERTEX), and the
+// emission — into the HDR camera target.
 //
 //   group 0-2: universal/bindings (camera, lighting, environment; material; object, lightmap)
 //   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
 //                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
-//              10-15 the main light's shadow (universal/main_light_shadow)
+//              10-16 the main light's shadow (universal/main_light_shadow),
+//              17-19 the additional lights' shadows (universal/additional_light_shadow)
 //
 // Provides the entry points:
 //   @vertex   vs_main(UrpVertexInput) -> UrpVertexOutput
@@ -19,6 +21,7 @@
 #import universal/gi
 #import universal/lighting
 #import universal/main_light_shadow
+#import universal/additional_light_shadow
 
 // URP's limit of additional lights per object in the forward path.
 const URP_MAX_ADDITIONAL_LIGHTS: u32 = 8u;
@@ -111,7 +114,9 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
         let light = forward_lights.lights[i];
         if urp_lights_mesh(light.layer_mask.x) {
             let a = urp_additional_light(light, p);
-            color += urp_lighting_physically_based(direct, light.color.rgb, a.w, a.xyz, n, v, specular_off);
+            // URP's light.distanceAttenuation * light.shadowAttenuation.
+            let shadowed = a.w * urp_additional_light_shadow(i, p, a.xyz, camera.position.xyz);
+            color += urp_lighting_physically_based(direct, light.color.rgb, shadowed, a.xyz, n, v, specular_off);
         }
     }
 #endif

@@ -24,14 +24,8 @@
 #else
 #import universal/main_light_shadow_map
 #endif
+#import universal/lighting
 @group(0) @binding(13) var<uniform> main_light_shadow_params: vec4f;
-
-// URP's GetMainLightShadowFade: saturate(|p - camera|² · scale + bias), a ramp in the squared
-// distance from the camera that the host sets to end at the shadow distance.
-fn urp_main_light_shadow_fade(p: vec3f, camera: vec3f) -> f32 {
-    let d = p - camera;
-    return saturate(dot(d, d) * main_light_shadow_params.z + main_light_shadow_params.w);
-}
 #endif
 
 // The realtime shadow faded towards the baked shadow, 1 here. With _MAIN_LIGHT_SHADOWS_SCREEN the
@@ -45,7 +39,7 @@ fn urp_main_light_shadow(p: vec3f, camera: vec3f, pixel: vec2i) -> vec2f {
 #else
     let realtime = urp_main_light_realtime_shadow(p);
 #endif
-    return vec2f(mix(realtime.x, 1.0, urp_main_light_shadow_fade(p, camera)), realtime.y);
+    return vec2f(mix(realtime.x, 1.0, urp_shadow_fade(p, camera, main_light_shadow_params.zw)), realtime.y);
 #else
     return vec2f(1.0, 0.0);
 #endif

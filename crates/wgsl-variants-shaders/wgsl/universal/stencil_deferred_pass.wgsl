@@ -8,9 +8,13 @@
 //            5 light (UrpLight; the additional light this draw shades),
 //            6 rendering_layers (texture_2d<u32>, the G-buffer's R32Uint target; _LIGHT_LAYERS),
 //            7 main_light (UrpLight; _DEFERRED_MAIN_LIGHT: the frame's main light),
+//            8 shadow_light_index (vec4u, x: URP's _ShadowLightIndex, this light's record in
+//              additional_shadows; _ADDITIONAL_LIGHT_SHADOWS),
 //            10-16 the main light's shadow (universal/main_light_shadow: _MAIN_LIGHT_SHADOWS,
 //               _MAIN_LIGHT_SHADOWS_CASCADE or _MAIN_LIGHT_SHADOWS_SCREEN; the sampler nearest,
-//               LessEqual, clamp to edge)
+//               LessEqual, clamp to edge),
+//            17-19 the additional lights' shadows (universal/additional_light_shadow:
+//               _ADDITIONAL_LIGHT_SHADOWS)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -23,6 +27,7 @@
 #import universal/gbuffer
 #import universal/lighting
 #import universal/main_light_shadow
+#import universal/additional_light_shadow
 
 @group(0) @binding(0) var gbuffer0: texture_2d<f32>;
 @group(0) @binding(1) var gbuffer1: texture_2d<f32>;
@@ -38,6 +43,9 @@
 #if defined(_DEFERRED_MAIN_LIGHT)
 @group(0) @binding(7) var<uniform> main_light: UrpLight;
 #endif
+#if defined(_ADDITIONAL_LIGHT_SHADOWS)
+@group(0) @binding(8) var<uniform> shadow_light_index: vec4u;
+#endif
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f {
@@ -49,15 +57,20 @@ fn vs_volume(@location(0) world_position: vec3f) -> @builtin(position) vec4f {
     return deferred_camera.view_proj * vec4f(world_position, 1.0);
 }
 
-// The main light's shadow (universal/main_light_shadow), 1 for a texel whose material says
-// ReceiveShadowsOff.
-fn urp_deferred_shadow(p: vec3f, pixel: vec2i, flags: u32) -> f32 {
-#if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE) || defined(_MAIN_LIGHT_SHADOWS_SCREEN)
-    if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) == 0u {
-        return urp_main_light_shadow(p, deferred_camera.position.xyz, pixel).x;
+// The main light's shadow (universal/main_light_shadow) or a punctual light's
+// (universal/additional_light_shadow; to_light: the unit direction to it), 1 for a texel whose
+// material says ReceiveShadowsOff.
+fn urp_deferred_shadow(p: vec3f, pixel: vec2i, flags: u32, to_light: vec3f) -> f32 {
+    if (flags & URP_FLAG_RECEIVE_SHADOWS_OFF) != 0u {
+        return 1.0;
     }
-#endif
+#if defined(_MAIN_LIGHT_SHADOWS) || defined(_MAIN_LIGHT_SHADOWS_CASCADE) || defined(_MAIN_LIGHT_SHADOWS_SCREEN)
+    return urp_main_light_shadow(p, deferred_camera.position.xyz, pixel).x;
+#elif defined(_ADDITIONAL_LIGHT_SHADOWS)
+    return urp_additional_light_shadow(shadow_light_index.x, p, to_light, deferred_camera.position.xyz);
+#else
     return 1.0;
+#endif
 }
 
 @fragment
@@ -89,7 +102,7 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     // _POINT: no cone (URP's angle term is 1 for a point light's attenuation (0, 1)).
     let s = urp_punctual_sample(l, p);
 #endif
-    let attenuation = s.w * urp_deferred_shadow(p, pixel, flags);
+    let attenuation = s.w * urp_deferred_shadow(p, pixel, flags, s.xyz);
     let brdf = urp_brdf_from_gbuffer(g0.rgb, g1.rgb, g2.a, (flags & URP_FLAG_SPECULAR_SETUP) != 0u);
     let n = urp_unpack_normal(g2.rgb);
     let v = urp_safe_normalize(deferred_camera.position.xyz - p);

@@ -1,7 +1,8 @@
 //! URP's frame end to end (docs/urp.md §12): one scene ([`UrpFrame`]: the built-in frame's
 //! camera and opaque objects with URP Lit materials, a main light with its soft shadow and
-//! three additional lights on rendering layers) drawn both ways URP draws it, into the HDR
-//! camera target (`Rg11b10Ufloat`), after the main light's map ([`render_urp_shadow`]):
+//! three additional lights on rendering layers, two of them casting shadows) drawn both ways
+//! URP draws it, into the HDR camera target (`Rg11b10Ufloat`), after the shadows
+//! ([`render_urp_shadows`]: the main light's map or cascades, the additional lights' atlas):
 //!
 //! - **forward** ([`render_urp_forward`]): `universal_lit/UniversalForward` per object, every
 //!   light per pixel (`_ADDITIONAL_LIGHTS`, `_LIGHT_LAYERS`); with screen-space shadows after
@@ -34,13 +35,15 @@ pub use scene::{
     DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameLight, UrpFrameObject,
 };
 pub use shadow::{
-    MAIN_SHADOW_MAP_SIZE, UrpFrameShadow, UrpShadowMaps, UrpShadowSpec, render_urp_shadow,
+    ADDITIONAL_SLICE_SIZE, MAIN_SHADOW_MAP_SIZE, UrpAdditionalShadowSpec, UrpFrameShadow,
+    UrpFrameShadows, UrpShadowMaps, UrpShadowSpec, render_urp_shadows,
 };
 
 use super::camera::deferred_camera;
 use super::scene::{push_mat4, texture};
 use super::screen_masks::render_mask;
 use super::urp::urp_targets;
+use super::urp_additional_shadows::AdditionalAtlas;
 use super::urp_lighting::{
     STENCIL_LIGHT, STENCIL_LIT, STENCIL_MATERIAL_MASK, STENCIL_UNLIT, add_blend,
 };
@@ -176,19 +179,22 @@ fn object_draws(
 }
 
 /// Renders the forward path: `UniversalForward` per object into the camera target, reading
-/// the main light's `shadow` ([`render_urp_shadow`]); with screen-space shadows, after URP's
-/// depth prepass (`DepthOnly` per object) and the screen-space pass over its depth.
+/// the `shadows` ([`render_urp_shadows`]); with screen-space shadows, after URP's depth
+/// prepass (`DepthOnly` per object) and the screen-space pass over its depth.
 pub fn render_urp_forward(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
-    shadow: Option<&UrpFrameShadow>,
+    shadows: &UrpFrameShadows,
 ) -> Result<UrpForwardImage, GpuError> {
     let g = &frame.geometry;
     let (mut receiver, mut draws, mut depth) = (Receiver::default(), 0, None);
-    if let Some(s) = shadow {
-        receiver.keywords = s.receiver_keywords();
-        receiver.resources = s.resources();
+    receiver.keywords = shadows.forward_keywords();
+    if let Some(a) = &shadows.additional {
+        receiver.resources = a.resources();
+    }
+    if let Some(s) = &shadows.main {
+        receiver.resources.extend(s.resources());
         if s.screen {
             let prepass = render_depth_prepass(ctx, lib, frame)?;
             let inputs = [
@@ -289,7 +295,7 @@ const VOLUME_LIGHT: StencilTest = StencilTest {
 fn light_draws(
     lib: &Library,
     frame: &UrpFrame,
-    shadow: Option<&UrpFrameShadow>,
+    shadows: &UrpFrameShadows,
     screen: Option<BoundResource>,
     shared: &Arc<[BoundResource]>,
 ) -> Result<(Vec<Draw>, usize), GpuError> {
@@ -305,7 +311,7 @@ fn light_draws(
     let mut names = vec!["_DIRECTIONAL", "_DEFERRED_MAIN_LIGHT"];
     names.extend(common);
     let mut main_resources = light_resource(7, &frame.main_light);
-    if let Some(s) = shadow {
+    if let Some(s) = &shadows.main {
         names.extend(s.receiver_keywords());
         main_resources.extend(s.resources());
     }
@@ -321,16 +327,22 @@ fn light_draws(
     let mut camera = Vec::new();
     push_mat4(&mut camera, frame.geometry.view_proj);
     let mut volumes = 0;
-    for l in &frame.lights {
+    for (k, l) in frame.lights.iter().enumerate() {
         let mut names = vec![match l.params.kind {
             UrpLightKind::Spot => "_SPOT",
             _ => "_POINT",
         }];
         names.extend(common);
+        names.extend(shadows.additional_keywords());
+        let mut resources = light_resource(5, &l.params);
+        if let Some(a) = &shadows.additional {
+            resources.push(AdditionalAtlas::shadow_light_index(k as u32));
+            resources.extend(a.resources());
+        }
         let (label, wgsl) = text(lib, "stencil_deferred", "PunctualLit", &names)?;
         let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
             .with_shared(shared)
-            .with_resources(light_resource(5, &l.params));
+            .with_resources(resources);
         let volume =
             light_draw(&l.light, frame.geometry.view_proj).map_err(|e| GpuError::Validation {
                 label: label.clone(),
@@ -364,12 +376,12 @@ fn light_draws(
 
 /// Renders the deferred path: the G-buffer pass (each object stamping the Lit material type
 /// into the stencil, as URP's G-buffer pass does), then the lighting pass over GBuffer3, the
-/// main light reading its `shadow` ([`render_urp_shadow`]).
+/// lights reading the `shadows` ([`render_urp_shadows`]).
 pub fn render_urp_deferred(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
-    shadow: Option<&UrpFrameShadow>,
+    shadows: &UrpFrameShadows,
 ) -> Result<UrpDeferredImage, GpuError> {
     let g = &frame.geometry;
     let (w, h) = (g.width, g.height);
@@ -442,12 +454,12 @@ pub fn render_urp_deferred(
         ),
         BoundResource::new(0, 6, texture(TargetFormat::R32Uint, w, h, &targets[4])),
     ]);
-    let screen = match shadow.filter(|s| s.screen) {
+    let screen = match shadows.main.as_ref().filter(|s| s.screen) {
         Some(s) => Some(render_screen_shadow(ctx, lib, frame, s, &shared)?),
         None => None,
     };
     let screen_draws = usize::from(screen.is_some());
-    let (light_draws, volumes) = light_draws(lib, frame, shadow, screen, &shared)?;
+    let (light_draws, volumes) = light_draws(lib, frame, shadows, screen, &shared)?;
     lighting.draws.extend(light_draws);
     let draws = gbuffer.draws.len() + screen_draws + lighting.draws.len() - 2;
     let lit = render_pass(ctx, &lighting)?.targets.remove(0);
@@ -538,6 +550,9 @@ pub struct UrpFrameReport {
     /// Of those, pixels with a shadow tap within a hair of flipping (compared within the
     /// interval of both outcomes).
     pub uncertain: usize,
+    /// Per additional light: pixels it lights where its own shadow blocks some of its light
+    /// (`_ADDITIONAL_LIGHT_SHADOWS`).
+    pub additional_shadowed: Vec<usize>,
     /// With `_MAIN_LIGHT_SHADOWS_CASCADE`, compared pixels per cascade URP's split spheres
     /// pick (0 to 3), in none, and in several (which URP's cascade index cannot handle; the
     /// frame must have none): all of them, and those in the shadow. Zeros with one map.
@@ -601,6 +616,19 @@ impl fmt::Display for UrpFrameReport {
             self.shadowed,
             self.uncertain
         )?;
+        if self.additional_shadowed.iter().any(|&n| n > 0) {
+            let shadowed: Vec<String> = self
+                .lit_by
+                .iter()
+                .zip(&self.additional_shadowed)
+                .map(|((name, _), n)| format!("{name} {n}"))
+                .collect();
+            writeln!(
+                f,
+                "  pixels in an additional light's own shadow: {}",
+                shadowed.join(", ")
+            )?;
+        }
         if self.cascades[0].iter().any(|&n| n > 0) {
             writeln!(
                 f,
@@ -625,28 +653,39 @@ pub fn check_urp_frame(
     lib: &Library,
     frame: &UrpFrame,
 ) -> Result<UrpFrameReport, GpuError> {
-    let shadow = render_urp_shadow(ctx, lib, frame)?;
-    let forward = render_urp_forward(ctx, lib, frame, shadow.as_ref())?;
-    let deferred = render_urp_deferred(ctx, lib, frame, shadow.as_ref())?;
-    compare(frame, shadow.as_ref(), &forward, &deferred)
+    let shadows = render_urp_shadows(ctx, lib, frame)?;
+    let forward = render_urp_forward(ctx, lib, frame, &shadows)?;
+    let deferred = render_urp_deferred(ctx, lib, frame, &shadows)?;
+    compare(frame, &shadows, &forward, &deferred)
 }
 
-/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow`
-/// (black where it discards).
+/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow` and
+/// the end `end` (0 the lower, 1 the upper) of each additional light's shadow interval in
+/// `shadows` (black where it discards).
 fn forward_reference(
     frame: &UrpFrame,
     lights: &UrpForwardLights,
     o: usize,
     geo: &Geometry,
     shadow: Option<MainLightShadow>,
+    (shadows, end): (&UrpFrameShadows, usize),
 ) -> Vec3 {
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(FORWARD_KEYWORDS);
     if shadow.is_some() {
         names.push("_MAIN_LIGHT_SHADOWS");
     }
+    names.extend(shadows.additional_keywords());
     let k = UrpForwardKeywords::from_names(&names)
         .expect("the URP frame's keywords are UniversalForward's");
+    let p = geo.world_position;
+    let camera = frame.lighting.camera_position;
+    let additional: Vec<f32> = lights
+        .additional()
+        .iter()
+        .enumerate()
+        .map(|(i, l)| shadows.additional_at(i, p, l.sample(p).0, camera)[end])
+        .collect();
     shade_forward(
         &k,
         &frame.objects[o].material,
@@ -657,27 +696,31 @@ fn forward_reference(
         shadow.unwrap_or(MainLightShadow::NONE),
         lights,
         Vec3::ZERO,
+        &additional,
     )
     .unwrap_or(Vec3::ZERO)
 }
 
 /// The reference colour of pixel `(x, y)`: what the ray through its centre sees, lit by URP's
-/// forward formulas and shadowed by `shadow` (the upper end of an uncertain tap); `None` on
+/// forward formulas and shadowed by `shadows` (the upper end of an uncertain tap); `None` on
 /// the background.
 ///
 /// # Errors
 /// As [`UrpFrame::forward_lights`].
 pub fn reference_rgb(
     frame: &UrpFrame,
-    shadow: Option<&UrpFrameShadow>,
+    shadows: &UrpFrameShadows,
     x: u32,
     y: u32,
 ) -> Result<Option<Vec3>, GpuError> {
     let lights = frame.forward_lights()?;
     let hit = frame.geometry.cast(f64::from(x) + 0.5, f64::from(y) + 0.5);
     Ok(hit.map(|h| {
-        let s = shadow.map(|s| s.at(h.geometry.world_position)[1]);
-        forward_reference(frame, &lights, h.object, &h.geometry, s)
+        let s = shadows
+            .main
+            .as_ref()
+            .map(|s| s.at(h.geometry.world_position)[1]);
+        forward_reference(frame, &lights, h.object, &h.geometry, s, (shadows, 1))
     }))
 }
 
@@ -723,10 +766,11 @@ fn exact_texel(
 /// reference cannot read it).
 pub fn compare(
     frame: &UrpFrame,
-    shadow: Option<&UrpFrameShadow>,
+    shadows: &UrpFrameShadows,
     forward: &UrpForwardImage,
     deferred: &UrpDeferredImage,
 ) -> Result<UrpFrameReport, GpuError> {
+    let shadow = shadows.main.as_ref();
     let g = &frame.geometry;
     let lights = frame.forward_lights()?;
     let env = frame.environment();
@@ -744,6 +788,7 @@ pub fn compare(
         layer_culled: 0,
         shadowed: 0,
         uncertain: 0,
+        additional_shadowed: vec![0; frame.lights.len()],
         cascades: [[0; 6]; 2],
         mismatches: Vec::new(),
     };
@@ -808,7 +853,9 @@ pub fn compare(
             .flat_map(|geo| {
                 let p = geo.world_position;
                 let s = shadow.map(|s| s.received(prepass.unwrap_or(p), p));
-                [0, 1].map(|k| forward_reference(frame, &lights, o, geo, s.map(|s| s[k])))
+                [0, 1].map(|k| {
+                    forward_reference(frame, &lights, o, geo, s.map(|s| s[k]), (shadows, k))
+                })
             })
             .collect();
         if let Some([lo, hi]) = shadows_at(hit.geometry.world_position) {
@@ -880,7 +927,12 @@ pub fn compare(
         let main_shadow =
             |p: Vec3| shadow.map_or([1.0; 2], |s| s.received(p, p).map(|s| s.attenuation));
         let light_at = |t: &UrpGBufferTexel, p: Vec3, i: usize, end: usize| {
-            let shadow = if i == 0 { main_shadow(p)[end] } else { 1.0 };
+            let shadow = if i == 0 {
+                main_shadow(p)[end]
+            } else {
+                let to_light = every_light[i].sample(p).0;
+                shadows.additional_at(i - 1, p, to_light, camera)[end]
+            };
             stencil_deferred_light(t, p, camera, every_light[i], shadow, Some(layers))
         };
         let (mut d_lo, mut d_hi) = (stored, stored);
@@ -925,6 +977,10 @@ pub fn compare(
             let matters = unmasked.max_element() > 0.01 * total;
             if l.params.lights_layers(frame.objects[o].rendering_layers) {
                 report.lit_by[k].1 += usize::from(matters);
+                let to_light = l.params.sample(q_point).0;
+                let shadowed = shadows.additional_at(k, q_point, to_light, camera)[1] < 1.0;
+                report.additional_shadowed[k] +=
+                    usize::from(matters && shadowed && !exact.flags.receive_shadows_off);
             } else {
                 report.layer_culled += usize::from(matters);
             }

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3, Vec4};
 use super::super::frame::{FrameObject, FrameScene};
 use super::super::scene::cube_resource;
 use super::super::urp::{camera_uniform, lighting_uniform, material_uniform, object_uniform};
-use super::shadow::UrpShadowSpec;
+use super::shadow::{UrpAdditionalShadowSpec, UrpShadowSpec};
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
@@ -71,6 +71,8 @@ pub struct UrpFrame {
     pub lights: Vec<UrpFrameLight>,
     /// The main light's shadow (`_MAIN_LIGHT_SHADOWS`), or none.
     pub main_shadow: Option<UrpShadowSpec>,
+    /// The additional lights' shadows (`_ADDITIONAL_LIGHT_SHADOWS`), or none.
+    pub additional_shadows: Option<UrpAdditionalShadowSpec>,
 }
 
 /// Materials of the five objects: floor, metal sphere, glowing sphere, box, cutout box.
@@ -207,6 +209,15 @@ impl UrpFrame {
             screen: false,
             fade: MainLightShadowFade::between(9.0, 12.0),
         });
+        // The cool point light (hard, six cube-face slices: the glowing sphere's and the cutout
+        // box's shadows, the box's with its holes) and the spot (soft) cast; the warm point
+        // light casts none. 256² slices; URP's caster biases (a few texels where the slices
+        // are widest); faded as the main light's.
+        let additional_shadows = Some(UrpAdditionalShadowSpec {
+            casting: vec![None, Some((0.9, false)), Some((0.85, true))],
+            bias: Vec2::new(-0.05, -0.08),
+            fade: MainLightShadowFade::between(9.0, 12.0),
+        });
         UrpFrame {
             objects: materials(),
             geometry,
@@ -214,6 +225,7 @@ impl UrpFrame {
             main_light,
             lights,
             main_shadow,
+            additional_shadows,
         }
     }
 

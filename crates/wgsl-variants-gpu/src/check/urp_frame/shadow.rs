@@ -3,8 +3,11 @@
 //! `Depth16Unorm` map of an orthographic box around the scene (`_MAIN_LIGHT_SHADOWS`), or
 //! into each cascade's tile of an atlas (`_MAIN_LIGHT_SHADOWS_CASCADE`: the cascades fitted to
 //! slices of the camera's view, URP's split spheres), read back; both paths' receivers bind
-//! what was rendered and the reference reads the same texels ([`shadow_factor`],
-//! [`Cascades::factor`]). Whether the caster writes the right texels is the
+//! what was rendered and the reference reads the same texels ([`main_light_map_factor`],
+//! [`Cascades::factor`]). The additional lights' shadows: each casting point or spot light's
+//! slices (six 90° views of a point light, one perspective view of a spot) drawn by the same
+//! caster with `_CASTING_PUNCTUAL_LIGHT_SHADOW` into an atlas ([`AdditionalAtlas`]), read
+//! back likewise. Whether the caster writes the right texels is the
 //! `universal_lit/ShadowCaster` check's business (`check::urp_caster`).
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
@@ -12,6 +15,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::super::scene::{push_mat4, push_vec4};
 use super::super::screen_masks::{CascadeAtlas, map_resources};
 use super::super::shadows::{DEPTH, refused};
+use super::super::urp_additional_shadows::{AdditionalAtlas, Casting};
 use super::UrpFrame;
 use super::text;
 use crate::{BoundResource, Draw, DrawPass, GpuContext, GpuError, Resource, render_pass};
@@ -25,6 +29,81 @@ use wgsl_variants_shaders::reference::urp::shadow::main_light_map_factor;
 
 /// Edge length of the main light's map in texels (of each cascade's tile with cascades).
 pub const MAIN_SHADOW_MAP_SIZE: u32 = 512;
+
+/// Edge length of one slice of the additional lights' atlas in texels.
+pub const ADDITIONAL_SLICE_SIZE: u32 = 256;
+
+/// How the URP frame's additional lights cast their shadows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrpAdditionalShadowSpec {
+    /// Per additional light of the frame, in order: its strength and soft flag, or `None`
+    /// for a light that casts no shadow.
+    pub casting: Vec<Casting>,
+    /// URP's `_ShadowBias` at the caster: (depth, normal), world units (negative: away from
+    /// the light, into the surface).
+    pub bias: Vec2,
+    /// How the realtime shadows fade with the distance from the camera (URP's
+    /// `_AdditionalShadowFadeParams`).
+    pub fade: MainLightShadowFade,
+}
+
+/// The frame's rendered shadows: the main light's and the additional lights' atlas (each
+/// `None` where the frame has none).
+#[derive(Clone, Debug, Default)]
+pub struct UrpFrameShadows {
+    /// The main light's map or cascades.
+    pub main: Option<UrpFrameShadow>,
+    /// The additional lights' atlas, with its reference (the lights in the frame's order).
+    pub additional: Option<AdditionalAtlas>,
+}
+
+impl UrpFrameShadows {
+    /// `_SHADOWS_SOFT`: one keyword for the main light's map or cascades and for each
+    /// additional light whose own flag says soft — on when the main light's shadow is soft.
+    pub fn soft(&self) -> bool {
+        self.main.as_ref().is_some_and(|m| m.soft)
+    }
+
+    /// The additional lights' shadow keywords in the receivers (`UniversalForward`,
+    /// `PunctualLit`): `_ADDITIONAL_LIGHT_SHADOWS` and [`UrpFrameShadows::soft`]'s
+    /// `_SHADOWS_SOFT`; none without the atlas.
+    pub fn additional_keywords(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        if self.additional.is_some() {
+            out.push("_ADDITIONAL_LIGHT_SHADOWS");
+            if self.soft() {
+                out.push("_SHADOWS_SOFT");
+            }
+        }
+        out
+    }
+
+    /// The forward receivers' shadow keywords: the main light's
+    /// ([`UrpFrameShadow::receiver_keywords`]) and [`UrpFrameShadows::additional_keywords`],
+    /// each once.
+    pub fn forward_keywords(&self) -> Vec<&'static str> {
+        let mut out = self
+            .main
+            .as_ref()
+            .map(UrpFrameShadow::receiver_keywords)
+            .unwrap_or_default();
+        for k in self.additional_keywords() {
+            if !out.contains(&k) {
+                out.push(k);
+            }
+        }
+        out
+    }
+
+    /// Additional light `k`'s shadow at `p` (lit from the unit direction `to_light`) seen from
+    /// `camera`: the two ends of its interval, 1 without the atlas.
+    pub fn additional_at(&self, k: usize, p: Vec3, to_light: Vec3, camera: Vec3) -> [f32; 2] {
+        self.additional.as_ref().map_or([1.0; 2], |a| {
+            let (lo, hi) = a.shadows.attenuation(k, self.soft(), p, to_light, camera);
+            [lo, hi]
+        })
+    }
+}
 
 /// How the URP frame's main light casts its shadow.
 #[derive(Clone, Debug, PartialEq)]
@@ -196,17 +275,73 @@ impl UrpFrameShadow {
     }
 }
 
-/// Renders the main light's map of `frame` (`None` without [`UrpFrame::main_shadow`]).
+/// Renders the shadows of `frame`: the main light's map or cascades
+/// ([`UrpFrame::main_shadow`]) and the additional lights' atlas
+/// ([`UrpFrame::additional_shadows`]).
 ///
 /// # Errors
-/// A variant lookup or GPU error; [`GpuError::Check`] when the shadow's parameters are refused.
-pub fn render_urp_shadow(
+/// A variant lookup or GPU error; [`GpuError::Check`] when the shadows' parameters are
+/// refused.
+pub fn render_urp_shadows(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<UrpFrameShadows, GpuError> {
+    Ok(UrpFrameShadows {
+        main: render_main_shadow(ctx, lib, frame)?,
+        additional: render_additional_shadows(ctx, lib, frame)?,
+    })
+}
+
+/// The additional lights' atlas of `frame` (`None` without
+/// [`UrpFrame::additional_shadows`]): each casting light's slices drawn by
+/// `universal_lit/ShadowCaster` with `_CASTING_PUNCTUAL_LIGHT_SHADOW`.
+fn render_additional_shadows(
+    ctx: &GpuContext,
+    lib: &Library,
+    frame: &UrpFrame,
+) -> Result<Option<AdditionalAtlas>, GpuError> {
+    let Some(spec) = &frame.additional_shadows else {
+        return Ok(None);
+    };
+    let lights: Vec<(Light, Casting)> = frame
+        .lights
+        .iter()
+        .zip(spec.casting.iter().chain(std::iter::repeat(&None)))
+        .map(|(l, c)| (l.light, *c))
+        .collect();
+    let atlas = AdditionalAtlas::render_with(
+        "universal_lit/ShadowCaster",
+        &lights,
+        spec.fade,
+        ADDITIONAL_SLICE_SIZE,
+        |view_proj, position| {
+            let view = CasterView {
+                view_proj,
+                light_direction: Vec3::ZERO,
+                light_position: Some(position.truncate()),
+                bias: spec.bias,
+            };
+            render_casters(ctx, lib, frame, &view, ADDITIONAL_SLICE_SIZE)
+        },
+    )?;
+    Ok(Some(atlas))
+}
+
+/// The main light's map or cascades of `frame` (`None` without [`UrpFrame::main_shadow`]).
+fn render_main_shadow(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
 ) -> Result<Option<UrpFrameShadow>, GpuError> {
     let Some(spec) = &frame.main_shadow else {
         return Ok(None);
+    };
+    let view = |view_proj| CasterView {
+        view_proj,
+        light_direction: frame.lighting.main_light_dir,
+        light_position: None,
+        bias: spec.bias,
     };
     let refused = refused("universal_lit/ShadowCaster");
     let light = Light::directional(
@@ -219,7 +354,7 @@ pub fn render_urp_shadow(
             let params =
                 ShadowParams::for_directional(&light, spec.strength, 0.0, spec.center, spec.radius)
                     .map_err(&refused)?;
-            let codes = render_casters(ctx, lib, frame, spec, params.world_to_shadow)?;
+            let codes = render_casters(ctx, lib, frame, &view(params.world_to_shadow), tile)?;
             let map = ShadowMap2d::from_depth16(tile, tile, &codes).map_err(&refused)?;
             (params, UrpShadowMaps::Map { map, codes })
         }
@@ -228,7 +363,7 @@ pub fn render_urp_shadow(
             let cascades =
                 Cascades::fit(&light, spec.strength, 0.0, &camera, splits).map_err(&refused)?;
             let atlas = CascadeAtlas::render(cascades, tile, "universal_lit/ShadowCaster", |c| {
-                render_casters(ctx, lib, frame, spec, c.view_proj)
+                render_casters(ctx, lib, frame, &view(c.view_proj), tile)
             })?;
             (
                 atlas.cascades.cascades[0].params,
@@ -246,35 +381,49 @@ pub fn render_urp_shadow(
     }))
 }
 
-/// Every object of `frame` drawn by `universal_lit/ShadowCaster` through `view_proj` (the
-/// light's view of the map or of one cascade) into a [`MAIN_SHADOW_MAP_SIZE`]² depth map: its
-/// `Depth16Unorm` codes, row by row.
+/// One light's view for the casters: its view-projection (of the map, a cascade or a slice),
+/// the unit direction to a directional light or a point or spot light's position
+/// (`_CASTING_PUNCTUAL_LIGHT_SHADOW`), and URP's `_ShadowBias`.
+struct CasterView {
+    view_proj: Mat4,
+    light_direction: Vec3,
+    light_position: Option<Vec3>,
+    bias: Vec2,
+}
+
+/// Every object of `frame` drawn by `universal_lit/ShadowCaster` through `view` into a
+/// `size`² depth map: its `Depth16Unorm` codes, row by row.
 fn render_casters(
     ctx: &GpuContext,
     lib: &Library,
     frame: &UrpFrame,
-    spec: &UrpShadowSpec,
-    view_proj: Mat4,
+    view: &CasterView,
+    size: u32,
 ) -> Result<Vec<u16>, GpuError> {
     let g = &frame.geometry;
-    let size = MAIN_SHADOW_MAP_SIZE;
-    let mut pass = DrawPass::new("URP frame: main-light shadow map", size, size, Vec::new());
+    let mut pass = DrawPass::new("URP frame: shadow caster", size, size, Vec::new());
     pass.depth = true;
     pass.depth_format = DEPTH;
     let mut camera = Vec::new();
-    push_mat4(&mut camera, view_proj);
+    push_mat4(&mut camera, view.view_proj);
     push_vec4(&mut camera, Vec4::ZERO);
     let mut caster = Vec::new();
-    push_vec4(&mut caster, frame.lighting.main_light_dir.extend(0.0));
-    push_vec4(&mut caster, Vec4::new(0.0, 0.0, 0.0, 1.0));
-    push_vec4(&mut caster, spec.bias.extend(0.0).extend(0.0));
+    push_vec4(&mut caster, view.light_direction.extend(0.0));
+    push_vec4(
+        &mut caster,
+        view.light_position.unwrap_or(Vec3::ZERO).extend(1.0),
+    );
+    push_vec4(&mut caster, view.bias.extend(0.0).extend(0.0));
     for (o, object) in g.objects.iter().enumerate() {
-        let names: Vec<&str> = frame.objects[o]
+        let mut names: Vec<&str> = frame.objects[o]
             .keywords
             .iter()
             .copied()
             .filter(|k| *k == "_ALPHATEST_ON")
             .collect();
+        if view.light_position.is_some() {
+            names.push("_CASTING_PUNCTUAL_LIGHT_SHADOW");
+        }
         let (label, wgsl) = text(lib, "universal_lit", "ShadowCaster", &names)?;
         let mut resources: Vec<BoundResource> = frame
             .object_resources(o)?

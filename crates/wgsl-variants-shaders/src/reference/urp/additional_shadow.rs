@@ -1,8 +1,8 @@
 //! URP's additional-light realtime shadows (`_ADDITIONAL_LIGHT_SHADOWS`; URP's `Shadows.hlsl`:
 //! `GetAdditionalLightShadowParams`, `AdditionalLightRealtimeShadow`, `SampleShadowmap`; the
 //! SRP core's `CubeMapFaceID`): which slice of the additional lights' shadow atlas a receiver
-//! reads, and the realtime shadow there. The shaders' side is not built yet (docs/urp.md §9
-//! lists it); this is the reference they will be held to.
+//! reads, and the realtime shadow there; [`AdditionalShadows`] is everything the receivers read
+//! (the WGSL `AdditionalShadows` record of `universal/additional_light_shadow` and the atlas).
 //!
 //! Each shadowed spot light has one slice (its perspective view), each shadowed point light
 //! six, one per cube face in the order +X, −X, +Y, −Y, +Z, −Z; a point light's receiver picks
@@ -28,7 +28,16 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::reference::shadow::{ShadowMap2d, lit_beyond_shadow_far, shadow_coords, shadow_mix};
+use super::forward::{MainLightShadow, MainLightShadowFade};
+use crate::reference::shadow::{
+    ShadowError, ShadowMap2d, lit_beyond_shadow_far, shadow_coords, shadow_mix,
+};
+
+/// The most additional lights the receivers' record describes (the forward pass's limit).
+pub const MAX_SHADOWED_LIGHTS: usize = 8;
+
+/// The most slices the receivers' record holds: six for each of [`MAX_SHADOWED_LIGHTS`].
+pub const MAX_SHADOW_SLICES: usize = 6 * MAX_SHADOWED_LIGHTS;
 
 /// How close (relative to the largest) two components of a direction may come before the cube
 /// face picked for it counts as uncertain: the GPU computes the direction in `f32` from the
@@ -150,6 +159,146 @@ pub fn additional_light_realtime_shadow(
         hi = hi.max(f.1);
     }
     (lo, hi)
+}
+
+/// Everything the receivers read of the additional lights' shadows: each light's parameters
+/// (in the order of the pass's additional lights), each slice's matrix, the atlas and the
+/// distance fade (URP's `_AdditionalShadowFadeParams.xy`; the main light's formula,
+/// [`MainLightShadowFade`]).
+#[derive(Clone, Debug)]
+pub struct AdditionalShadows {
+    params: Vec<AdditionalShadowParams>,
+    world_to_atlas: Vec<Mat4>,
+    atlas: ShadowMap2d,
+    fade: MainLightShadowFade,
+}
+
+impl AdditionalShadows {
+    /// The shadows of `params.len()` lights over the slices `world_to_atlas` of `atlas`.
+    ///
+    /// ```
+    /// use glam::Mat4;
+    /// use wgsl_variants_shaders::reference::shadow::ShadowMap2d;
+    /// use wgsl_variants_shaders::reference::urp::additional_shadow::{AdditionalShadowParams, AdditionalShadows};
+    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+    /// let atlas = ShadowMap2d::new(1, 1, vec![1.0]).unwrap();
+    /// let point = AdditionalShadowParams { strength: 1.0, soft: false, point: true, first_slice: Some(0) };
+    /// let fade = MainLightShadowFade::NONE;
+    /// assert!(AdditionalShadows::new(vec![point], vec![Mat4::IDENTITY; 6], atlas.clone(), fade).is_ok());
+    /// // A point light needs six slices.
+    /// assert!(AdditionalShadows::new(vec![point], vec![Mat4::IDENTITY; 5], atlas, fade).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`ShadowError::AdditionalSlices`]: more than [`MAX_SHADOWED_LIGHTS`] lights or
+    /// [`MAX_SHADOW_SLICES`] slices, or a light whose slices lie past `world_to_atlas`.
+    pub fn new(
+        params: Vec<AdditionalShadowParams>,
+        world_to_atlas: Vec<Mat4>,
+        atlas: ShadowMap2d,
+        fade: MainLightShadowFade,
+    ) -> Result<AdditionalShadows, ShadowError> {
+        let fits = |p: &AdditionalShadowParams| {
+            p.first_slice
+                .is_none_or(|s| s + if p.point { 6 } else { 1 } <= world_to_atlas.len())
+        };
+        if params.len() > MAX_SHADOWED_LIGHTS
+            || world_to_atlas.len() > MAX_SHADOW_SLICES
+            || !params.iter().all(fits)
+        {
+            return Err(ShadowError::AdditionalSlices {
+                lights: params.len(),
+                slices: world_to_atlas.len(),
+            });
+        }
+        Ok(AdditionalShadows {
+            params,
+            world_to_atlas,
+            atlas,
+            fade,
+        })
+    }
+
+    /// The same shadows with another distance fade.
+    pub fn with_fade(&self, fade: MainLightShadowFade) -> AdditionalShadows {
+        AdditionalShadows {
+            fade,
+            ..self.clone()
+        }
+    }
+
+    /// Each light's parameters.
+    pub fn params(&self) -> &[AdditionalShadowParams] {
+        &self.params
+    }
+
+    /// The atlas.
+    pub fn atlas(&self) -> &ShadowMap2d {
+        &self.atlas
+    }
+
+    /// URP's `AdditionalLightShadow` of light `light` at `p` (lit from the unit direction
+    /// `to_light`) seen from `camera`, as an interval: the realtime shadow
+    /// ([`additional_light_realtime_shadow`], with `_SHADOWS_SOFT` as `soft_keyword`: a light
+    /// is soft only with the keyword and its own flag) lerped towards 1 by the fade, the baked
+    /// shadow 1. A light past the record has no shadow (1).
+    pub fn attenuation(
+        &self,
+        light: usize,
+        soft_keyword: bool,
+        p: Vec3,
+        to_light: Vec3,
+        camera: Vec3,
+    ) -> (f32, f32) {
+        let Some(params) = self.params.get(light) else {
+            return (1.0, 1.0);
+        };
+        let params = AdditionalShadowParams {
+            soft: params.soft && soft_keyword,
+            ..*params
+        };
+        let (lo, hi) = additional_light_realtime_shadow(
+            &params,
+            &self.world_to_atlas,
+            &self.atlas,
+            p,
+            to_light,
+        );
+        let fade = self.fade.at(p, camera);
+        let faded = |a: f32| {
+            MainLightShadow {
+                attenuation: a,
+                strength: params.strength,
+            }
+            .faded(fade)
+            .attenuation
+        };
+        (faded(lo), faded(hi))
+    }
+
+    /// The WGSL `AdditionalShadows` record, little-endian: `fade` (scale, bias, 0, 0), eight
+    /// `params` ([`AdditionalShadowParams::uniform`]; `(0, 0, 0, −1)` past the lights), 48
+    /// slice matrices column-major (identity past the slices): 16 + 8 · 16 + 48 · 64 = 3,216
+    /// bytes.
+    pub fn uniform(&self) -> Vec<u8> {
+        let mut floats = vec![self.fade.scale, self.fade.bias, 0.0, 0.0];
+        for i in 0..MAX_SHADOWED_LIGHTS {
+            floats.extend(
+                self.params
+                    .get(i)
+                    .map_or([0.0, 0.0, 0.0, -1.0], AdditionalShadowParams::uniform),
+            );
+        }
+        for i in 0..MAX_SHADOW_SLICES {
+            let m = self
+                .world_to_atlas
+                .get(i)
+                .copied()
+                .unwrap_or(Mat4::IDENTITY);
+            floats.extend(m.to_cols_array());
+        }
+        floats.iter().flat_map(|v| v.to_le_bytes()).collect()
+    }
 }
 
 #[cfg(test)]

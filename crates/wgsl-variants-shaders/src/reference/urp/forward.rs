@@ -20,12 +20,12 @@
 //! let env = CubeFaces::uniform(Vec4::ZERO);
 //! let lights = UrpForwardLights::new(1, vec![]).unwrap();
 //! let lit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO).unwrap();
+//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO, &[]).unwrap();
 //! assert!((lit - Vec3::splat(0.96)).abs().max_element() < 1e-6);
 //! // The main light on another layer than the mesh's lights nothing.
 //! let other = UrpForwardLights::new(2, vec![]).unwrap();
 //! let unlit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO).unwrap();
+//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO, &[]).unwrap();
 //! assert_eq!(unlit, Vec3::ZERO);
 //! ```
 
@@ -41,7 +41,7 @@ use crate::reference::light::LightError;
 use crate::reference::surface::KeywordsError;
 
 /// The keywords of `universal_lit/UniversalForward`, in declaration order.
-pub const URP_FORWARD_KEYWORD_NAMES: [&str; 19] = [
+pub const URP_FORWARD_KEYWORD_NAMES: [&str; 20] = [
     "_NORMALMAP",
     "_ALPHATEST_ON",
     "_EMISSION",
@@ -58,6 +58,7 @@ pub const URP_FORWARD_KEYWORD_NAMES: [&str; 19] = [
     "_SHADOWS_SOFT",
     "_ADDITIONAL_LIGHTS_VERTEX",
     "_ADDITIONAL_LIGHTS",
+    "_ADDITIONAL_LIGHT_SHADOWS",
     "_LIGHT_LAYERS",
     "_MIXED_LIGHTING_SUBTRACTIVE",
     "LIGHTMAP_ON",
@@ -141,6 +142,8 @@ pub struct UrpForwardKeywords {
     pub shadows_soft: bool,
     /// The additional-lights keyword.
     pub additional_lights: AdditionalLights,
+    /// `_ADDITIONAL_LIGHT_SHADOWS`: the per-pixel additional lights' realtime shadows.
+    pub additional_light_shadows: bool,
     /// `_LIGHT_LAYERS`.
     pub light_layers: bool,
 }
@@ -168,6 +171,7 @@ impl UrpForwardKeywords {
                 "_SHADOWS_SOFT" => k.shadows_soft = true,
                 "_ADDITIONAL_LIGHTS_VERTEX" => k.additional_lights = AdditionalLights::PerVertex,
                 "_ADDITIONAL_LIGHTS" => k.additional_lights = AdditionalLights::PerPixel,
+                "_ADDITIONAL_LIGHT_SHADOWS" => k.additional_light_shadows = true,
                 "_LIGHT_LAYERS" => k.light_layers = true,
                 _ if URP_FORWARD_KEYWORD_NAMES.contains(&name)
                     || (!name.is_empty() && name.bytes().all(|b| b == b'_')) =>
@@ -186,6 +190,15 @@ impl UrpForwardKeywords {
     /// returns 1 then).
     pub fn reads_main_light_shadow(&self) -> bool {
         self.main_light_shadows != MainLightShadows::Off
+            && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
+    }
+
+    /// Whether the additional lights' shadows are read: `_ADDITIONAL_LIGHT_SHADOWS` with the
+    /// per-pixel lights (the per-vertex ones have none) and without `_RECEIVE_SHADOWS_OFF`
+    /// (URP's `AdditionalLightRealtimeShadow` returns 1 then).
+    pub fn reads_additional_light_shadows(&self) -> bool {
+        self.additional_light_shadows
+            && self.additional_lights == AdditionalLights::PerPixel
             && !self.surface.on(kw::RECEIVE_SHADOWS_OFF)
     }
 }
@@ -360,15 +373,16 @@ impl UrpForwardLights {
     }
 
     /// The additional lights that light a mesh of `rendering_layers` (every one without
-    /// `_LIGHT_LAYERS`).
+    /// `_LIGHT_LAYERS`), with their indices.
     fn lighting(
         &self,
         layers: bool,
         rendering_layers: u32,
-    ) -> impl Iterator<Item = &UrpLightParams> {
+    ) -> impl Iterator<Item = (usize, &UrpLightParams)> {
         self.additional
             .iter()
-            .filter(move |l| !layers || l.lights_layers(rendering_layers))
+            .enumerate()
+            .filter(move |(_, l)| !layers || l.lights_layers(rendering_layers))
     }
 }
 
@@ -387,7 +401,7 @@ pub fn vertex_lighting(
     }
     lights
         .lighting(k.light_layers, rendering_layers)
-        .map(|light| {
+        .map(|(_, light)| {
             let (l, attenuation) = light.sample(p);
             light.color * attenuation * n.dot(l).clamp(0.0, 1.0)
         })
@@ -398,7 +412,10 @@ pub fn vertex_lighting(
 /// `_ALPHATEST_ON` discards. `shadow` is the main light's shadow at the pixel's position
 /// (used where [`UrpForwardKeywords::reads_main_light_shadow`]; [`MainLightShadow::NONE`] elsewhere),
 /// `vertex_lighting` the interpolated [`vertex_lighting`] (used with
-/// `_ADDITIONAL_LIGHTS_VERTEX`).
+/// `_ADDITIONAL_LIGHTS_VERTEX`), `additional_shadows` each additional light's shadow
+/// attenuation at the pixel in the order of [`UrpForwardLights::additional`] (URP's
+/// `AdditionalLightShadow`, used where
+/// [`UrpForwardKeywords::reads_additional_light_shadows`]; missing entries are 1).
 #[allow(clippy::too_many_arguments)]
 pub fn shade_forward(
     k: &UrpForwardKeywords,
@@ -410,6 +427,7 @@ pub fn shade_forward(
     shadow: MainLightShadow,
     lights: &UrpForwardLights,
     vertex_lighting: Vec3,
+    additional_shadows: &[f32],
 ) -> Option<Vec3> {
     let sk = &k.surface;
     let s = urp_surface(sk, mat, tex)?;
@@ -450,12 +468,17 @@ pub fn shade_forward(
     match k.additional_lights {
         AdditionalLights::Off => {}
         AdditionalLights::PerPixel => {
-            for l in lights.lighting(k.light_layers, layers) {
+            let reads_shadows = k.reads_additional_light_shadows();
+            for (i, l) in lights.lighting(k.light_layers, layers) {
                 let (dir, attenuation) = l.sample(p);
+                let shadow = match additional_shadows.get(i) {
+                    Some(&s) if reads_shadows => s,
+                    _ => 1.0,
+                };
                 color += super::lighting::lighting_physically_based(
                     &direct,
                     l.color,
-                    attenuation,
+                    attenuation * shadow,
                     dir,
                     n,
                     v,
@@ -504,8 +527,56 @@ mod tests {
             shadow,
             lights,
             vl,
+            &[],
         )
         .unwrap()
+    }
+
+    #[test]
+    fn the_additional_lights_shadow_scales_only_the_per_pixel_light_it_belongs_to() {
+        // Two point lights 2 above the pixel (0.2109375 each, as on paper below); the first
+        // shadowed to 0.25 of its light. The shadow counts only with _ADDITIONAL_LIGHT_SHADOWS
+        // and the per-pixel lights, and not with _RECEIVE_SHADOWS_OFF.
+        let point = UrpLight::new(
+            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
+            0.0,
+            1,
+        )
+        .params()
+        .unwrap();
+        let lights = UrpForwardLights::new(0, vec![point, point]).unwrap();
+        let run = |names: &[&str]| {
+            let k = UrpForwardKeywords::from_names(names).unwrap();
+            shade_forward(
+                &k,
+                &UrpMaterial::default(),
+                &UrpTexels::default(),
+                &pixel(1),
+                &UrpLighting::default(),
+                &CubeFaces::uniform(Vec4::ZERO),
+                MainLightShadow::NONE,
+                &lights,
+                Vec3::ZERO,
+                &[0.25],
+            )
+            .unwrap()
+        };
+        let one = 0.210_937_5;
+        let lit = run(&["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS"]);
+        assert!((lit - Vec3::splat(2.0 * one)).abs().max_element() < 1e-6);
+        let shadowed = run(&[
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS",
+            "_ADDITIONAL_LIGHT_SHADOWS",
+        ]);
+        assert!((shadowed - Vec3::splat(1.25 * one)).abs().max_element() < 1e-6);
+        let unreceived = run(&[
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS",
+            "_ADDITIONAL_LIGHT_SHADOWS",
+            "_RECEIVE_SHADOWS_OFF",
+        ]);
+        assert_eq!(unreceived, lit);
     }
 
     #[test]
@@ -591,6 +662,7 @@ mod tests {
                 shadow,
                 &lights,
                 Vec3::ZERO,
+                &[],
             )
             .unwrap()
         };
@@ -622,6 +694,7 @@ mod tests {
             shadow,
             &lights,
             Vec3::ZERO,
+            &[],
         )
         .unwrap();
         assert!(
