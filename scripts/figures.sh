@@ -11,6 +11,11 @@
 # order; anything else the job may print is not part of the figures. CI (.ci/run) runs
 # `target/release/wgsl-variants validate --all | tee target/main-job.txt` and then
 # `bash scripts/figures.sh check target/main-job.txt`.
+#
+# `check` also holds the committed manifest summary (`snapshots/manifest.snap`, whose whole
+# form is an ignored test: it compiles every distinct text) to the main job: every pass's
+# variant and distinct counts must be the main job's, so a manifest left behind by a change
+# that moves them fails CI.
 set -euo pipefail
 
 usage() {
@@ -22,14 +27,14 @@ mode="$1"
 file="$2"
 case "$mode" in check | update) ;; *) usage ;; esac
 [ -f "$file" ] || { echo "figures: $file: no such file" >&2; exit 2; }
-readme="$(cd "$(dirname "$0")/.." && pwd)/README.md"
+root="$(cd "$(dirname "$0")/.." && pwd)"
 
-python3 - "$mode" "$file" "$readme" <<'PY'
+python3 - "$mode" "$file" "$root/README.md" "$root/snapshots/manifest.snap" <<'PY'
 import difflib
 import re
 import sys
 
-mode, file, readme = sys.argv[1:4]
+mode, file, readme, manifest = sys.argv[1:5]
 MARKER = "<!-- figures: validate --all -->"
 FIGURE = re.compile(r"^[^\s:]+/[^\s:]+: \d+ built \(|^total: ")
 
@@ -66,8 +71,30 @@ if mode == "update":
         print(f"figures: README.md:{opening + 2}: the block now holds the figures of {file}")
     sys.exit(0)
 
+# (shader/pass, variants, distinct) of the main job (built whole under --all) and of the
+# committed manifest summary.
+JOB = re.compile(r"^([^\s:]+/[^\s:]+): (\d+) built \((\d+) full space\), (\d+) distinct")
+SNAP = re.compile(r"^([^\s:]+/[^\s:]+): (\d+) variants, (\d+) distinct, digest ")
+job = [(m[1], m[3], m[4]) for m in map(JOB.match, run) if m]
+with open(manifest, encoding="utf-8") as f:
+    snap = [(m[1], m[2], m[3]) for m in map(SNAP.match, f.read().split("\n")) if m]
+if job != snap:
+    sys.stdout.writelines(
+        l + "\n" for l in difflib.unified_diff(
+            [f"{p}: {v} variants, {d} distinct" for p, v, d in snap],
+            [f"{p}: {v} variants, {d} distinct" for p, v, d in job],
+            "snapshots/manifest.snap", file, lineterm=""))
+    print(
+        "figures: snapshots/manifest.snap's counts differ from the main job's: review the whole\n"
+        "manifest (cargo test --release --ignore-rust-version --test snapshots -- --ignored, then\n"
+        "cargo insta review)",
+        file=sys.stderr,
+    )
+    sys.exit(1)
+
 if block == run:
-    print(f"figures: README.md's main-job block matches {file} ({len(run)} lines)")
+    print(f"figures: README.md's main-job block matches {file} ({len(run)} lines); "
+          f"snapshots/manifest.snap's counts match ({len(snap)} passes)")
     sys.exit(0)
 sys.stdout.writelines(
     l + "\n" for l in difflib.unified_diff(

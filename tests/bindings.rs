@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use wgsl_variants::Library;
+use wgsl_variants::{Library, Pass, Space};
 
 /// A pass whose buffers need every kind of padding: a `vec3` followed by an `f32`, an array
 /// of `vec3`, a nested struct, a `mat3x3`, an array of structs and a runtime-sized array.
@@ -200,38 +200,53 @@ struct Bundled {
     seconds: f64,
 }
 
-/// Every pass of the bundled library through the generator (plain data), each with the time
-/// it took, generated once for the tests that read them (each large pass takes tens of seconds
-/// on 2 cores: every distinct text is validated). The example's passes are generated once,
-/// with the wgpu option; their plain module is that less its wgpu block ([`without_wgpu`]).
+/// The passes of the bundled library that CI generates, through the generator (plain data),
+/// each with the time it took, generated once for the tests that read them: every pass the
+/// tests' selection builds whole (`test_support::selection::FULL_UP_TO`, 8192 variants) and
+/// the example's two ([`EXAMPLE_MODULES`]). The generator compiles every distinct text of a
+/// pass's full space, so the three other large passes (`ForwardBase`, `ForwardAdd`,
+/// `UniversalForward`: 2.5 minutes on 2 cores) are [`full_space_every_pass_compiles`]'s.
 fn bundled_modules() -> &'static [Bundled] {
     static MODULES: std::sync::OnceLock<Vec<Bundled>> = std::sync::OnceLock::new();
     MODULES.get_or_init(|| {
         let lib = wgsl_variants_shaders::library().unwrap();
         lib.passes()
-            .map(|pass| {
-                let one = std::time::Instant::now();
-                let example = EXAMPLE_MODULES
-                    .iter()
-                    .any(|(s, p)| pass.shader == *s && pass.name == *p);
-                let options = wgsl_variants::bindings::Options::default().wgpu(example);
-                let mut generated =
-                    wgsl_variants::bindings::generate_with(&lib, pass, 1_000_000, &options)
-                        .unwrap();
-                let wgpu = example.then(|| {
-                    let plain = without_wgpu(&generated.code);
-                    std::mem::replace(&mut generated.code, plain)
-                });
-                Bundled {
-                    shader: pass.shader.clone(),
-                    pass: pass.name.clone(),
-                    generated,
-                    wgpu,
-                    seconds: one.elapsed().as_secs_f64(),
-                }
+            .filter(|pass| {
+                is_example(pass)
+                    || Space::full(pass).count()
+                        <= num_bigint::BigUint::from(test_support::selection::FULL_UP_TO)
             })
+            .map(|pass| generate(&lib, pass))
             .collect()
     })
+}
+
+/// Whether `pass` is one of [`EXAMPLE_MODULES`].
+fn is_example(pass: &Pass) -> bool {
+    EXAMPLE_MODULES
+        .iter()
+        .any(|(s, p)| pass.shader == *s && pass.name == *p)
+}
+
+/// `pass` through the generator. The example's passes are generated once, with the wgpu
+/// option; their plain module is that less its wgpu block ([`without_wgpu`]).
+fn generate(lib: &Library, pass: &Pass) -> Bundled {
+    let one = std::time::Instant::now();
+    let example = is_example(pass);
+    let options = wgsl_variants::bindings::Options::default().wgpu(example);
+    let mut generated =
+        wgsl_variants::bindings::generate_with(lib, pass, 1_000_000, &options).unwrap();
+    let wgpu = example.then(|| {
+        let plain = without_wgpu(&generated.code);
+        std::mem::replace(&mut generated.code, plain)
+    });
+    Bundled {
+        shader: pass.shader.clone(),
+        pass: pass.name.clone(),
+        generated,
+        wgpu,
+        seconds: one.elapsed().as_secs_f64(),
+    }
 }
 
 /// The bundled pass `shader/pass`.
@@ -368,13 +383,64 @@ fn main() {
 }
 "#;
 
-/// Generates the module of every pass of the bundled library (and of the padding pass),
-/// checks each with `rustfmt --check`, compiles them all in one crate depending on
-/// `bytemuck` (offline, the version of the workspace's lock file) and runs the typed keys.
-/// (That an impossible `Key::checked` constant does not compile is the compile-fail tests'
-/// job: `crates/bindings-compile-fail`.)
+/// Generates the module of each of CI's passes ([`bundled_modules`]: every pass of up to 8192
+/// variants and the example's two) and of the padding pass, checks each with `rustfmt
+/// --check`, compiles them all in one crate depending on `bytemuck` (offline, the version of
+/// the workspace's lock file) and runs the typed keys. (That an impossible `Key::checked`
+/// constant does not compile is the compile-fail tests' job: `crates/bindings-compile-fail`.)
 #[test]
-fn every_pass_compiles_with_its_layout_assertions() {
+fn passes_compile_with_their_layout_assertions() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let bundled: Vec<&Bundled> = bundled_modules().iter().collect();
+    let left: Vec<String> = lib
+        .passes()
+        .filter(|p| {
+            !bundled
+                .iter()
+                .any(|b| b.shader == p.shader && b.pass == p.name)
+        })
+        .map(|p| format!("{}/{}", p.shader, p.name))
+        .collect();
+    assert_eq!(
+        left,
+        [
+            "standard/ForwardBase",
+            "standard/ForwardAdd",
+            "universal_lit/UniversalForward"
+        ]
+    );
+    compile_with_layout_assertions(&bundled);
+}
+
+/// [`passes_compile_with_their_layout_assertions`] over every pass of the bundled library,
+/// the three large ones the example does not use included. About 4 minutes on 2 cores (the
+/// fresh-clone CI run of 2026-11-29, when this was CI's form):
+/// `cargo test --release --ignore-rust-version --test bindings -- --ignored`.
+#[test]
+#[ignore = "every pass's full space: cargo test --release --test bindings -- --ignored"]
+fn full_space_every_pass_compiles() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let rest: Vec<Bundled> = lib
+        .passes()
+        .filter(|pass| {
+            !bundled_modules()
+                .iter()
+                .any(|b| b.shader == pass.shader && b.pass == pass.name)
+        })
+        .map(|pass| generate(&lib, pass))
+        .collect();
+    let mut bundled: Vec<&Bundled> = bundled_modules().iter().chain(&rest).collect();
+    assert_eq!(bundled.len(), lib.passes().count());
+    bundled.sort_by_key(|b| {
+        lib.passes()
+            .position(|p| p.shader == b.shader && p.name == b.pass)
+    });
+    compile_with_layout_assertions(&bundled);
+}
+
+/// Writes the modules of `bundled` and of the padding pass into one crate, checks each with
+/// `rustfmt --check`, builds the crate and runs [`CHECK_MAIN`].
+fn compile_with_layout_assertions(bundled: &[&Bundled]) {
     // Kept after the run (under the target folder), to read or build again by hand.
     let crate_dir = check_target().join("crate");
     let _ = std::fs::remove_dir_all(&crate_dir);
@@ -384,7 +450,7 @@ fn every_pass_compiles_with_its_layout_assertions() {
     let started = std::time::Instant::now();
     let padding = padding_library().bindings("padding", "P", 100).unwrap();
     let mut modules = vec![("padding_p".to_string(), &padding)];
-    for b in bundled_modules() {
+    for b in bundled {
         let generated = &b.generated;
         eprintln!(
             "{}/{}: {} variants, {} distinct texts, {} structs, {} interfaces in {:.1} s",

@@ -1,13 +1,12 @@
 //! Which variants the whole-library tests build.
 //!
-//! Checks that cost a fraction of a millisecond per variant (validation, the canonical-WGSL
-//! manifest, reflection) run over the full space of every bundled pass. Checks that cost
-//! milliseconds per variant (every naga back end with `spirv-val`, GPU rendering) run over
-//! this selection instead: every variant of a pass whose space holds at most [`FULL_UP_TO`]
-//! variants, and a t = [`COVER_T`] covering set of a larger one (the standard shader's three
-//! lit passes, 55,296, 18,432 and 110,592 variants; URP's `UniversalGBuffer`, 49,152, and
-//! `UniversalForward`, 196,608). The full-space form of each such test is an `#[ignore]`d test of its own,
-//! run by `cargo test --release -- --ignored` (the README gives the command and its time).
+//! CI compiles the full space of every bundled pass once, as the main job (`validate --all`).
+//! The tests run over this selection instead: every variant of a pass whose space holds at
+//! most [`FULL_UP_TO`] variants, and a t = [`COVER_T`] covering set of a larger one (the
+//! standard shader's three lit passes, 55,296, 18,432 and 110,592 variants; URP's
+//! `UniversalGBuffer`, 49,152, and `UniversalForward`, 196,608). The full-space form of each
+//! such test is an `#[ignore]`d test of its own, run by `cargo test --release -- --ignored`
+//! (`docs/guide/testing.md` gives each command and its time).
 
 use wgsl_variants::Library;
 use wgsl_variants::plan::{Plan, PlanOptions, plan};

@@ -11,7 +11,7 @@ use wgsl_variants_gpu::check::urp_frame::{
     UrpFrame, check_urp_frame, compare, render_urp_deferred, render_urp_forward, render_urp_shadows,
 };
 use wgsl_variants_shaders::reference::light::LightShape;
-use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
 
 /// The adapter, or `None` after the SKIPPED banner (`tests/common/gpu.rs`).
 fn context() -> Option<GpuContext> {
@@ -128,7 +128,7 @@ fn a_wrong_light_is_caught_both_ways() {
     unshadowed.main_shadow = None;
     let mut unfaded = truth.clone();
     if let Some(spec) = &mut unfaded.main_shadow {
-        spec.fade = MainLightShadowFade::NONE;
+        spec.fade = UrpShadowFade::NONE;
     }
     let mut one_map = truth.clone();
     if let Some(spec) = &mut one_map.main_shadow {

@@ -106,7 +106,12 @@ impl CascadeAtlas {
     /// Bindings 10-12 as Unity's collector reads them (`lighting/cascades`): the
     /// `CascadedShadow` record, the atlas and the comparison sampler.
     pub(crate) fn resources(&self) -> Vec<BoundResource> {
-        map_resources(&self.cascades.uniform(), &self.texels, self.size)
+        map_resources(
+            bytemuck::cast_slice(&self.cascades.uniform()),
+            &self.texels,
+            self.size,
+            10,
+        )
     }
 
     /// Bindings 12, 14 and 15 as URP's receivers read them (`universal/main_light_shadow`,
@@ -610,22 +615,28 @@ fn lay_atlas(
 /// `params`, the `Depth16Unorm` map's texels and the LessEqual comparison sampler. Shared by
 /// URP's main light (`stencil_deferred`, `_MAIN_LIGHT_SHADOWS`) and its forward pass.
 pub(crate) fn shadow_map_resources(params: &ShadowParams, map: &[u16]) -> Vec<BoundResource> {
-    map_resources(&params.uniform(), map, (MAP_SIZE, MAP_SIZE))
+    map_resources(
+        bytemuck::cast_slice(&params.uniform()),
+        map,
+        (MAP_SIZE, MAP_SIZE),
+        10,
+    )
 }
 
-/// Bindings 10-12 of a shadow map: `uniform` (the `Shadow` or `CascadedShadow` record), the
-/// `Depth16Unorm` map of `size` and the LessEqual comparison sampler (nearest).
+/// Bindings `first` to `first + 2` of a shadow map: `record` (the `Shadow`, `CascadedShadow`
+/// or `AdditionalShadows` record's bytes), the `Depth16Unorm` map of `size` and the LessEqual
+/// comparison sampler (nearest).
 pub(crate) fn map_resources(
-    uniform: &[f32],
+    record: &[u8],
     map: &[u16],
     (width, height): (u32, u32),
+    first: u32,
 ) -> Vec<BoundResource> {
-    let uniform: Vec<u8> = uniform.iter().flat_map(|v| v.to_le_bytes()).collect();
     vec![
-        BoundResource::new(0, 10, Resource::Uniform(uniform)),
+        BoundResource::new(0, first, Resource::Uniform(record.to_vec())),
         BoundResource::new(
             0,
-            11,
+            first + 1,
             Resource::Texture2d {
                 format: wgpu::TextureFormat::Depth16Unorm,
                 width,
@@ -635,7 +646,7 @@ pub(crate) fn map_resources(
         ),
         BoundResource::new(
             0,
-            12,
+            first + 2,
             Resource::ComparisonSampler {
                 compare: wgpu::CompareFunction::LessEqual,
                 nearest: true,

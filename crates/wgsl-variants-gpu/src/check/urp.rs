@@ -41,7 +41,7 @@ use wgsl_variants::{Library, Variant};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::quantize::{f16_bits_to_f32, f32_to_f16_bits};
 use wgsl_variants_shaders::reference::tolerance::urp_texel_within;
-use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
 use wgsl_variants_shaders::reference::urp::gbuffer::{
     UrpGBufferOutput, UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexel, UrpTexels,
     shade_gbuffer,
@@ -266,7 +266,7 @@ impl UrpScene {
 /// The main light's shadow fade of a check: a ramp over most of the camera distances of
 /// `positions` (the shadowed ones; from 10 % to 90 % of their range), so the nearest keep the
 /// realtime shadow, the farthest lose it and most lose part of it. No fade without positions.
-pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFade {
+pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> UrpShadowFade {
     let (near, far) = positions
         .iter()
         .map(|p| p.distance(camera))
@@ -276,9 +276,9 @@ pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFa
     let span = far - near;
     // No positions (or one distance): nothing to ramp across.
     if span.is_nan() || span <= 0.0 {
-        return MainLightShadowFade::NONE;
+        return UrpShadowFade::NONE;
     }
-    MainLightShadowFade::between(near + 0.1 * span, near + 0.9 * span)
+    UrpShadowFade::between(near + 0.1 * span, near + 0.9 * span)
 }
 
 /// The bindings of the main light's shadow in URP's passes: the map, the cascades and their
@@ -286,7 +286,7 @@ pub(crate) fn fade_across(positions: &[Vec3], camera: Vec3) -> MainLightShadowFa
 /// strength and the fade).
 pub(crate) fn main_shadow_resources(
     shadow: &super::screen_masks::ScreenShadow,
-    fade: &MainLightShadowFade,
+    fade: &UrpShadowFade,
 ) -> Vec<BoundResource> {
     let mut out = shadow.urp_resources();
     let params = fade.uniform(shadow.params.strength);

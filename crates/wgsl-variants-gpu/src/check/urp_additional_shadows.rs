@@ -19,7 +19,7 @@ use wgsl_variants_shaders::reference::shadow::{
 use wgsl_variants_shaders::reference::urp::additional_shadow::{
     AdditionalShadowParams, AdditionalShadows,
 };
-use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
 
 /// Edge length of one slice in texels.
 pub const TILE: u32 = MAP_SIZE;
@@ -64,7 +64,7 @@ impl AdditionalAtlas {
         lib: &Library,
         pass: &str,
         lights: &[(Light, Casting)],
-        fade: MainLightShadowFade,
+        fade: UrpShadowFade,
     ) -> Result<AdditionalAtlas, GpuError> {
         AdditionalAtlas::render_with(pass, lights, fade, TILE, |view_proj, position| {
             Ok(render_caster(
@@ -89,7 +89,7 @@ impl AdditionalAtlas {
     pub(crate) fn render_with(
         pass: &str,
         lights: &[(Light, Casting)],
-        fade: MainLightShadowFade,
+        fade: UrpShadowFade,
         tile: u32,
         mut render: impl FnMut(Mat4, Vec4) -> Result<Vec<u16>, GpuError>,
     ) -> Result<AdditionalAtlas, GpuError> {
@@ -169,7 +169,7 @@ impl AdditionalAtlas {
     }
 
     /// The same atlas with another fade.
-    pub(crate) fn faded(&self, fade: MainLightShadowFade) -> AdditionalAtlas {
+    pub(crate) fn faded(&self, fade: UrpShadowFade) -> AdditionalAtlas {
         AdditionalAtlas {
             shadows: self.shadows.with_fade(fade),
             ..self.clone()
@@ -179,19 +179,7 @@ impl AdditionalAtlas {
     /// Bindings 17-19 of `universal/additional_light_shadow`: the `AdditionalShadows` record,
     /// the atlas and the comparison sampler.
     pub(crate) fn resources(&self) -> Vec<BoundResource> {
-        let record: Vec<f32> = self
-            .shadows
-            .uniform()
-            .chunks(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect();
-        map_resources(&record, &self.texels, self.size)
-            .into_iter()
-            .map(|r| BoundResource {
-                binding: r.binding + 7,
-                ..r
-            })
-            .collect()
+        map_resources(&self.shadows.uniform(), &self.texels, self.size, 17)
     }
 
     /// Binding 8 of `stencil_deferred`'s `PunctualLit` with `_ADDITIONAL_LIGHT_SHADOWS`: URP's
@@ -209,7 +197,7 @@ impl AdditionalAtlas {
     /// (before the fade), for fitting the fade and for reports.
     pub(crate) fn shadowed(&self, light: usize, positions: &[Vec3]) -> Vec<Vec3> {
         let light_position = self.positions[light];
-        let unfaded = self.shadows.with_fade(MainLightShadowFade::NONE);
+        let unfaded = self.shadows.with_fade(UrpShadowFade::NONE);
         positions
             .iter()
             .copied()

@@ -40,7 +40,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
 use wgsl_variants_shaders::reference::urp::additional_shadow::cube_map_face_id;
 use wgsl_variants_shaders::reference::urp::forward::{
-    MainLightShadow, MainLightShadowFade, MainLightShadows, UrpForwardKeywords, UrpForwardLights,
+    MainLightShadow, MainLightShadows, UrpForwardKeywords, UrpForwardLights, UrpShadowFade,
     shade_forward, vertex_lighting,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
@@ -59,7 +59,7 @@ pub struct UrpForwardScene {
     /// The main light's shadow map.
     pub shadow: ScreenShadow,
     /// The main light's shadow fade (ramped across the pixels its map shadows).
-    pub fade: MainLightShadowFade,
+    pub fade: UrpShadowFade,
     /// The additional lights' shadows (`_ADDITIONAL_LIGHT_SHADOWS`), their fade ramped across
     /// the pixels they shadow.
     pub additional_shadows: AdditionalAtlas,
@@ -110,7 +110,7 @@ impl UrpForwardScene {
             lib,
             "universal_lit/UniversalForward",
             &casting,
-            MainLightShadowFade::NONE,
+            UrpShadowFade::NONE,
         )?;
         let in_shadow: Vec<Vec3> = (0..2).flat_map(|i| atlas.shadowed(i, &positions)).collect();
         let additional_shadows = atlas.faded(fade_across(&in_shadow, camera));

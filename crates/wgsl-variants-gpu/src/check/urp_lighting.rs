@@ -44,7 +44,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
-use wgsl_variants_shaders::reference::urp::forward::{MainLightShadowFade, MainLightShadows};
+use wgsl_variants_shaders::reference::urp::forward::{MainLightShadows, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
@@ -245,9 +245,9 @@ pub fn check_stencil_deferred(
     let camera = rig.camera(scene);
     let mut report = PassReport::new("stencil_deferred", pass_name);
     let mut outputs: Vec<Vec<Vec<u8>>> = Vec::new();
-    let mut uncertain = 0usize;
-    let mut shadowed = 0usize;
-    let mut additional_shadowed = 0usize;
+    // Comparisons in each light's shadow, and those with an outcome within a hair of flipping.
+    let (mut shadowed, mut uncertain) = (0usize, 0usize);
+    let (mut additional_shadowed, mut additional_uncertain) = (0usize, 0usize);
     for choice in &choices {
         let variant = wgsl_variants::Variant {
             pass,
@@ -317,7 +317,9 @@ pub fn check_stencil_deferred(
                         0.0
                     };
                     let (lo, hi) = (lo * (1.0 - f) + f, hi * (1.0 - f) + f);
-                    shadowed += usize::from(hi < 1.0 && !texel.flags.receive_shadows_off);
+                    let receives = !texel.flags.receive_shadows_off;
+                    shadowed += usize::from(hi < 1.0 && receives);
+                    uncertain += usize::from(lo != hi && receives);
                     // A punctual light's own shadow (URP's AdditionalLightShadow, faded).
                     let (lo, hi) = match shadow_index {
                         Some(index) if k.additional_shadows => {
@@ -329,13 +331,12 @@ pub fn check_stencil_deferred(
                                 to_light,
                                 scene.scene.camera_position,
                             );
-                            additional_shadowed +=
-                                usize::from(b < 1.0 && !texel.flags.receive_shadows_off);
+                            additional_shadowed += usize::from(b < 1.0 && receives);
+                            additional_uncertain += usize::from(a != b && receives);
                             (lo * a, hi * b)
                         }
                         _ => (lo, hi),
                     };
-                    uncertain += usize::from(lo != hi && !texel.flags.receive_shadows_off);
                     let [want_lo, want_hi] = [lo, hi].map(|shadow| {
                         stored
                             + stencil_deferred_light(
@@ -375,7 +376,7 @@ pub fn check_stencil_deferred(
     }
     if additional_shadowed > 0 {
         report.notes.push(format!(
-            "{additional_shadowed} pixel comparisons in a point or spot light's own shadow (the additional lights' atlas: the point light hard over six cube-face slices, the spot light soft under _SHADOWS_SOFT), {uncertain} with a tap or a cube face within a hair of flipping (compared within the interval of the outcomes)"
+            "{additional_shadowed} pixel comparisons in a point or spot light's own shadow (the additional lights' atlas: the point light hard over six cube-face slices, the spot light soft under _SHADOWS_SOFT), {additional_uncertain} with a tap or a cube face within a hair of flipping (compared within the interval of the outcomes)"
         ));
     }
     report.notes.push(format!(
@@ -458,7 +459,7 @@ pub(crate) fn draw_light(
     camera: &LightingCamera<'_>,
     gbuffer: &UrpGBuffer,
     (light, main): (&UrpLightParams, bool),
-    main_shadow: (&ScreenShadow, &MainLightShadowFade),
+    main_shadow: (&ScreenShadow, &UrpShadowFade),
     additional: Option<(&AdditionalAtlas, u32)>,
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
@@ -495,7 +496,7 @@ pub(crate) fn additional_shadows(
         lib,
         "stencil_deferred/PunctualLit",
         &casting,
-        MainLightShadowFade::NONE,
+        UrpShadowFade::NONE,
     )?;
     let positions: Vec<Vec3> = scene
         .pixels()
@@ -515,7 +516,7 @@ pub(crate) fn lighting_fade(
     rig: &LightRig,
     scene: &TestScene,
     shadow: &ScreenShadow,
-) -> MainLightShadowFade {
+) -> UrpShadowFade {
     let positions: Vec<Vec3> = scene
         .pixels()
         .map(|(x, y)| rig.deferred_position(scene, x, y))

@@ -11,7 +11,7 @@ use super::shadow::{UrpAdditionalShadowSpec, UrpShadowSpec};
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
-use wgsl_variants_shaders::reference::urp::forward::{MainLightShadowFade, UrpForwardLights};
+use wgsl_variants_shaders::reference::urp::forward::{UrpForwardLights, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::gbuffer::{
     UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels,
 };
@@ -207,7 +207,7 @@ impl UrpFrame {
             radius: 7.0,
             cascade_splits: Some(geometry.cascade_splits.clone()),
             screen: false,
-            fade: MainLightShadowFade::between(9.0, 12.0),
+            fade: UrpShadowFade::between(9.0, 12.0),
         });
         // The cool point light (hard, six cube-face slices: the glowing sphere's and the cutout
         // box's shadows, the box's with its holes) and the spot (soft) cast; the warm point
@@ -216,7 +216,7 @@ impl UrpFrame {
         let additional_shadows = Some(UrpAdditionalShadowSpec {
             casting: vec![None, Some((0.9, false)), Some((0.85, true))],
             bias: Vec2::new(-0.05, -0.08),
-            fade: MainLightShadowFade::between(9.0, 12.0),
+            fade: UrpShadowFade::between(9.0, 12.0),
         });
         UrpFrame {
             objects: materials(),

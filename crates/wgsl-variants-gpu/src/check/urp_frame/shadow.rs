@@ -24,7 +24,7 @@ use wgsl_variants_shaders::reference::cascades::{CascadeKeywords, Cascades, MAX_
 use wgsl_variants_shaders::reference::light::Light;
 use wgsl_variants_shaders::reference::shadow::{ShadowMap2d, ShadowParams};
 use wgsl_variants_shaders::reference::tolerance::unorm_store_error;
-use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, MainLightShadowFade};
+use wgsl_variants_shaders::reference::urp::forward::{MainLightShadow, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::shadow::main_light_map_factor;
 
 /// Edge length of the main light's map in texels (of each cascade's tile with cascades).
@@ -44,7 +44,7 @@ pub struct UrpAdditionalShadowSpec {
     pub bias: Vec2,
     /// How the realtime shadows fade with the distance from the camera (URP's
     /// `_AdditionalShadowFadeParams`).
-    pub fade: MainLightShadowFade,
+    pub fade: UrpShadowFade,
 }
 
 /// The frame's rendered shadows: the main light's and the additional lights' atlas (each
@@ -131,7 +131,7 @@ pub struct UrpShadowSpec {
     pub screen: bool,
     /// How the realtime shadow fades with the distance from the camera (URP's
     /// `_MainLightShadowParams.zw`).
-    pub fade: MainLightShadowFade,
+    pub fade: UrpShadowFade,
 }
 
 /// Where the main light's shadow was rendered.
@@ -162,7 +162,7 @@ pub struct UrpFrameShadow {
     /// The receivers read the screen-space pass's texel ([`UrpShadowSpec::screen`]).
     pub screen: bool,
     /// The fade with the distance from the camera.
-    pub fade: MainLightShadowFade,
+    pub fade: UrpShadowFade,
     /// The camera the fade measures from.
     pub camera: Vec3,
 }
@@ -202,9 +202,12 @@ impl UrpFrameShadow {
     pub fn resources(&self) -> Vec<BoundResource> {
         let tile = MAIN_SHADOW_MAP_SIZE;
         let mut out = match &self.maps {
-            UrpShadowMaps::Map { codes, .. } => {
-                map_resources(&self.params.uniform(), codes, (tile, tile))
-            }
+            UrpShadowMaps::Map { codes, .. } => map_resources(
+                bytemuck::cast_slice(&self.params.uniform()),
+                codes,
+                (tile, tile),
+                10,
+            ),
             UrpShadowMaps::Cascades(atlas) => atlas.urp_resources(),
         };
         out.push(BoundResource::new(

@@ -14,7 +14,7 @@
 //! URP's `LerpWhiteTo` mixes in the strength. A coordinate outside the depth range reads as lit
 //! ([`lit_beyond_shadow_far`]). The distance fade (`GetAdditionalLightShadowFade`,
 //! `_AdditionalShadowFadeParams.xy`) is the main light's formula with its own scale and bias:
-//! [`super::forward::MainLightShadowFade::at`].
+//! [`super::forward::UrpShadowFade::at`].
 //!
 //! ```
 //! use glam::Vec3;
@@ -28,7 +28,7 @@
 
 use glam::{Mat4, Vec3};
 
-use super::forward::{MainLightShadow, MainLightShadowFade};
+use super::forward::{MainLightShadow, UrpShadowFade};
 use crate::reference::shadow::{
     ShadowError, ShadowMap2d, lit_beyond_shadow_far, shadow_coords, shadow_mix,
 };
@@ -164,13 +164,13 @@ pub fn additional_light_realtime_shadow(
 /// Everything the receivers read of the additional lights' shadows: each light's parameters
 /// (in the order of the pass's additional lights), each slice's matrix, the atlas and the
 /// distance fade (URP's `_AdditionalShadowFadeParams.xy`; the main light's formula,
-/// [`MainLightShadowFade`]).
+/// [`UrpShadowFade`]).
 #[derive(Clone, Debug)]
 pub struct AdditionalShadows {
     params: Vec<AdditionalShadowParams>,
     world_to_atlas: Vec<Mat4>,
     atlas: ShadowMap2d,
-    fade: MainLightShadowFade,
+    fade: UrpShadowFade,
 }
 
 impl AdditionalShadows {
@@ -180,10 +180,10 @@ impl AdditionalShadows {
     /// use glam::Mat4;
     /// use wgsl_variants_shaders::reference::shadow::ShadowMap2d;
     /// use wgsl_variants_shaders::reference::urp::additional_shadow::{AdditionalShadowParams, AdditionalShadows};
-    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
+    /// use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
     /// let atlas = ShadowMap2d::new(1, 1, vec![1.0]).unwrap();
     /// let point = AdditionalShadowParams { strength: 1.0, soft: false, point: true, first_slice: Some(0) };
-    /// let fade = MainLightShadowFade::NONE;
+    /// let fade = UrpShadowFade::NONE;
     /// assert!(AdditionalShadows::new(vec![point], vec![Mat4::IDENTITY; 6], atlas.clone(), fade).is_ok());
     /// // A point light needs six slices.
     /// assert!(AdditionalShadows::new(vec![point], vec![Mat4::IDENTITY; 5], atlas, fade).is_err());
@@ -196,7 +196,7 @@ impl AdditionalShadows {
         params: Vec<AdditionalShadowParams>,
         world_to_atlas: Vec<Mat4>,
         atlas: ShadowMap2d,
-        fade: MainLightShadowFade,
+        fade: UrpShadowFade,
     ) -> Result<AdditionalShadows, ShadowError> {
         let fits = |p: &AdditionalShadowParams| {
             p.first_slice
@@ -220,7 +220,7 @@ impl AdditionalShadows {
     }
 
     /// The same shadows with another distance fade.
-    pub fn with_fade(&self, fade: MainLightShadowFade) -> AdditionalShadows {
+    pub fn with_fade(&self, fade: UrpShadowFade) -> AdditionalShadows {
         AdditionalShadows {
             fade,
             ..self.clone()

@@ -221,7 +221,7 @@ impl MainLightShadow {
 
     /// URP's `MixRealtimeAndBakedShadows` with no baked shadow (1; none of the frame's
     /// variants read a shadowmask): the realtime attenuation lerped towards 1 by `fade`
-    /// ([`MainLightShadowFade::at`]), `a · (1 − fade) + fade` as the WGSL `mix` computes it.
+    /// ([`UrpShadowFade::at`]), `a · (1 − fade) + fade` as the WGSL `mix` computes it.
     ///
     /// ```
     /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadow;
@@ -238,20 +238,21 @@ impl MainLightShadow {
     }
 }
 
-/// URP's main-light shadow fade (`GetMainLightShadowFade`, `_MainLightShadowParams.zw`): a
+/// URP's shadow fade (`GetMainLightShadowFade` with `_MainLightShadowParams.zw`, and
+/// `GetAdditionalLightShadowFade` with `_AdditionalShadowFadeParams.xy`: the same ramp): a
 /// ramp in the squared distance from the camera, `saturate(|p − camera|² · scale + bias)`,
 /// which URP's host sets to reach 1 at the shadow distance.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MainLightShadowFade {
+pub struct UrpShadowFade {
     /// `_MainLightShadowParams.z`.
     pub scale: f32,
     /// `_MainLightShadowParams.w`.
     pub bias: f32,
 }
 
-impl MainLightShadowFade {
+impl UrpShadowFade {
     /// No fade anywhere (scale and bias 0).
-    pub const NONE: MainLightShadowFade = MainLightShadowFade {
+    pub const NONE: UrpShadowFade = UrpShadowFade {
         scale: 0.0,
         bias: 0.0,
     };
@@ -261,16 +262,16 @@ impl MainLightShadowFade {
     ///
     /// ```
     /// use glam::Vec3;
-    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
-    /// let fade = MainLightShadowFade::between(2.0, 4.0);
+    /// use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
+    /// let fade = UrpShadowFade::between(2.0, 4.0);
     /// assert_eq!(fade.at(Vec3::new(1.0, 0.0, 0.0), Vec3::ZERO), 0.0);
     /// assert!((fade.at(Vec3::new(0.0, 10f32.sqrt(), 0.0), Vec3::ZERO) - 0.5).abs() < 1e-6);
     /// assert_eq!(fade.at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO), 1.0);
     /// ```
-    pub fn between(start: f32, end: f32) -> MainLightShadowFade {
+    pub fn between(start: f32, end: f32) -> UrpShadowFade {
         let (a, b) = (start * start, end * end);
         let scale = 1.0 / (b - a);
-        MainLightShadowFade {
+        UrpShadowFade {
             scale,
             bias: -a * scale,
         }
@@ -287,8 +288,8 @@ impl MainLightShadowFade {
     /// with `_MAIN_LIGHT_SHADOWS_SCREEN` only; y, URP's soft flag, is the keyword's business).
     ///
     /// ```
-    /// use wgsl_variants_shaders::reference::urp::forward::MainLightShadowFade;
-    /// let bytes = MainLightShadowFade { scale: 0.5, bias: -1.0 }.uniform(0.8);
+    /// use wgsl_variants_shaders::reference::urp::forward::UrpShadowFade;
+    /// let bytes = UrpShadowFade { scale: 0.5, bias: -1.0 }.uniform(0.8);
     /// assert_eq!(bytes[..4], 0.8f32.to_le_bytes());
     /// assert_eq!(bytes[12..], (-1.0f32).to_le_bytes());
     /// ```
