@@ -44,10 +44,11 @@ fn every_bundled_module_exports_as_prefixed_self_contained_wgsl() {
     assert!(modules.len() >= 8, "{modules:?}");
     for path in &modules {
         // standard/my_lighting is a pass program: it needs the pass's define;
-        // universal/main_light_shadow_map holds only what a main-light shadow declares.
+        // universal/main_light_shadow_map holds only what a main-light shadow declares, and
+        // universal/light_cookie only what a cookie does.
         let index = lib.module_paths().iter().position(|p| p == path).unwrap();
         let read = wgsl_variants::emit::export::conditions_read(&lib, index);
-        let keywords: Vec<&str> = ["FORWARD_BASE_PASS", "_MAIN_LIGHT_SHADOWS"]
+        let keywords: Vec<&str> = ["FORWARD_BASE_PASS", "_MAIN_LIGHT_SHADOWS", "_LIGHT_COOKIES"]
             .into_iter()
             .filter(|k| read.contains(*k))
             .collect();

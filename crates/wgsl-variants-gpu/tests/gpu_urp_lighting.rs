@@ -1,10 +1,10 @@
-//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (8)
-//! and `stencil_deferred/DirectionalLit` (28), drawn over G-buffers `universal_lit`'s
+//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (24)
+//! and `stencil_deferred/DirectionalLit` (52), drawn over G-buffers `universal_lit`'s
 //! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
 //! reference (`wgsl_variants_shaders::reference::urp::lighting`), each keyword proven to change at
 //! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
 //! the older URP's diffuse formula, the shadow fade dropped, the cascade selection ignored,
-//! the screen-space shadow read at another pixel)
+//! the screen-space shadow read at another pixel, the main light's cookie flipped)
 //! are caught where, and only where, the bug shows.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
@@ -27,7 +27,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 fn every_lighting_variant_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
-    for (pass, variants, keywords) in [("PunctualLit", 24, 5), ("DirectionalLit", 28, 7)] {
+    for (pass, variants, keywords) in [("PunctualLit", 24, 5), ("DirectionalLit", 52, 8)] {
         let Some(report) = run(&lib, pass) else {
             return;
         };
@@ -66,6 +66,32 @@ fn every_lighting_variant_matches_the_reference() {
         assert!(
             p.notes.iter().any(|n| n.contains(shadowed)),
             "some pixels must be shadowed: {report}"
+        );
+        assert_eq!(
+            p.notes
+                .iter()
+                .any(|n| n.contains("under the main light's cookie")),
+            pass == "DirectionalLit",
+            "the main light's cookie tints DirectionalLit's pixels only: {report}"
+        );
+    }
+}
+
+#[test]
+fn a_flipped_cookie_is_caught_only_under_the_main_lights_cookie() {
+    // The cookie read upside down: v from the other edge of the texture.
+    let Some(bad) = mismatching(
+        "universal/light_cookie.wgsl",
+        "let uv = (main_light_cookie.world_to_light * vec4f(p, 1.0)).xy * 0.5 + 0.5;",
+        "let uv = (main_light_cookie.world_to_light * vec4f(p, 1.0)).xy * vec2f(0.5, -0.5) + 0.5;",
+        "DirectionalLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(
+            k.contains("_LIGHT_COOKIES") && k.contains("_DEFERRED_MAIN_LIGHT"),
+            "{k}"
         );
     }
 }

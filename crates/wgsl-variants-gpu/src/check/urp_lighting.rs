@@ -17,11 +17,12 @@
 //! Lights: the rig's point, spot (inner angle [`SPOT_INNER_FRACTION`] of the outer one) and
 //! directional lights; `_DEFERRED_MAIN_LIGHT` draws the rig's `DIRECTIONAL` light as the main
 //! light (binding 7) and the `DIRECTIONAL_COOKIE` one's direction and colour otherwise (binding
-//! 5), with `_MAIN_LIGHT_SHADOWS` over the main light's map of [`super::screen_shadows`].
+//! 5), with `_MAIN_LIGHT_SHADOWS` over the main light's map of [`super::screen_shadows`], and
+//! with `_LIGHT_COOKIES` under `rig_cookie`'s cookie (bindings 20-22).
 
 use std::time::Instant;
 
-use glam::Vec3;
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4Swizzles};
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
@@ -44,6 +45,7 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
+use wgsl_variants_shaders::reference::urp::cookie::{CookieFormat, MainLightCookie};
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadows, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
@@ -172,6 +174,7 @@ struct LightingKeywords {
     additional_shadows: bool,
     oct: bool,
     layers: bool,
+    cookies: bool,
 }
 
 impl LightingKeywords {
@@ -198,6 +201,7 @@ impl LightingKeywords {
             "_ADDITIONAL_LIGHT_SHADOWS",
             "_GBUFFER_NORMALS_OCT",
             "_LIGHT_LAYERS",
+            "_LIGHT_COOKIES",
         ];
         if let Some(unknown) = names.iter().find(|n| !known.contains(n)) {
             return Err(format!("keyword {unknown} is unknown to the reference"));
@@ -210,6 +214,7 @@ impl LightingKeywords {
             additional_shadows: has("_ADDITIONAL_LIGHT_SHADOWS"),
             oct: has("_GBUFFER_NORMALS_OCT"),
             layers: has("_LIGHT_LAYERS"),
+            cookies: has("_LIGHT_COOKIES"),
         })
     }
 }
@@ -229,6 +234,7 @@ pub fn check_stencil_deferred(
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let fade = lighting_fade(rig, scene, main_shadow);
     let additional = additional_shadows(ctx, lib, scene, rig)?;
+    let cookie = rig_cookie(rig, scene)?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -248,6 +254,8 @@ pub fn check_stencil_deferred(
     // Comparisons in each light's shadow, and those with an outcome within a hair of flipping.
     let (mut shadowed, mut uncertain) = (0usize, 0usize);
     let (mut additional_shadowed, mut additional_uncertain) = (0usize, 0usize);
+    // Comparisons under the main light's cookie, and those on a texel's edge.
+    let (mut cookied, mut cookie_uncertain) = (0usize, 0usize);
     for choice in &choices {
         let variant = wgsl_variants::Variant {
             pass,
@@ -281,6 +289,7 @@ pub fn check_stencil_deferred(
                     (&light, k.main),
                     (main_shadow, &fade),
                     shadow_index.map(|i| (&additional, i)),
+                    (k.main && k.cookies).then_some(&cookie),
                     gbuffer.targets[3].clone(),
                 )?;
                 report.draws += 1;
@@ -337,17 +346,33 @@ pub fn check_stencil_deferred(
                         }
                         _ => (lo, hi),
                     };
-                    let [want_lo, want_hi] = [lo, hi].map(|shadow| {
-                        stored
-                            + stencil_deferred_light(
-                                &texel,
-                                p,
-                                scene.scene.camera_position,
-                                &light,
-                                shadow,
-                                layers,
-                            )
-                    });
+                    // GetStencilLight: the main light's colour times its cookie. The light is
+                    // linear in its colour and its attenuation, so the least and greatest
+                    // cookie and shadow bound it.
+                    let (tint_lo, tint_hi) = if k.main && k.cookies {
+                        let (a, b) = cookie.color(p);
+                        cookied += 1;
+                        cookie_uncertain += usize::from(a != b);
+                        (a, b)
+                    } else {
+                        (Vec3::ONE, Vec3::ONE)
+                    };
+                    let [want_lo, want_hi] =
+                        [(lo, tint_lo), (hi, tint_hi)].map(|(shadow, tint)| {
+                            let tinted = UrpLightParams {
+                                color: light.color * tint,
+                                ..light
+                            };
+                            stored
+                                + stencil_deferred_light(
+                                    &texel,
+                                    p,
+                                    scene.scene.camera_position,
+                                    &tinted,
+                                    shadow,
+                                    layers,
+                                )
+                        });
                     let px = &out[i * 4..i * 4 + 4];
                     let got = TargetFormat::Rg11b10Ufloat.decode_pixel_f32(px);
                     let want = within(got, want_lo.extend(0.0), want_hi.extend(0.0)).truncate();
@@ -377,6 +402,12 @@ pub fn check_stencil_deferred(
     if additional_shadowed > 0 {
         report.notes.push(format!(
             "{additional_shadowed} pixel comparisons in a point or spot light's own shadow (the additional lights' atlas: the point light hard over six cube-face slices, the spot light soft under _SHADOWS_SOFT), {additional_uncertain} with a tap or a cube face within a hair of flipping (compared within the interval of the outcomes)"
+        ));
+    }
+    if cookied > 0 {
+        report.notes.push(format!(
+            "{cookied} pixel comparisons under the main light's cookie (a {}×{} RGB cookie read nearest with repeat), {cookie_uncertain} with a coordinate within 1/64 texel of an edge (compared within the range of the texels)",
+            cookie.size.0, cookie.size.1
         ));
     }
     report.notes.push(format!(
@@ -440,6 +471,7 @@ pub(crate) fn light_gbuffer(
             (&light, main),
             (main_shadow, &fade),
             None,
+            None,
             gbuffer3,
         )?;
     }
@@ -449,8 +481,8 @@ pub(crate) fn light_gbuffer(
 /// Draws one lighting variant (`label`, `wgsl`) full-screen over `gbuffer` with `light` (the
 /// main light's binding when `main`), the main light's shadow map and, for a punctual light,
 /// the additional lights' shadows with the light's index in them (URP's `_ShadowLightIndex`),
-/// One/One onto `gbuffer3` (the GBuffer3 contents to start from); returns GBuffer3 after the
-/// draw.
+/// and the main light's cookie when given, One/One onto `gbuffer3` (the GBuffer3 contents to
+/// start from); returns GBuffer3 after the draw.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_light(
     ctx: &GpuContext,
@@ -461,6 +493,7 @@ pub(crate) fn draw_light(
     (light, main): (&UrpLightParams, bool),
     main_shadow: (&ScreenShadow, &UrpShadowFade),
     additional: Option<(&AdditionalAtlas, u32)>,
+    cookie: Option<&MainLightCookie>,
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
@@ -479,7 +512,83 @@ pub(crate) fn draw_light(
         job.resources
             .push(AdditionalAtlas::shadow_light_index(index));
     }
+    if let Some(cookie) = cookie {
+        job.resources.extend(cookie_resources(cookie));
+    }
     Ok(render(ctx, &job)?.remove(0))
+}
+
+/// Bindings 20-22 of `universal/light_cookie`: the `MainLightCookie` record, the cookie's
+/// `Rgba8Unorm` texture and a nearest sampler with repeat addressing (the one the reference
+/// reads as).
+pub(crate) fn cookie_resources(cookie: &MainLightCookie) -> Vec<BoundResource> {
+    vec![
+        BoundResource::new(0, 20, Resource::Uniform(cookie.uniform())),
+        BoundResource::new(
+            0,
+            21,
+            Resource::Texture2d {
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                width: cookie.size.0,
+                height: cookie.size.1,
+                data: cookie.bytes(),
+            },
+        ),
+        BoundResource::new(
+            0,
+            22,
+            Resource::SamplerAddressed {
+                nearest: true,
+                address_mode: wgpu::AddressMode::Repeat,
+            },
+        ),
+    ]
+}
+
+/// The main light's cookie of the lighting checks: a 4 × 4 RGB pattern projected along the
+/// rig's `DIRECTIONAL` light (the main light), its light-space square fitted around the
+/// positions the pass rebuilds from the rig's depth with a margin of a twentieth each side, so
+/// every texel lights some and their edges cross the picture.
+pub(crate) fn rig_cookie(rig: &LightRig, scene: &TestScene) -> Result<MainLightCookie, GpuError> {
+    let refused = |message: String| {
+        GpuError::from(CheckError::UnknownToReference {
+            variant: "stencil_deferred/DirectionalLit".to_owned(),
+            message,
+        })
+    };
+    let main = UrpLights::new(rig).params(UrpLightKind::Directional, true, MATCHING_LAYERS)?;
+    let to_light = main.direction.normalize();
+    let up = if to_light.y.abs() < 0.9 {
+        Vec3::Y
+    } else {
+        Vec3::X
+    };
+    let x = up.cross(to_light).normalize();
+    let y = to_light.cross(x);
+    let rotation = Mat4::from_mat3(Mat3::from_cols(x, y, to_light).transpose());
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for (px, py) in scene.pixels() {
+        let p = (rotation * rig.deferred_position(scene, px, py).extend(1.0)).xy();
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    if (hi - lo).min_element() <= 0.0 {
+        return Err(refused(format!(
+            "the positions span {lo} to {hi} across the light"
+        )));
+    }
+    let centre = (lo + hi) * 0.5;
+    let scale = Vec2::splat(2.0) / ((hi - lo) * 1.1);
+    let world_to_light = Mat4::from_scale(scale.extend(1.0))
+        * Mat4::from_translation(-centre.extend(0.0))
+        * rotation;
+    let texels = (0..4u8)
+        .flat_map(|ty| {
+            (0..4u8).map(move |tx| [70 + 60 * tx, 70 + 60 * ty, 250 - 40 * ((tx + ty) % 4), 255])
+        })
+        .collect();
+    MainLightCookie::new(world_to_light, texels, (4, 4), CookieFormat::Rgb)
+        .map_err(|e| refused(e.to_string()))
 }
 
 /// The rig's point and spot lights' shadows ([`rig_casting`]) for the lighting checks, their
@@ -758,6 +867,7 @@ pub fn compare_urp_volume(
         &gbuffer,
         (&light, false),
         (main_shadow, &fade),
+        None,
         None,
         initial.clone(),
     )?;

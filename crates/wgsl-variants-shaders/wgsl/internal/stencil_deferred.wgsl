@@ -22,15 +22,18 @@
 
 #pass DirectionalLit
 #tag UniversalMaterialType Lit
-// _DEFERRED_MAIN_LIGHT: this draw is the frame's main light (its own uniform, and its shadows);
-// the main light's shadow keywords change nothing without it, so they require it (URP strips
-// those variants instead).
+// _DEFERRED_MAIN_LIGHT: this draw is the frame's main light (its own uniform, its shadows and
+// its cookie); the main light's shadow keywords and _LIGHT_COOKIES change nothing without it
+// (URP's other directional lights take no cookie here), so they require it (URP strips those
+// variants instead).
 #pragma multi_compile _DIRECTIONAL
 #pragma multi_compile _ _DEFERRED_MAIN_LIGHT
 #pragma multi_compile _ _MAIN_LIGHT_SHADOWS _MAIN_LIGHT_SHADOWS_CASCADE _MAIN_LIGHT_SHADOWS_SCREEN
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _GBUFFER_NORMALS_OCT
 #pragma multi_compile _ _LIGHT_LAYERS
+#pragma multi_compile _ _LIGHT_COOKIES
+#pragma require _LIGHT_COOKIES _DEFERRED_MAIN_LIGHT
 #pragma require _MAIN_LIGHT_SHADOWS _DEFERRED_MAIN_LIGHT
 #pragma require _MAIN_LIGHT_SHADOWS_CASCADE _DEFERRED_MAIN_LIGHT
 #pragma require _MAIN_LIGHT_SHADOWS_SCREEN _DEFERRED_MAIN_LIGHT

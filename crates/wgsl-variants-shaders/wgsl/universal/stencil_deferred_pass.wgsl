@@ -14,7 +14,8 @@
 //               _MAIN_LIGHT_SHADOWS_CASCADE or _MAIN_LIGHT_SHADOWS_SCREEN; the sampler nearest,
 //               LessEqual, clamp to edge),
 //            17-19 the additional lights' shadows (universal/additional_light_shadow:
-//               _ADDITIONAL_LIGHT_SHADOWS)
+//               _ADDITIONAL_LIGHT_SHADOWS),
+//            20-22 the main light's cookie (universal/light_cookie: _LIGHT_COOKIES)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -28,6 +29,7 @@
 #import universal/lighting
 #import universal/main_light_shadow
 #import universal/additional_light_shadow
+#import universal/light_cookie
 
 @group(0) @binding(0) var gbuffer0: texture_2d<f32>;
 @group(0) @binding(1) var gbuffer1: texture_2d<f32>;
@@ -103,9 +105,15 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let s = urp_punctual_sample(l, p);
 #endif
     let attenuation = s.w * urp_deferred_shadow(p, pixel, flags, s.xyz);
+#if defined(_DEFERRED_MAIN_LIGHT) && defined(_LIGHT_COOKIES)
+    // GetStencilLight: the main light's colour times its cookie.
+    let color = l.color.rgb * urp_main_light_cookie(p);
+#else
+    let color = l.color.rgb;
+#endif
     let brdf = urp_brdf_from_gbuffer(g0.rgb, g1.rgb, g2.a, (flags & URP_FLAG_SPECULAR_SETUP) != 0u);
     let n = urp_unpack_normal(g2.rgb);
     let v = urp_safe_normalize(deferred_camera.position.xyz - p);
-    let c = urp_lighting_physically_based(brdf, l.color.rgb, attenuation, s.xyz, n, v, (flags & URP_FLAG_SPECULAR_HIGHLIGHTS_OFF) != 0u);
+    let c = urp_lighting_physically_based(brdf, color, attenuation, s.xyz, n, v, (flags & URP_FLAG_SPECULAR_HIGHLIGHTS_OFF) != 0u);
     return vec4f(c, 0.0);
 }

@@ -21,7 +21,8 @@
 //! | [`lighting`] | the `StencilDeferred` lighting passes: URP's attenuation and BRDF from the G-buffer |
 //! | [`forward`] | the `UniversalForward` pass: the surface lit by the main light, the additional lights and GI in one pass |
 //! | [`shadow`] | the ShadowCaster pass: URP's shadow bias and near-plane pancaking; the main light's map read |
-//! | [`additional_shadow`] | additional-light realtime shadows: the atlas slice (a point light's cube face), the coordinate, the tap (the shaders' side is not built yet) |
+//! | [`additional_shadow`] | additional-light realtime shadows: the atlas slice (a point light's cube face), the coordinate, the tap |
+//! | [`cookie`] | the main light's cookie: its projected coordinate, the texel a nearest sampler reads, the formats |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
 //! ```
@@ -43,6 +44,7 @@
 
 pub mod accuracy;
 pub mod additional_shadow;
+pub mod cookie;
 pub mod flags;
 pub mod forward;
 pub mod gbuffer;
