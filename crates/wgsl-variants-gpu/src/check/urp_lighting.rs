@@ -22,7 +22,7 @@
 
 use std::time::Instant;
 
-use glam::{Mat3, Mat4, Vec2, Vec3, Vec4Swizzles};
+use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
@@ -42,7 +42,7 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::light::{Light, LightType};
+use wgsl_variants_shaders::reference::light::{Light, LightType, look_at_rh};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
 use wgsl_variants_shaders::reference::urp::cookie::{CookieFormat, MainLightCookie};
@@ -557,15 +557,14 @@ pub(crate) fn rig_cookie(rig: &LightRig, scene: &TestScene) -> Result<MainLightC
         })
     };
     let main = UrpLights::new(rig).params(UrpLightKind::Directional, true, MATCHING_LAYERS)?;
+    // The light's frame: looking along the light, z towards it.
     let to_light = main.direction.normalize();
     let up = if to_light.y.abs() < 0.9 {
         Vec3::Y
     } else {
         Vec3::X
     };
-    let x = up.cross(to_light).normalize();
-    let y = to_light.cross(x);
-    let rotation = Mat4::from_mat3(Mat3::from_cols(x, y, to_light).transpose());
+    let rotation = look_at_rh(Vec3::ZERO, -to_light, up);
     let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
     for (px, py) in scene.pixels() {
         let p = (rotation * rig.deferred_position(scene, px, py).extend(1.0)).xy();

@@ -19,6 +19,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::brdf::{Brdf, direct};
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
+use super::texel;
 use super::vector::view_and_reflection;
 
 /// The light keywords of Unity's `multi_compile_lightpass` and `multi_compile_fwdadd`.
@@ -498,14 +499,8 @@ impl Cookie2d {
     /// assert_eq!(c.sample(Vec2::new(-0.2, 3.5)), 0.75); // repeat
     /// ```
     pub fn sample(&self, uv: Vec2) -> f32 {
-        let texel = |u: f32, size: u32| -> usize {
-            if !u.is_finite() {
-                return 0;
-            }
-            let f = u - u.floor();
-            ((f * size as f32) as usize).min(size as usize - 1)
-        };
-        let (x, y) = (texel(uv.x, self.width), texel(uv.y, self.height));
+        let x = texel::nearest_repeat(uv.x, self.width) as usize;
+        let y = texel::nearest_repeat(uv.y, self.height) as usize;
         self.alpha[y * self.width as usize + x]
     }
 
@@ -519,12 +514,7 @@ impl Cookie2d {
     /// assert!((c.edge_margin(Vec2::new(0.125, 0.1)) - 0.4).abs() < 1e-6);
     /// ```
     pub fn edge_margin(&self, uv: Vec2) -> f32 {
-        let m = |u: f32, size: u32| {
-            let t = u * size as f32;
-            let f = t - t.floor();
-            f.min(1.0 - f)
-        };
-        m(uv.x, self.width).min(m(uv.y, self.height))
+        texel::edge_distance(uv.x, self.width).min(texel::edge_distance(uv.y, self.height))
     }
 }
 

@@ -27,6 +27,7 @@
 //! | [`cascades`] | a directional light's 1, 2 or 4 shadow cascades: fitting, the atlas, cascade selection by split depths or spheres |
 //! | [`skybox`] | the background: Unity's `Skybox/Cubemap` (rotation, decode, tint, exposure) and the faces a filtered sample reads |
 //! | [`surface`] | keywords, material and texel inputs, and each pass at one pixel |
+//! | [`texel`] | nearest-texel addressing with repeat, and the texels an edge leaves undecided |
 //! | [`vector`] | `reflect` and the view and reflection directions |
 //! | [`urp`] | Unity URP's deferred G-buffer: octahedral normals, flags, sRGB, `Rg11b10Ufloat` |
 //!
@@ -60,6 +61,7 @@ pub mod shadow;
 pub mod shadow_fade;
 pub mod skybox;
 pub mod surface;
+pub mod texel;
 pub mod tolerance;
 pub mod urp;
 pub mod vector;

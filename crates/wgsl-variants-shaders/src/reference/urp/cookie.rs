@@ -18,6 +18,8 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
+use crate::reference::texel::nearest_repeat_within;
+
 /// How close to a texel's edge, in texels, a coordinate leaves the nearest texel undecided:
 /// the position rebuilt from a depth buffer and a GPU's fixed-point texel addressing (8
 /// fractional bits on the samplers these checks run on) each move it by less.
@@ -140,28 +142,12 @@ impl MainLightCookie {
     /// ```
     pub fn color(&self, p: Vec3) -> (Vec3, Vec3) {
         let uv = self.uv(p);
-        let candidates = |t: f32, size: u32| -> Vec<i64> {
-            let x = t * size as f32;
-            let base = x.floor();
-            let mut out = vec![base as i64];
-            let f = x - base;
-            if f < EDGE {
-                out.push(base as i64 - 1);
-            }
-            if f > 1.0 - EDGE {
-                out.push(base as i64 + 1);
-            }
-            out
-        };
         let (w, h) = self.size;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for y in candidates(uv.y, h) {
-            for x in candidates(uv.x, w) {
-                let (x, y) = (x.rem_euclid(i64::from(w)), y.rem_euclid(i64::from(h)));
-                let c = self
-                    .format
-                    .color(self.texels[(y * i64::from(w) + x) as usize]);
+        for y in nearest_repeat_within(uv.y, h, EDGE) {
+            for x in nearest_repeat_within(uv.x, w, EDGE) {
+                let c = self.format.color(self.texels[(y * w + x) as usize]);
                 lo = lo.min(c);
                 hi = hi.max(c);
             }
