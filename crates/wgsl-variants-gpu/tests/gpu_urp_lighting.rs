@@ -1,10 +1,11 @@
-//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (24)
+//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (48)
 //! and `stencil_deferred/DirectionalLit` (52), drawn over G-buffers `universal_lit`'s
 //! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
 //! reference (`wgsl_variants_shaders::reference::urp::lighting`), each keyword proven to change at
 //! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
 //! the older URP's diffuse formula, the shadow fade dropped, the cascade selection ignored,
-//! the screen-space shadow read at another pixel, the main light's cookie flipped)
+//! the screen-space shadow read at another pixel, the main light's cookie flipped, a spot's
+//! cookie flipped, a point light reading the spot's rect of the cookie atlas)
 //! are caught where, and only where, the bug shows.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
@@ -27,7 +28,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 fn every_lighting_variant_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
-    for (pass, variants, keywords) in [("PunctualLit", 24, 5), ("DirectionalLit", 52, 8)] {
+    for (pass, variants, keywords) in [("PunctualLit", 48, 6), ("DirectionalLit", 52, 8)] {
         let Some(report) = run(&lib, pass) else {
             return;
         };
@@ -74,6 +75,13 @@ fn every_lighting_variant_matches_the_reference() {
             pass == "DirectionalLit",
             "the main light's cookie tints DirectionalLit's pixels only: {report}"
         );
+        assert_eq!(
+            p.notes
+                .iter()
+                .any(|n| n.contains("under a point or spot light's cookie")),
+            pass == "PunctualLit",
+            "the atlas tints PunctualLit's pixels only: {report}"
+        );
     }
 }
 
@@ -93,6 +101,38 @@ fn a_flipped_cookie_is_caught_only_under_the_main_lights_cookie() {
             k.contains("_LIGHT_COOKIES") && k.contains("_DEFERRED_MAIN_LIGHT"),
             "{k}"
         );
+    }
+}
+
+#[test]
+fn a_flipped_spot_cookie_is_caught_only_under_the_spots_cookie() {
+    // The spot's cookie read upside down within its rect.
+    let Some(bad) = mismatching(
+        "universal/light_cookie.wgsl",
+        "saturate(q.xy / q.w * 0.5 + 0.5)",
+        "saturate(q.xy / q.w * vec2f(0.5, -0.5) + 0.5)",
+        "PunctualLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_LIGHT_COOKIES") && k.contains("_SPOT"), "{k}");
+    }
+}
+
+#[test]
+fn a_point_light_reading_the_spots_cookie_is_caught_only_for_the_point_light() {
+    // URP's _CookieLightIndex names the drawn light's entry; entry 1 is the spot's.
+    let Some(bad) = mismatching(
+        "universal/stencil_deferred_pass.wgsl",
+        "urp_point_light_cookie(cookie_light_index.x, p)",
+        "urp_point_light_cookie(1u, p)",
+        "PunctualLit",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_LIGHT_COOKIES") && k.contains("_POINT"), "{k}");
     }
 }
 

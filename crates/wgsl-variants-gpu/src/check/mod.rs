@@ -91,6 +91,7 @@ mod standard;
 pub mod urp;
 pub mod urp_additional_shadows;
 pub mod urp_caster;
+mod urp_cookies;
 mod urp_depth_only;
 pub mod urp_forward;
 pub mod urp_frame;

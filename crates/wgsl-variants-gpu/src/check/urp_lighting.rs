@@ -18,11 +18,13 @@
 //! directional lights; `_DEFERRED_MAIN_LIGHT` draws the rig's `DIRECTIONAL` light as the main
 //! light (binding 7) and the `DIRECTIONAL_COOKIE` one's direction and colour otherwise (binding
 //! 5), with `_MAIN_LIGHT_SHADOWS` over the main light's map of [`super::screen_shadows`], and
-//! with `_LIGHT_COOKIES` under `rig_cookie`'s cookie (bindings 20-22).
+//! with `_LIGHT_COOKIES` under `urp_cookies::main_light_cookie`'s cookie; the point and spot
+//! lights under `_LIGHT_COOKIES` read their rects of `urp_cookies::additional_light_cookies`'
+//! atlas.
 
 use std::time::Instant;
 
-use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
+use glam::Vec3;
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
@@ -35,6 +37,7 @@ use super::screen_masks::ScreenShadow;
 use super::shadows::within;
 use super::urp::{UrpScene, fade_across, main_shadow_resources};
 use super::urp_additional_shadows::{AdditionalAtlas, rig_casting};
+use super::urp_cookies::{DrawCookie, additional_light_cookies, main_light_cookie};
 use super::volumes::{LightPipelineInput, StencilScheme, render_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -42,10 +45,9 @@ use crate::{
     TargetFormat, render,
 };
 use wgsl_variants::Library;
-use wgsl_variants_shaders::reference::light::{Light, LightType, look_at_rh};
+use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
-use wgsl_variants_shaders::reference::urp::cookie::{CookieFormat, MainLightCookie};
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadows, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
@@ -234,7 +236,8 @@ pub fn check_stencil_deferred(
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let fade = lighting_fade(rig, scene, main_shadow);
     let additional = additional_shadows(ctx, lib, scene, rig)?;
-    let cookie = rig_cookie(rig, scene)?;
+    let cookie = main_light_cookie(rig, scene)?;
+    let atlas = additional_light_cookies(rig)?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -254,8 +257,9 @@ pub fn check_stencil_deferred(
     // Comparisons in each light's shadow, and those with an outcome within a hair of flipping.
     let (mut shadowed, mut uncertain) = (0usize, 0usize);
     let (mut additional_shadowed, mut additional_uncertain) = (0usize, 0usize);
-    // Comparisons under the main light's cookie, and those on a texel's edge.
-    let (mut cookied, mut cookie_uncertain) = (0usize, 0usize);
+    // Comparisons under a cookie, and those on a texel's edge: the main light's, then the
+    // point and spot lights'.
+    let mut cookied = [(0usize, 0usize); 2];
     for choice in &choices {
         let variant = wgsl_variants::Variant {
             pass,
@@ -270,11 +274,17 @@ pub fn check_stencil_deferred(
             })
         })?;
         let wgsl = lib.wgsl(&variant);
-        // The light's record in the additional shadows: the rig's point light, then its spot.
-        let shadow_index = match k.kind {
+        // The light's record in the additional lights' shadows and cookies: the rig's point
+        // light, then its spot (URP's _ShadowLightIndex and _CookieLightIndex).
+        let light_index = match k.kind {
             UrpLightKind::Point => Some(0),
             UrpLightKind::Spot => Some(1),
             UrpLightKind::Directional => None,
+        };
+        let draw_cookie = match (k.cookies, light_index) {
+            (false, _) => None,
+            (true, None) => k.main.then_some(DrawCookie::Main(&cookie)),
+            (true, Some(index)) => Some(DrawCookie::Additional(&atlas, index)),
         };
         let mut per_draw = Vec::new();
         for gbuffer in gbuffers.iter().filter(|g| g.oct == k.oct) {
@@ -288,8 +298,8 @@ pub fn check_stencil_deferred(
                     gbuffer,
                     (&light, k.main),
                     (main_shadow, &fade),
-                    shadow_index.map(|i| (&additional, i)),
-                    (k.main && k.cookies).then_some(&cookie),
+                    light_index.map(|i| (&additional, i)),
+                    draw_cookie,
                     gbuffer.targets[3].clone(),
                 )?;
                 report.draws += 1;
@@ -330,7 +340,7 @@ pub fn check_stencil_deferred(
                     shadowed += usize::from(hi < 1.0 && receives);
                     uncertain += usize::from(lo != hi && receives);
                     // A punctual light's own shadow (URP's AdditionalLightShadow, faded).
-                    let (lo, hi) = match shadow_index {
+                    let (lo, hi) = match light_index {
                         Some(index) if k.additional_shadows => {
                             let (to_light, _) = light.sample(p);
                             let (a, b) = additional.shadows.attenuation(
@@ -346,16 +356,18 @@ pub fn check_stencil_deferred(
                         }
                         _ => (lo, hi),
                     };
-                    // GetStencilLight: the main light's colour times its cookie. The light is
-                    // linear in its colour and its attenuation, so the least and greatest
-                    // cookie and shadow bound it.
-                    let (tint_lo, tint_hi) = if k.main && k.cookies {
-                        let (a, b) = cookie.color(p);
-                        cookied += 1;
-                        cookie_uncertain += usize::from(a != b);
-                        (a, b)
-                    } else {
-                        (Vec3::ONE, Vec3::ONE)
+                    // GetStencilLight: the light's colour times its cookie. The light is linear
+                    // in its colour and its attenuation, so the least and greatest cookie and
+                    // shadow bound it.
+                    let (tint_lo, tint_hi) = match draw_cookie {
+                        Some(c) => {
+                            let (a, b) = c.color(p);
+                            let count = &mut cookied[usize::from(light_index.is_some())];
+                            count.0 += 1;
+                            count.1 += usize::from(a != b);
+                            (a, b)
+                        }
+                        None => (Vec3::ONE, Vec3::ONE),
                     };
                     let [want_lo, want_hi] =
                         [(lo, tint_lo), (hi, tint_hi)].map(|(shadow, tint)| {
@@ -404,10 +416,16 @@ pub fn check_stencil_deferred(
             "{additional_shadowed} pixel comparisons in a point or spot light's own shadow (the additional lights' atlas: the point light hard over six cube-face slices, the spot light soft under _SHADOWS_SOFT), {additional_uncertain} with a tap or a cube face within a hair of flipping (compared within the interval of the outcomes)"
         ));
     }
-    if cookied > 0 {
+    if cookied[0].0 > 0 {
         report.notes.push(format!(
-            "{cookied} pixel comparisons under the main light's cookie (a {}×{} RGB cookie read nearest with repeat), {cookie_uncertain} with a coordinate within 1/64 texel of an edge (compared within the range of the texels)",
-            cookie.size.0, cookie.size.1
+            "{} pixel comparisons under the main light's cookie (a {}×{} RGB cookie read nearest with repeat), {} with a coordinate within 1/64 texel of an edge (compared within the range of the texels)",
+            cookied[0].0, cookie.texture.size.0, cookie.texture.size.1, cookied[0].1
+        ));
+    }
+    if cookied[1].0 > 0 {
+        report.notes.push(format!(
+            "{} pixel comparisons under a point or spot light's cookie (their 8×8 rects of a {}×{} atlas read in alpha, nearest, clamped; the spot through its perspective, the point light through the octahedral map), {} with a coordinate within 1/64 texel of an edge (compared within the range of the texels)",
+            cookied[1].0, atlas.atlas.size.0, atlas.atlas.size.1, cookied[1].1
         ));
     }
     report.notes.push(format!(
@@ -481,7 +499,7 @@ pub(crate) fn light_gbuffer(
 /// Draws one lighting variant (`label`, `wgsl`) full-screen over `gbuffer` with `light` (the
 /// main light's binding when `main`), the main light's shadow map and, for a punctual light,
 /// the additional lights' shadows with the light's index in them (URP's `_ShadowLightIndex`),
-/// and the main light's cookie when given, One/One onto `gbuffer3` (the GBuffer3 contents to
+/// and the light's cookie when given, One/One onto `gbuffer3` (the GBuffer3 contents to
 /// start from); returns GBuffer3 after the draw.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_light(
@@ -493,7 +511,7 @@ pub(crate) fn draw_light(
     (light, main): (&UrpLightParams, bool),
     main_shadow: (&ScreenShadow, &UrpShadowFade),
     additional: Option<(&AdditionalAtlas, u32)>,
-    cookie: Option<&MainLightCookie>,
+    cookie: Option<DrawCookie<'_>>,
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
@@ -513,81 +531,9 @@ pub(crate) fn draw_light(
             .push(AdditionalAtlas::shadow_light_index(index));
     }
     if let Some(cookie) = cookie {
-        job.resources.extend(cookie_resources(cookie));
+        job.resources.extend(cookie.resources());
     }
     Ok(render(ctx, &job)?.remove(0))
-}
-
-/// Bindings 20-22 of `universal/light_cookie`: the `MainLightCookie` record, the cookie's
-/// `Rgba8Unorm` texture and a nearest sampler with repeat addressing (the one the reference
-/// reads as).
-pub(crate) fn cookie_resources(cookie: &MainLightCookie) -> Vec<BoundResource> {
-    vec![
-        BoundResource::new(0, 20, Resource::Uniform(cookie.uniform())),
-        BoundResource::new(
-            0,
-            21,
-            Resource::Texture2d {
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                width: cookie.size.0,
-                height: cookie.size.1,
-                data: cookie.bytes(),
-            },
-        ),
-        BoundResource::new(
-            0,
-            22,
-            Resource::SamplerAddressed {
-                nearest: true,
-                address_mode: wgpu::AddressMode::Repeat,
-            },
-        ),
-    ]
-}
-
-/// The main light's cookie of the lighting checks: a 4 × 4 RGB pattern projected along the
-/// rig's `DIRECTIONAL` light (the main light), its light-space square fitted around the
-/// positions the pass rebuilds from the rig's depth with a margin of a twentieth each side, so
-/// every texel lights some and their edges cross the picture.
-pub(crate) fn rig_cookie(rig: &LightRig, scene: &TestScene) -> Result<MainLightCookie, GpuError> {
-    let refused = |message: String| {
-        GpuError::from(CheckError::UnknownToReference {
-            variant: "stencil_deferred/DirectionalLit".to_owned(),
-            message,
-        })
-    };
-    let main = UrpLights::new(rig).params(UrpLightKind::Directional, true, MATCHING_LAYERS)?;
-    // The light's frame: looking along the light, z towards it.
-    let to_light = main.direction.normalize();
-    let up = if to_light.y.abs() < 0.9 {
-        Vec3::Y
-    } else {
-        Vec3::X
-    };
-    let rotation = look_at_rh(Vec3::ZERO, -to_light, up);
-    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
-    for (px, py) in scene.pixels() {
-        let p = (rotation * rig.deferred_position(scene, px, py).extend(1.0)).xy();
-        lo = lo.min(p);
-        hi = hi.max(p);
-    }
-    if (hi - lo).min_element() <= 0.0 {
-        return Err(refused(format!(
-            "the positions span {lo} to {hi} across the light"
-        )));
-    }
-    let centre = (lo + hi) * 0.5;
-    let scale = Vec2::splat(2.0) / ((hi - lo) * 1.1);
-    let world_to_light = Mat4::from_scale(scale.extend(1.0))
-        * Mat4::from_translation(-centre.extend(0.0))
-        * rotation;
-    let texels = (0..4u8)
-        .flat_map(|ty| {
-            (0..4u8).map(move |tx| [70 + 60 * tx, 70 + 60 * ty, 250 - 40 * ((tx + ty) % 4), 255])
-        })
-        .collect();
-    MainLightCookie::new(world_to_light, texels, (4, 4), CookieFormat::Rgb)
-        .map_err(|e| refused(e.to_string()))
 }
 
 /// The rig's point and spot lights' shadows ([`rig_casting`]) for the lighting checks, their

@@ -19,7 +19,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::brdf::{Brdf, direct};
 use super::cube::CubeFaces;
 use super::gbuffer::{GBuffer, decode_normal};
-use super::texel;
+use super::texel::{self, Address};
 use super::vector::view_and_reflection;
 
 /// The light keywords of Unity's `multi_compile_lightpass` and `multi_compile_fwdadd`.
@@ -499,8 +499,8 @@ impl Cookie2d {
     /// assert_eq!(c.sample(Vec2::new(-0.2, 3.5)), 0.75); // repeat
     /// ```
     pub fn sample(&self, uv: Vec2) -> f32 {
-        let x = texel::nearest_repeat(uv.x, self.width) as usize;
-        let y = texel::nearest_repeat(uv.y, self.height) as usize;
+        let x = texel::nearest(uv.x, self.width, Address::Repeat) as usize;
+        let y = texel::nearest(uv.y, self.height, Address::Repeat) as usize;
         self.alpha[y * self.width as usize + x]
     }
 

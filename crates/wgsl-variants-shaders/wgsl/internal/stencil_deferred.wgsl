@@ -11,11 +11,13 @@
 #tag UniversalMaterialType Lit
 // _ADDITIONAL_LIGHT_SHADOWS: the light's shadow from the additional lights' atlas; soft per
 // light under _SHADOWS_SOFT, which changes nothing without it (URP strips those variants).
+// _LIGHT_COOKIES: the light's colour times its cookie, its rect of the additional lights' atlas.
 #pragma multi_compile _POINT _SPOT
 #pragma multi_compile _ _ADDITIONAL_LIGHT_SHADOWS
 #pragma multi_compile _ _SHADOWS_SOFT
 #pragma multi_compile _ _GBUFFER_NORMALS_OCT
 #pragma multi_compile _ _LIGHT_LAYERS
+#pragma multi_compile _ _LIGHT_COOKIES
 #pragma require _SHADOWS_SOFT _ADDITIONAL_LIGHT_SHADOWS
 #import universal/stencil_deferred_pass
 #endpass

@@ -15,7 +15,12 @@
 //               LessEqual, clamp to edge),
 //            17-19 the additional lights' shadows (universal/additional_light_shadow:
 //               _ADDITIONAL_LIGHT_SHADOWS),
-//            20-22 the main light's cookie (universal/light_cookie: _LIGHT_COOKIES)
+//            9 cookie_light_index (vec4u, x: URP's _CookieLightIndex, this light's record in
+//              additional_light_cookies; _LIGHT_COOKIES without _DEFERRED_MAIN_LIGHT),
+//            20-22 the main light's cookie (universal/light_cookie: _LIGHT_COOKIES with
+//               _DEFERRED_MAIN_LIGHT),
+//            23-25 the additional lights' cookie atlas (universal/light_cookie: _LIGHT_COOKIES
+//               with _POINT or _SPOT)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -47,6 +52,9 @@
 #endif
 #if defined(_ADDITIONAL_LIGHT_SHADOWS)
 @group(0) @binding(8) var<uniform> shadow_light_index: vec4u;
+#endif
+#if defined(_LIGHT_COOKIES) && !defined(_DEFERRED_MAIN_LIGHT)
+@group(0) @binding(9) var<uniform> cookie_light_index: vec4u;
 #endif
 
 @vertex
@@ -108,6 +116,12 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
 #if defined(_DEFERRED_MAIN_LIGHT) && defined(_LIGHT_COOKIES)
     // GetStencilLight: the main light's colour times its cookie.
     let color = l.color.rgb * urp_main_light_cookie(p);
+#elif defined(_SPOT) && defined(_LIGHT_COOKIES)
+    // A punctual light's colour times its rect of the atlas (no all-zero test: the keyword
+    // says the light has a cookie).
+    let color = l.color.rgb * urp_spot_light_cookie(cookie_light_index.x, p);
+#elif defined(_POINT) && defined(_LIGHT_COOKIES)
+    let color = l.color.rgb * urp_point_light_cookie(cookie_light_index.x, p);
 #else
     let color = l.color.rgb;
 #endif

@@ -22,7 +22,7 @@
 //! | [`forward`] | the `UniversalForward` pass: the surface lit by the main light, the additional lights and GI in one pass |
 //! | [`shadow`] | the ShadowCaster pass: URP's shadow bias and near-plane pancaking; the main light's map read |
 //! | [`additional_shadow`] | additional-light realtime shadows: the atlas slice (a point light's cube face), the coordinate, the tap |
-//! | [`cookie`] | the main light's cookie: its projected coordinate, the texel a nearest sampler reads, the formats |
+//! | [`cookie`] | light cookies: the main light's and the additional lights' atlas (spot perspective, point octahedral), the texel a nearest sampler reads, the formats |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
 //! ```

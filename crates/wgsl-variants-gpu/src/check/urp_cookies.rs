@@ -1,0 +1,198 @@
+//! URP's light cookies in the lighting checks (`_LIGHT_COOKIES`): the main light's cookie
+//! ([`main_light_cookie`], `universal/light_cookie`'s bindings 20-22) and the additional lights'
+//! atlas ([`additional_light_cookies`], bindings 23-25, and the drawn light's index at 9, URP's
+//! `_CookieLightIndex`), bound with nearest samplers (the main light's repeating, the atlas
+//! clamped to its edges) as the reference, [`wgsl_variants_shaders::reference::urp::cookie`],
+//! reads them.
+
+use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
+
+use super::rig::LightRig;
+use super::scene::TestScene;
+use crate::{BoundResource, CheckError, GpuError, Resource};
+use wgsl_variants_shaders::reference::light::{Light, look_at_rh};
+use wgsl_variants_shaders::reference::urp::cookie::{
+    AdditionalLightCookie, AdditionalLightCookies, CookieFormat, CookieProjection, CookieTexture,
+    MainLightCookie,
+};
+
+/// The cookie a lighting draw binds.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum DrawCookie<'a> {
+    /// The main light's (bindings 20-22).
+    Main(&'a MainLightCookie),
+    /// The additional lights' atlas (bindings 23-25) and the drawn light's index in it.
+    Additional(&'a AdditionalLightCookies, u32),
+}
+
+impl DrawCookie<'_> {
+    /// The bindings of `universal/light_cookie` (and the pass's `cookie_light_index`) for this
+    /// cookie.
+    pub(crate) fn resources(self) -> Vec<BoundResource> {
+        match self {
+            DrawCookie::Main(cookie) => texture_resources(
+                [20, 21, 22],
+                cookie.uniform(),
+                &cookie.texture,
+                wgpu::AddressMode::Repeat,
+            ),
+            DrawCookie::Additional(cookies, index) => {
+                let mut out = texture_resources(
+                    [23, 24, 25],
+                    cookies.uniform(),
+                    &cookies.atlas,
+                    wgpu::AddressMode::ClampToEdge,
+                );
+                let record = [index, 0, 0, 0].into_iter().flat_map(u32::to_le_bytes);
+                out.push(BoundResource::new(
+                    0,
+                    9,
+                    Resource::Uniform(record.collect()),
+                ));
+                out
+            }
+        }
+    }
+
+    /// The colour the cookie multiplies the light's by at `p`, as a range (the reference's).
+    pub(crate) fn color(self, p: Vec3) -> (Vec3, Vec3) {
+        match self {
+            DrawCookie::Main(cookie) => cookie.color(p),
+            DrawCookie::Additional(cookies, index) => cookies.color(index as usize, p),
+        }
+    }
+}
+
+/// A record at `bindings[0]`, the texture (`Rgba8Unorm`) at `bindings[1]` and a nearest sampler
+/// with `address_mode` at `bindings[2]`.
+fn texture_resources(
+    bindings: [u32; 3],
+    record: Vec<u8>,
+    texture: &CookieTexture,
+    address_mode: wgpu::AddressMode,
+) -> Vec<BoundResource> {
+    vec![
+        BoundResource::new(0, bindings[0], Resource::Uniform(record)),
+        BoundResource::new(
+            0,
+            bindings[1],
+            Resource::Texture2d {
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                width: texture.size.0,
+                height: texture.size.1,
+                data: texture.bytes(),
+            },
+        ),
+        BoundResource::new(
+            0,
+            bindings[2],
+            Resource::SamplerAddressed {
+                nearest: true,
+                address_mode,
+            },
+        ),
+    ]
+}
+
+fn refused(variant: &str, message: String) -> GpuError {
+    GpuError::from(CheckError::UnknownToReference {
+        variant: variant.to_owned(),
+        message,
+    })
+}
+
+/// The main light's cookie of the lighting checks: a 4 × 4 RGB pattern projected along the
+/// rig's `DIRECTIONAL` light (the main light), its light-space square fitted around the
+/// positions the pass rebuilds from the rig's depth with a margin of a twentieth each side, so
+/// every texel lights some and their edges cross the picture.
+pub(crate) fn main_light_cookie(
+    rig: &LightRig,
+    scene: &TestScene,
+) -> Result<MainLightCookie, GpuError> {
+    let what = "stencil_deferred/DirectionalLit";
+    let main = rig
+        .directional_light
+        .params()
+        .map_err(|e| refused(what, e.to_string()))?;
+    // The light's frame: looking along the light, z towards it.
+    let up = if main.to_light.y.abs() < 0.9 {
+        Vec3::Y
+    } else {
+        Vec3::X
+    };
+    let rotation = look_at_rh(Vec3::ZERO, -main.to_light, up);
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for (px, py) in scene.pixels() {
+        let p = (rotation * rig.deferred_position(scene, px, py).extend(1.0)).xy();
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    if (hi - lo).min_element() <= 0.0 {
+        return Err(refused(
+            what,
+            format!("the positions span {lo} to {hi} across the light"),
+        ));
+    }
+    let centre = (lo + hi) * 0.5;
+    let scale = Vec2::splat(2.0) / ((hi - lo) * 1.1);
+    let world_to_light = Mat4::from_scale(scale.extend(1.0))
+        * Mat4::from_translation(-centre.extend(0.0))
+        * rotation;
+    let texels = (0..4u8)
+        .flat_map(|ty| {
+            (0..4u8).map(move |tx| [70 + 60 * tx, 70 + 60 * ty, 250 - 40 * ((tx + ty) % 4), 255])
+        })
+        .collect();
+    let texture = CookieTexture::new(texels, (4, 4), CookieFormat::Rgb)
+        .map_err(|e| refused(what, e.to_string()))?;
+    Ok(MainLightCookie {
+        world_to_light,
+        texture,
+    })
+}
+
+/// Width and height of the additional lights' atlas in texels: four 8 × 8 rects.
+pub const ATLAS_SIZE: u32 = 16;
+
+/// The additional lights' cookies of the lighting checks: a 16 × 16 atlas read in its alpha
+/// channel (its rgb differs, so reading the wrong channels shows), the rig's point light
+/// (URP's light index 0) in its lower-left quarter and the spot (index 1) in its upper-right one,
+/// the other two quarters different again (a light reading outside its rect shows). Each
+/// light's `world_to_light` is the built-in light's (`LightParams::world_to_light`: the spot's
+/// perspective over its cone's square, the point light's frame), as URP's.
+pub(crate) fn additional_light_cookies(rig: &LightRig) -> Result<AdditionalLightCookies, GpuError> {
+    let what = "stencil_deferred/PunctualLit";
+    let world_to_light = |light: &Light| {
+        light
+            .params()
+            .map(|p| p.world_to_light)
+            .map_err(|e| refused(what, e.to_string()))
+    };
+    let texels = (0..ATLAS_SIZE)
+        .flat_map(|y| {
+            (0..ATLAS_SIZE).map(move |x| {
+                let alpha = 60 + ((x * 7 + y * 13) % 16) * 12;
+                [
+                    (255 - alpha) as u8,
+                    (x * 16) as u8,
+                    (y * 16) as u8,
+                    alpha as u8,
+                ]
+            })
+        })
+        .collect();
+    let atlas = CookieTexture::new(texels, (ATLAS_SIZE, ATLAS_SIZE), CookieFormat::Alpha)
+        .map_err(|e| refused(what, e.to_string()))?;
+    let point = AdditionalLightCookie {
+        world_to_light: world_to_light(&rig.point_light)?,
+        uv_rect: Vec4::new(0.5, 0.5, 0.0, 0.0),
+        projection: CookieProjection::Point,
+    };
+    let spot = AdditionalLightCookie {
+        world_to_light: world_to_light(&rig.spot_light)?,
+        uv_rect: Vec4::new(0.5, 0.5, 0.5, 0.5),
+        projection: CookieProjection::Spot,
+    };
+    AdditionalLightCookies::new(atlas, vec![Some(point), Some(spot)])
+        .map_err(|e| refused(what, e.to_string()))
+}
