@@ -5,7 +5,7 @@
 //!
 //! CI checks the covering snapshots of every pass and the manifest's lines of the passes under
 //! 20,000 variants (on one thread and on the default pool); the whole manifest, which compiles
-//! every distinct text of the full space (247,222), is [`full_space_manifest`] (ignored:
+//! every distinct text of the full space (327,094), is [`full_space_manifest`] (ignored:
 //! minutes). The main job's figures (`scripts/figures.sh check`) hold the manifest's variant and
 //! distinct counts of every pass to the main job's.
 
@@ -33,7 +33,7 @@ fn covering_snapshots_of_every_pass() {
 }
 
 /// `assert_variant_snapshots!` over the bundled library: the covering snapshots and the
-/// manifest of all 430,604 variants. About 6 minutes on 2 cores (the fresh-clone CI run of
+/// manifest of all 627,212 variants. About 6 minutes on 2 cores (the fresh-clone CI run of
 /// 2026-11-29, when this was CI's form):
 /// `cargo test --release --ignore-rust-version --test snapshots -- --ignored`.
 #[test]
@@ -148,7 +148,7 @@ fn manifest_names_every_pass_with_its_size() {
 /// the committed manifest snapshot, so the output does not depend on the thread count. On
 /// every bundled pass under 20,000 variants (the largest, `standard/ForwardAdd`, 18,432): each
 /// is split between threads the same way as a larger one, and the four larger passes (49,152
-/// to 196,608 variants) compile 233,728 distinct texts, the full-space test's work.
+/// to 393,216 variants) compile 313,600 distinct texts, the full-space test's work.
 #[test]
 fn canonical_output_is_deterministic_across_thread_counts() {
     let lib = wgsl_variants_shaders::library().unwrap();

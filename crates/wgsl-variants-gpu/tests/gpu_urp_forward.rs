@@ -7,8 +7,9 @@
 //! multiplied by the diffuse colour, light layers ignored by the per-pixel loop, the
 //! subtractive mix's shadow strength wrong, the shadow fade dropped, the cascade selection
 //! ignored, the screen-space shadow read at another pixel, a point light's shadow read from
-//! the opposite cube face, a hard light filtered as soft, the additional lights' fade dropped)
-//! caught where, and only where, the bug shows. The full space (196,608 variants) is the
+//! the opposite cube face, a hard light filtered as soft, the additional lights' fade dropped,
+//! the main light's cookie dropped, a light without a cookie reading the atlas) caught where,
+//! and only where, the bug shows. The full space (393,216 variants) is the
 //! ignored test `every_universal_forward_variant_matches_the_reference`
 //! (`cargo test --release -p wgsl-variants-gpu --test gpu_urp_forward -- --ignored`).
 //!
@@ -42,8 +43,8 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
     assert!(p.discarded_compared > 0, "the alpha test discarded nothing");
     // Every option but the first of each set: 10 material keywords, _MAIN_LIGHT_SHADOWS,
     // _MAIN_LIGHT_SHADOWS_CASCADE and _MAIN_LIGHT_SHADOWS_SCREEN, _SHADOWS_SOFT, the two
-    // additional-light options, their shadows, _LIGHT_LAYERS, subtractive, lightmap.
-    assert_eq!(p.keywords.len(), 20);
+    // additional-light options, their shadows, _LIGHT_LAYERS, subtractive, lightmap, cookies.
+    assert_eq!(p.keywords.len(), 21);
     assert!(p.untested_keywords.is_empty(), "{:?}", p.untested_keywords);
     assert!(
         p.keywords.iter().all(|k| k.pairs_changed > 0),
@@ -64,6 +65,14 @@ fn assert_passes(report: &CheckReport, at_least: usize) {
                 && !n.contains("the spot light's 0")),
         "some pixels must be in the additional lights' shadows: {report}"
     );
+    assert!(
+        p.notes
+            .iter()
+            .any(|n| n.contains("cookies: the main light's reads")
+                && !n.contains("reads 0 distinct")
+                && !n.contains("reads 1 distinct")),
+        "the main light's cookie must vary over the quad: {report}"
+    );
     assert!(report.passed());
 }
 
@@ -76,16 +85,53 @@ fn covering_set_of_universal_forward_matches_the_reference() {
     let pass = lib.pass("universal_lit", "UniversalForward").unwrap();
     let cover = Space::full(pass).covering(3).unwrap().len();
     assert_passes(&report, cover);
-    assert!(report.passes[0].variants_run <= cover + 20);
+    assert!(report.passes[0].variants_run <= cover + 21);
 }
 
 #[test]
-#[ignore = "196,608 variants: run with --ignored (docs/urp.md gives the time)"]
+#[ignore = "393,216 variants: run with --ignored (docs/urp.md gives the time)"]
 fn every_universal_forward_variant_matches_the_reference() {
     let Some(report) = run(&wgsl_variants_shaders::library().unwrap(), true) else {
         return;
     };
-    assert_passes(&report, 196_608);
+    assert_passes(&report, 393_216);
+}
+
+#[test]
+fn the_main_lights_cookie_dropped_is_caught_only_with_cookies() {
+    // GetMainLight without SampleMainLightCookie.
+    let Some(bad) = mismatching(
+        "universal/lit_forward_pass.wgsl",
+        "let main_color = lighting.main_light_color.rgb * urp_main_light_cookie(p);",
+        "let main_color = lighting.main_light_color.rgb;",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_LIGHT_COOKIES"), "{k}");
+    }
+}
+
+#[test]
+fn a_light_without_a_cookie_reading_the_atlas_is_caught_only_where_it_lights() {
+    // SampleAdditionalLightCookie's all-zero test dropped: the second point light (no cookie,
+    // a rect of zeros) reads the atlas's first texel. It lights the quad per pixel only
+    // without _LIGHT_LAYERS (its layer is not the mesh's).
+    let Some(bad) = mismatching(
+        "universal/light_cookie.wgsl",
+        "if all(additional_light_cookies.atlas_uv_rect[light] == vec4f(0.0)) {",
+        "if additional_light_cookies.atlas_uv_rect[light].x < 0.0 {",
+    ) else {
+        return;
+    };
+    for k in &bad {
+        assert!(k.contains("_LIGHT_COOKIES"), "{k}");
+        let per_pixel = k
+            .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .any(|t| t == "_ADDITIONAL_LIGHTS");
+        assert!(per_pixel, "{k}");
+        assert!(!k.contains("_LIGHT_LAYERS"), "{k}");
+    }
 }
 
 /// Runs the forward pass's default selection over the bundled library with one planted bug

@@ -8,7 +8,6 @@
 use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 use super::rig::LightRig;
-use super::scene::TestScene;
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::light::{Light, look_at_rh};
 use wgsl_variants_shaders::reference::urp::cookie::{
@@ -30,19 +29,9 @@ impl DrawCookie<'_> {
     /// cookie.
     pub(crate) fn resources(self) -> Vec<BoundResource> {
         match self {
-            DrawCookie::Main(cookie) => texture_resources(
-                [20, 21, 22],
-                cookie.uniform(),
-                &cookie.texture,
-                wgpu::AddressMode::Repeat,
-            ),
+            DrawCookie::Main(cookie) => main_resources(cookie),
             DrawCookie::Additional(cookies, index) => {
-                let mut out = texture_resources(
-                    [23, 24, 25],
-                    cookies.uniform(),
-                    &cookies.atlas,
-                    wgpu::AddressMode::ClampToEdge,
-                );
+                let mut out = atlas_resources(cookies);
                 let record = [index, 0, 0, 0].into_iter().flat_map(u32::to_le_bytes);
                 out.push(BoundResource::new(
                     0,
@@ -61,6 +50,28 @@ impl DrawCookie<'_> {
             DrawCookie::Additional(cookies, index) => cookies.color(index as usize, p),
         }
     }
+}
+
+/// Bindings 20-22: the main light's `MainLightCookie` record, its texture and a nearest sampler
+/// with repeat addressing.
+pub(crate) fn main_resources(cookie: &MainLightCookie) -> Vec<BoundResource> {
+    texture_resources(
+        [20, 21, 22],
+        cookie.uniform(),
+        &cookie.texture,
+        wgpu::AddressMode::Repeat,
+    )
+}
+
+/// Bindings 23-25: the `AdditionalLightCookies` record, the atlas and a nearest sampler clamped
+/// to the edges.
+pub(crate) fn atlas_resources(cookies: &AdditionalLightCookies) -> Vec<BoundResource> {
+    texture_resources(
+        [23, 24, 25],
+        cookies.uniform(),
+        &cookies.atlas,
+        wgpu::AddressMode::ClampToEdge,
+    )
 }
 
 /// A record at `bindings[0]`, the texture (`Rgba8Unorm`) at `bindings[1]` and a nearest sampler
@@ -101,15 +112,15 @@ fn refused(variant: &str, message: String) -> GpuError {
     })
 }
 
-/// The main light's cookie of the lighting checks: a 4 × 4 RGB pattern projected along the
-/// rig's `DIRECTIONAL` light (the main light), its light-space square fitted around the
-/// positions the pass rebuilds from the rig's depth with a margin of a twentieth each side, so
-/// every texel lights some and their edges cross the picture.
+/// The main light's cookie of the checks: a 4 × 4 RGB pattern projected along the rig's
+/// `DIRECTIONAL` light (the main light), its light-space square fitted around `positions` (the
+/// check's receivers) with a margin of a twentieth each side, so every texel lights some and
+/// their edges cross the picture. `what` names the pass in a refusal.
 pub(crate) fn main_light_cookie(
     rig: &LightRig,
-    scene: &TestScene,
+    positions: &[Vec3],
+    what: &str,
 ) -> Result<MainLightCookie, GpuError> {
-    let what = "stencil_deferred/DirectionalLit";
     let main = rig
         .directional_light
         .params()
@@ -122,8 +133,8 @@ pub(crate) fn main_light_cookie(
     };
     let rotation = look_at_rh(Vec3::ZERO, -main.to_light, up);
     let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
-    for (px, py) in scene.pixels() {
-        let p = (rotation * rig.deferred_position(scene, px, py).extend(1.0)).xy();
+    for p in positions {
+        let p = (rotation * p.extend(1.0)).xy();
         lo = lo.min(p);
         hi = hi.max(p);
     }
@@ -159,9 +170,12 @@ pub const ATLAS_SIZE: u32 = 16;
 /// (URP's light index 0) in its lower-left quarter and the spot (index 1) in its upper-right one,
 /// the other two quarters different again (a light reading outside its rect shows). Each
 /// light's `world_to_light` is the built-in light's (`LightParams::world_to_light`: the spot's
-/// perspective over its cone's square, the point light's frame), as URP's.
-pub(crate) fn additional_light_cookies(rig: &LightRig) -> Result<AdditionalLightCookies, GpuError> {
-    let what = "stencil_deferred/PunctualLit";
+/// perspective over its cone's square, the point light's frame), as URP's. Index 2 and on have
+/// no cookie (an all-zero rect). `what` names the pass in a refusal.
+pub(crate) fn additional_light_cookies(
+    rig: &LightRig,
+    what: &str,
+) -> Result<AdditionalLightCookies, GpuError> {
     let world_to_light = |light: &Light| {
         light
             .params()

@@ -15,7 +15,12 @@
 //! the occluders' shadows from [`super::urp_additional_shadows`]'s atlas, the second point
 //! light casts none; their fade ramps across the pixels they shadow. Where a shadow-map tap at
 //! a pixel is within a hair of flipping (or a point light's receiver within a hair of another
-//! cube face), the texel is compared within the interval of both outcomes.
+//! cube face), the texel is compared within the interval of both outcomes. `_LIGHT_COOKIES`:
+//! the main light's cookie fitted around the quad (`urp_cookies::main_light_cookie`)
+//! and the atlas of the lighting check (`urp_cookies::additional_light_cookies`): the
+//! point and the spot light read their rects, the second point light has none (an all-zero
+//! rect: white); where a cookie coordinate is within 1/64 texel of an edge, the texel is
+//! compared within the outcomes of the texels it may read.
 
 use glam::{Vec3, Vec4};
 
@@ -30,6 +35,9 @@ use super::urp::{
     main_shadow_resources,
 };
 use super::urp_additional_shadows::{AdditionalAtlas, rig_casting};
+use super::urp_cookies::{
+    additional_light_cookies, atlas_resources, main_light_cookie, main_resources,
+};
 use super::urp_lighting::{
     MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, shadowed, spot_inner_degrees,
 };
@@ -39,9 +47,12 @@ use crate::{
 use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
 use wgsl_variants_shaders::reference::urp::additional_shadow::cube_map_face_id;
+use wgsl_variants_shaders::reference::urp::cookie::{
+    AdditionalLightCookies, MainLightCookie, range,
+};
 use wgsl_variants_shaders::reference::urp::forward::{
-    MainLightShadow, MainLightShadows, UrpForwardKeywords, UrpForwardLights, UrpShadowFade,
-    shade_forward, vertex_lighting,
+    CookieTints, MainLightShadow, MainLightShadows, UrpForwardKeywords, UrpForwardLights,
+    UrpShadowFade, shade_forward, vertex_lighting,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
 use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
@@ -63,6 +74,10 @@ pub struct UrpForwardScene {
     /// The additional lights' shadows (`_ADDITIONAL_LIGHT_SHADOWS`), their fade ramped across
     /// the pixels they shadow.
     pub additional_shadows: AdditionalAtlas,
+    /// The main light's cookie (`_LIGHT_COOKIES`), fitted around the quad.
+    pub main_cookie: MainLightCookie,
+    /// The additional lights' cookies (`_LIGHT_COOKIES`): the point and the spot light's rects.
+    pub cookies: AdditionalLightCookies,
 }
 
 impl UrpForwardScene {
@@ -114,12 +129,15 @@ impl UrpForwardScene {
         )?;
         let in_shadow: Vec<Vec3> = (0..2).flat_map(|i| atlas.shadowed(i, &positions)).collect();
         let additional_shadows = atlas.faded(fade_across(&in_shadow, camera));
+        let what = "universal_lit/UniversalForward";
         Ok(UrpForwardScene {
             urp,
             lights,
             shadow,
             fade,
             additional_shadows,
+            main_cookie: main_light_cookie(rig, &positions, what)?,
+            cookies: additional_light_cookies(rig, what)?,
         })
     }
 
@@ -198,9 +216,23 @@ impl UrpForwardScene {
         [lo, hi]
     }
 
+    /// The main light's cookie colours the pixel at `p` may read (white alone without
+    /// `_LIGHT_COOKIES`), and each additional light's cookie at the lower and the upper end of
+    /// its range.
+    fn cookie_tints(&self, k: &UrpForwardKeywords, p: Vec3) -> (Vec<Vec3>, [Vec<Vec3>; 2]) {
+        if !k.light_cookies {
+            return (vec![Vec3::ONE], [Vec::new(), Vec::new()]);
+        }
+        let (lo, hi) = (0..self.lights.additional().len())
+            .map(|i| range(&self.cookies.candidates(i, p)))
+            .unzip();
+        (self.main_cookie.candidates(p), [lo, hi])
+    }
+
     /// The reference texel at pixel `(x, y)`; `None` where the variant discards it. Shading
-    /// grows with every shadow attenuation, so the texels at the lower and at the upper ends
-    /// of all of them bound every outcome.
+    /// grows with every shadow attenuation and every additional light's cookie, so their lower
+    /// and upper ends bound those; the main light's cookie also lowers the subtractive
+    /// lightmap, so each texel its cookie may read is shaded and the least and greatest kept.
     pub fn reference(&self, k: &UrpForwardKeywords, x: u32, y: u32) -> Option<UrpTexel> {
         let urp = &self.urp;
         let pixel = urp.pixel(x, y);
@@ -208,23 +240,31 @@ impl UrpForwardScene {
         let vl = self.interpolated_vertex_lighting(k, x, y);
         let p = pixel.geometry.world_position;
         let additional = self.additional_light_shadows(k, p);
-        let [lo, hi] = [0, 1]
-            .map(|end| (self.main_light_shadow(k, p, (x, y))[end], &additional[end]))
-            .map(|(shadow, additional)| {
-                shade_forward(
+        let shadows = self.main_light_shadow(k, p, (x, y));
+        let (main_tints, additional_tints) = self.cookie_tints(k, p);
+        let mut outcomes = Vec::with_capacity(2 * main_tints.len());
+        for end in [0, 1] {
+            for &main in &main_tints {
+                let tints = CookieTints {
+                    main,
+                    additional: additional_tints[end].clone(),
+                };
+                outcomes.push(shade_forward(
                     k,
                     &urp.material,
                     &tex,
                     &pixel,
                     &urp.lighting,
                     urp.environment(),
-                    shadow,
+                    shadows[end],
                     &self.lights,
                     vl,
-                    additional,
-                )
-            });
-        match (lo?, hi?) {
+                    &additional[end],
+                    &tints,
+                )?);
+            }
+        }
+        match range(&outcomes) {
             (a, b) if a == b => Some(UrpTexel::Ufloat(a)),
             (a, b) => Some(UrpTexel::UfloatBetween(a, b)),
         }
@@ -241,8 +281,8 @@ impl UrpColorPass for UrpForwardScene {
         &self.urp
     }
 
-    /// The URP scene's resources, the lights (0/4), the main light's shadow (0/10-16) and the
-    /// additional lights' shadows (0/17-19).
+    /// The URP scene's resources, the lights (0/4), the main light's shadow (0/10-16), the
+    /// additional lights' shadows (0/17-19) and the cookies (0/20-25).
     fn resources(&self) -> Vec<BoundResource> {
         let mut out = self.urp.resources();
         out.push(BoundResource::new(
@@ -252,6 +292,8 @@ impl UrpColorPass for UrpForwardScene {
         ));
         out.extend(main_shadow_resources(&self.shadow, &self.fade));
         out.extend(self.additional_shadows.resources());
+        out.extend(main_resources(&self.main_cookie));
+        out.extend(atlas_resources(&self.cookies));
         out
     }
 
@@ -300,14 +342,39 @@ impl UrpColorPass for UrpForwardScene {
         for &p in &point {
             faces[cube_map_face_id(p - lights[0].position)] += 1;
         }
+        // Cookies: the texels each light's cookie reads over the quad, and the pixels whose
+        // coordinate is within 1/64 texel of an edge (compared within the outcomes).
+        let main_reads: Vec<Vec<Vec3>> = positions
+            .iter()
+            .map(|&p| self.main_cookie.candidates(p))
+            .collect();
+        let spot_reads: Vec<Vec<Vec3>> = positions
+            .iter()
+            .map(|&p| self.cookies.candidates(1, p))
+            .collect();
+        let distinct = |reads: &[Vec<Vec3>]| {
+            let mut seen: Vec<[u32; 3]> = reads
+                .iter()
+                .filter(|r| r.len() == 1)
+                .map(|r| r[0].to_array().map(f32::to_bits))
+                .collect();
+            seen.sort_unstable();
+            seen.dedup();
+            seen.len()
+        };
+        let on_edge = |reads: &[Vec<Vec3>]| reads.iter().filter(|r| r.len() > 1).count();
         format!(
-            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; URP's {}; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners; additional-light shadows: the point light's covers {} pixels (by cube face +X, -X, +Y, -Y, +Z, -Z: {faces:?}), the spot light's {}",
+            "{}x{} pixels into an Rg11b10Ufloat camera target; the main light's hard shadow covers {shadowed} of them; URP's {}; {} additional lights (one on a layer the mesh lacks); per-vertex lights interpolated from the quad's corners; additional-light shadows: the point light's covers {} pixels (by cube face +X, -X, +Y, -Y, +Z, -Z: {faces:?}), the spot light's {}; cookies: the main light's reads {} distinct texels over the quad ({} pixels within 1/64 texel of an edge), the spot's {} ({})",
             s.width,
             s.height,
             self.shadow.urp_cascade_census(&positions),
             lights.len(),
             point.len(),
-            in_shadow(1).len()
+            in_shadow(1).len(),
+            distinct(&main_reads),
+            on_edge(&main_reads),
+            distinct(&spot_reads),
+            on_edge(&spot_reads),
         )
     }
 }

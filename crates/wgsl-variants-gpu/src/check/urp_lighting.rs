@@ -236,8 +236,12 @@ pub fn check_stencil_deferred(
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let fade = lighting_fade(rig, scene, main_shadow);
     let additional = additional_shadows(ctx, lib, scene, rig)?;
-    let cookie = main_light_cookie(rig, scene)?;
-    let atlas = additional_light_cookies(rig)?;
+    let positions: Vec<Vec3> = scene
+        .pixels()
+        .map(|(x, y)| rig.deferred_position(scene, x, y))
+        .collect();
+    let cookie = main_light_cookie(rig, &positions, "stencil_deferred/DirectionalLit")?;
+    let atlas = additional_light_cookies(rig, "stencil_deferred/PunctualLit")?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {

@@ -3,7 +3,7 @@
 // Samples textures: fragment only.
 //
 // Provides:
-//   fn urp_baked_gi(in: UrpVertexOutput, n: vec3f, shadow: f32, shadow_strength: f32) -> vec3f
+//   fn urp_baked_gi(in: UrpVertexOutput, n: vec3f, main_color: vec3f, shadow: f32, shadow_strength: f32) -> vec3f
 //   fn urp_glossy_environment(r: vec3f, perceptual_roughness: f32) -> vec3f
 //   fn urp_global_illumination(b: UrpBrdf, baked: vec3f, n: vec3f, v: vec3f, occlusion: f32) -> vec3f
 
@@ -14,13 +14,14 @@
 // Baked GI: the lightmap texel (linear HDR, as a full-HDR lightmap) with LIGHTMAP_ON, else
 // max(0, L0 + L1 spherical harmonics). With LIGHTMAP_ON and _MIXED_LIGHTING_SUBTRACTIVE the
 // main light's estimated contribution is subtracted where it is shadowed (URP's
-// SubtractDirectMainLightFromLightmap); `shadow` is the main light's realtime shadow
-// attenuation at the pixel, `shadow_strength` the shadow's strength.
-fn urp_baked_gi(in: UrpVertexOutput, n: vec3f, shadow: f32, shadow_strength: f32) -> vec3f {
+// SubtractDirectMainLightFromLightmap); `main_color` is the main light's colour as GetMainLight
+// gives it (times its cookie in the forward pass), `shadow` its realtime shadow attenuation at
+// the pixel, `shadow_strength` the shadow's strength.
+fn urp_baked_gi(in: UrpVertexOutput, n: vec3f, main_color: vec3f, shadow: f32, shadow_strength: f32) -> vec3f {
 #if defined(LIGHTMAP_ON)
     var gi = textureSample(lightmap, lightmap_sampler, in.lightmap_uv).rgb;
 #if defined(_MIXED_LIGHTING_SUBTRACTIVE)
-    let lambert = lighting.main_light_color.rgb * saturate(dot(lighting.main_light_dir.xyz, n));
+    let lambert = main_color * saturate(dot(lighting.main_light_dir.xyz, n));
     let subtracted = gi - lambert * (1.0 - shadow);
     let realtime_shadow = mix(gi, max(subtracted, lighting.subtractive_shadow_color.rgb), shadow_strength);
     gi = min(gi, realtime_shadow);

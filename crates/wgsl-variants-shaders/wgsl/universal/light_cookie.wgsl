@@ -1,10 +1,11 @@
 // universal/light_cookie: light cookies, the main light's and the additional lights' (docs/urp.md
 // §9; URP's LightCookie.hlsl: ComputeLightCookieUVDirectional without wrapping,
 // ComputeLightCookieUVSpot, ComputeLightCookieUVPoint, SampleMainLightCookie; LightCookieInput.hlsl's
-// records and texture formats). A cookie tints the light's colour with a texture projected from
-// the light. Read by the deferred lights: StencilDeferred's GetStencilLight multiplies the main
-// light's colour by its cookie, and a point or spot light's by its rect of the additional lights'
-// atlas, under _LIGHT_COOKIES. Its bindings exist with _LIGHT_COOKIES (a pass keeps those its
+// records and texture formats; SampleAdditionalLightCookie). A cookie tints the light's colour
+// with a texture projected from the light. Read by the deferred lights (StencilDeferred's
+// GetStencilLight multiplies the main light's colour by its cookie, and a point or spot light's
+// by its rect of the additional lights' atlas) and by the forward pass's main and per-pixel
+// lights (GetMainLight, GetAdditionalLight), under _LIGHT_COOKIES. Its bindings exist with _LIGHT_COOKIES (a pass keeps those its
 // entry points reach):
 //
 //   group 0: 20 main_light_cookie (MainLightCookie),
@@ -24,6 +25,10 @@
 //   fn urp_point_light_cookie(light: u32, p: vec3f) -> vec3f
 //       the colour additional light `light`'s cookie multiplies its colour by at p, the light
 //       a spot (its perspective) or a point light (the octahedral map of the direction)
+//   fn urp_additional_light_cookie(light: u32, p: vec3f) -> vec3f
+//       the same by the light's type (SampleAdditionalLightCookie): white for an all-zero rect
+//       (no cookie), the spot's projection for type 0, else the point light's (the forward
+//       pass's additional lights are punctual)
 
 #if defined(_LIGHT_COOKIES)
 #import universal/gbuffer
@@ -96,5 +101,15 @@ fn urp_point_light_cookie(light: u32, p: vec3f) -> vec3f {
     let q = additional_light_cookies.world_to_light[light] * vec4f(p, 1.0);
     let dir = normalize(q.xyz / q.w);
     return urp_additional_light_cookie_at(light, saturate(urp_oct_encode(dir) * 0.5 + 0.5));
+}
+
+fn urp_additional_light_cookie(light: u32, p: vec3f) -> vec3f {
+    if all(additional_light_cookies.atlas_uv_rect[light] == vec4f(0.0)) {
+        return vec3f(1.0);
+    }
+    if additional_light_cookies.light_type[light].x == 0.0 {
+        return urp_spot_light_cookie(light, p);
+    }
+    return urp_point_light_cookie(light, p);
 }
 #endif

@@ -59,6 +59,7 @@
 #pragma multi_compile _ _LIGHT_LAYERS
 #pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
 #pragma multi_compile _ LIGHTMAP_ON
+#pragma multi_compile _ _LIGHT_COOKIES
 #pragma require _ADDITIONAL_LIGHT_SHADOWS _ADDITIONAL_LIGHTS
 #pragma require _MIXED_LIGHTING_SUBTRACTIVE LIGHTMAP_ON
 #import universal/lit_forward_pass

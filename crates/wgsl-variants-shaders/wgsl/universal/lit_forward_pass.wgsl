@@ -2,14 +2,16 @@
 // Lighting.hlsl UniversalFragmentPBR, RealtimeLights.hlsl; docs/urp.md §11): the surface lit
 // in one pass — global illumination (universal/gi), the main directional light with its
 // shadow, the additional point and spot lights per pixel (_ADDITIONAL_LIGHTS, with their
-// shadows under _ADDITIONAL_LIGHT_SHADOWS) or per vertex (_ADDITIONAL_LIGHTS_VERTEX), and the
-// emission — into the HDR camera target.
+// shadows under _ADDITIONAL_LIGHT_SHADOWS) or per vertex (_ADDITIONAL_LIGHTS_VERTEX), the main
+// and the per-pixel lights tinted by their cookies under _LIGHT_COOKIES, and the emission —
+// into the HDR camera target.
 //
 //   group 0-2: universal/bindings (camera, lighting, environment; material; object, lightmap)
 //   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
 //                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
 //              10-16 the main light's shadow (universal/main_light_shadow),
-//              17-19 the additional lights' shadows (universal/additional_light_shadow)
+//              17-19 the additional lights' shadows (universal/additional_light_shadow),
+//              20-25 the lights' cookies (universal/light_cookie: _LIGHT_COOKIES)
 //
 // Provides the entry points:
 //   @vertex   vs_main(UrpVertexInput) -> UrpVertexOutput
@@ -22,6 +24,7 @@
 #import universal/lighting
 #import universal/main_light_shadow
 #import universal/additional_light_shadow
+#import universal/light_cookie
 
 // URP's limit of additional lights per object in the forward path.
 const URP_MAX_ADDITIONAL_LIGHTS: u32 = 8u;
@@ -97,7 +100,14 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
 
     // The fragment's pixel: where a _MAIN_LIGHT_SHADOWS_SCREEN variant reads its shadow.
     let shadow = urp_main_light_shadow(p, camera.position.xyz, vec2i(floor(in.clip_position.xy)));
-    var color = urp_global_illumination(b, urp_baked_gi(in, n, shadow.x, shadow.y), n, v, s.occlusion);
+#if defined(_LIGHT_COOKIES)
+    // GetMainLight: the main light's colour times its cookie, for the direct light and the
+    // subtractive lightmap's estimate of it alike.
+    let main_color = lighting.main_light_color.rgb * urp_main_light_cookie(p);
+#else
+    let main_color = lighting.main_light_color.rgb;
+#endif
+    var color = urp_global_illumination(b, urp_baked_gi(in, n, main_color, shadow.x, shadow.y), n, v, s.occlusion);
 
 #if defined(_LIGHT_LAYERS)
     let main_layers = forward_lights.params.y;
@@ -105,7 +115,7 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
     let main_layers = 0xffffffffu;
 #endif
     if urp_lights_mesh(main_layers) {
-        color += urp_lighting_physically_based(direct, lighting.main_light_color.rgb, shadow.x, lighting.main_light_dir.xyz, n, v, specular_off);
+        color += urp_lighting_physically_based(direct, main_color, shadow.x, lighting.main_light_dir.xyz, n, v, specular_off);
     }
 
 #if defined(_ADDITIONAL_LIGHTS)
@@ -116,7 +126,13 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
             let a = urp_additional_light(light, p);
             // URP's light.distanceAttenuation * light.shadowAttenuation.
             let shadowed = a.w * urp_additional_light_shadow(i, p, a.xyz, camera.position.xyz);
-            color += urp_lighting_physically_based(direct, light.color.rgb, shadowed, a.xyz, n, v, specular_off);
+#if defined(_LIGHT_COOKIES)
+            // GetAdditionalLight (the per-pixel form; the per-vertex lights take no cookie).
+            let light_color = light.color.rgb * urp_additional_light_cookie(i, p);
+#else
+            let light_color = light.color.rgb;
+#endif
+            color += urp_lighting_physically_based(direct, light_color, shadowed, a.xyz, n, v, specular_off);
         }
     }
 #endif

@@ -33,7 +33,7 @@ fn fs_main(in: UrpVertexOutput) -> UrpGBufferOutput {
     let b = urp_brdf(s);
     let n = urp_world_normal(s.normal_ts, normalize(in.normal), in.tangent);
     let v = normalize(camera.position.xyz - in.world_position);
-    let baked = urp_baked_gi(in, n, urp_main_light_shadow(), lighting.main_light_shadow.y);
+    let baked = urp_baked_gi(in, n, lighting.main_light_color.rgb, urp_main_light_shadow(), lighting.main_light_shadow.y);
     let color = urp_global_illumination(b, baked, n, v, s.occlusion);
 
     var flags = 0u;

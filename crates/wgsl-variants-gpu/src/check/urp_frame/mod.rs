@@ -60,7 +60,7 @@ use wgsl_variants_shaders::reference::tolerance::{
     rg11b10_store_range, urp_texel_within_window, window_offsets, window_range,
 };
 use wgsl_variants_shaders::reference::urp::forward::{
-    MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward,
+    CookieTints, MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::{UrpGBufferOutput, UrpTexel, shade_gbuffer};
 use wgsl_variants_shaders::reference::urp::lighting::{
@@ -697,6 +697,7 @@ fn forward_reference(
         lights,
         Vec3::ZERO,
         &additional,
+        &CookieTints::WHITE,
     )
     .unwrap_or(Vec3::ZERO)
 }

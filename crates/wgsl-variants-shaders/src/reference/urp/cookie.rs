@@ -151,30 +151,58 @@ impl CookieTexture {
     /// assert_eq!(t.color(Vec2::new(1.0, 0.5), Address::ClampToEdge), (Vec3::ONE, Vec3::ONE));
     /// ```
     pub fn color(&self, uv: Vec2, address: Address) -> (Vec3, Vec3) {
-        let (w, h) = self.size;
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        let mut take = |texel: [u8; 4]| {
-            let c = self.format.color(texel);
-            lo = lo.min(c);
-            hi = hi.max(c);
-        };
+        range(&self.candidates(uv, address))
+    }
+
+    /// The colours of the texels a nearest sampler with `address` may read at `uv`: one, or
+    /// two or four within [`EDGE`] of an edge; every texel's for a non-finite `uv`.
+    ///
+    /// ```
+    /// use glam::{Vec2, Vec3};
+    /// use wgsl_variants_shaders::reference::texel::Address;
+    /// use wgsl_variants_shaders::reference::urp::cookie::{CookieFormat, CookieTexture};
+    /// let t = CookieTexture::new(vec![[0, 0, 0, 255], [255, 255, 255, 255]], (2, 1), CookieFormat::Rgb)
+    ///     .unwrap();
+    /// assert_eq!(t.candidates(Vec2::new(0.25, 0.5), Address::Repeat), vec![Vec3::ZERO]);
+    /// assert_eq!(t.candidates(Vec2::new(0.5, 0.5), Address::Repeat), vec![Vec3::ZERO, Vec3::ONE]);
+    /// ```
+    pub fn candidates(&self, uv: Vec2, address: Address) -> Vec<Vec3> {
         if !uv.is_finite() {
-            self.texels.iter().for_each(|&t| take(t));
-            return (lo, hi);
+            return self.texels.iter().map(|&t| self.format.color(t)).collect();
         }
+        let (w, h) = self.size;
+        let mut out = Vec::with_capacity(4);
         for y in nearest_within(uv.y, h, EDGE, address) {
             for x in nearest_within(uv.x, w, EDGE, address) {
-                take(self.texels[(y * w + x) as usize]);
+                out.push(self.format.color(self.texels[(y * w + x) as usize]));
             }
         }
-        (lo, hi)
+        out
     }
 
     /// The texture's bytes, rows from v = 0, as `Rgba8Unorm` uploads them.
     pub fn bytes(&self) -> Vec<u8> {
         self.texels.iter().flatten().copied().collect()
     }
+}
+
+/// The least and greatest of `colors` per channel (white for none).
+///
+/// ```
+/// use glam::Vec3;
+/// use wgsl_variants_shaders::reference::urp::cookie::range;
+/// let (lo, hi) = range(&[Vec3::new(0.2, 0.9, 0.5), Vec3::new(0.4, 0.1, 0.5)]);
+/// assert_eq!((lo, hi), (Vec3::new(0.2, 0.1, 0.5), Vec3::new(0.4, 0.9, 0.5)));
+/// assert_eq!(range(&[]), (Vec3::ONE, Vec3::ONE));
+/// ```
+pub fn range(colors: &[Vec3]) -> (Vec3, Vec3) {
+    if colors.is_empty() {
+        return (Vec3::ONE, Vec3::ONE);
+    }
+    colors.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &c| (lo.min(c), hi.max(c)),
+    )
 }
 
 /// The main light's cookie: URP's `_MainLightWorldToLight` and the texture.
@@ -211,6 +239,11 @@ impl MainLightCookie {
     /// ```
     pub fn color(&self, p: Vec3) -> (Vec3, Vec3) {
         self.texture.color(self.uv(p), Address::Repeat)
+    }
+
+    /// The colours of the texels the cookie may read at `p` ([`CookieTexture::candidates`]).
+    pub fn candidates(&self, p: Vec3) -> Vec<Vec3> {
+        self.texture.candidates(self.uv(p), Address::Repeat)
     }
 
     /// The WGSL `MainLightCookie` record: `world_to_light` (column-major) and `format`
@@ -353,9 +386,17 @@ impl AdditionalLightCookies {
     /// assert_eq!(cookies.color(0, Vec3::ZERO), (Vec3::ONE, Vec3::ONE)); // no cookie
     /// ```
     pub fn color(&self, index: usize, p: Vec3) -> (Vec3, Vec3) {
+        range(&self.candidates(index, p))
+    }
+
+    /// The colours of the atlas texels light `index`'s cookie may read at `p`
+    /// ([`CookieTexture::candidates`], clamped); white alone for a light without a cookie.
+    pub fn candidates(&self, index: usize, p: Vec3) -> Vec<Vec3> {
         match self.lights.get(index).copied().flatten() {
-            Some(light) => self.atlas.color(light.atlas_uv(p), Address::ClampToEdge),
-            None => (Vec3::ONE, Vec3::ONE),
+            Some(light) => self
+                .atlas
+                .candidates(light.atlas_uv(p), Address::ClampToEdge),
+            None => vec![Vec3::ONE],
         }
     }
 

@@ -20,12 +20,12 @@
 //! let env = CubeFaces::uniform(Vec4::ZERO);
 //! let lights = UrpForwardLights::new(1, vec![]).unwrap();
 //! let lit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO, &[]).unwrap();
+//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO, &[], &CookieTints::WHITE).unwrap();
 //! assert!((lit - Vec3::splat(0.96)).abs().max_element() < 1e-6);
 //! // The main light on another layer than the mesh's lights nothing.
 //! let other = UrpForwardLights::new(2, vec![]).unwrap();
 //! let unlit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO, &[]).unwrap();
+//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO, &[], &CookieTints::WHITE).unwrap();
 //! assert_eq!(unlit, Vec3::ZERO);
 //! ```
 
@@ -146,6 +146,9 @@ pub struct UrpForwardKeywords {
     pub additional_light_shadows: bool,
     /// `_LIGHT_LAYERS`.
     pub light_layers: bool,
+    /// `_LIGHT_COOKIES`: the main light's and the per-pixel additional lights' colours times
+    /// their cookies ([`CookieTints`]).
+    pub light_cookies: bool,
 }
 
 impl UrpForwardKeywords {
@@ -173,6 +176,7 @@ impl UrpForwardKeywords {
                 "_ADDITIONAL_LIGHTS" => k.additional_lights = AdditionalLights::PerPixel,
                 "_ADDITIONAL_LIGHT_SHADOWS" => k.additional_light_shadows = true,
                 "_LIGHT_LAYERS" => k.light_layers = true,
+                "_LIGHT_COOKIES" => k.light_cookies = true,
                 _ if URP_FORWARD_KEYWORD_NAMES.contains(&name)
                     || (!name.is_empty() && name.bytes().all(|b| b == b'_')) =>
                 {
@@ -409,6 +413,27 @@ pub fn vertex_lighting(
         .sum()
 }
 
+/// What the lights' cookies multiply their colours by at one pixel under `_LIGHT_COOKIES`
+/// (URP's `GetMainLight` and the per-pixel `GetAdditionalLight`; the per-vertex lights take
+/// none): the main light's, which the subtractive lightmap's estimate of the main light reads
+/// too, and each additional light's in the order of [`UrpForwardLights::additional`] (missing
+/// entries white). [`CookieTints::WHITE`] leaves every light as it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CookieTints {
+    /// The main light's cookie colour.
+    pub main: Vec3,
+    /// Each additional light's cookie colour.
+    pub additional: Vec<Vec3>,
+}
+
+impl CookieTints {
+    /// No tint.
+    pub const WHITE: CookieTints = CookieTints {
+        main: Vec3::ONE,
+        additional: Vec::new(),
+    };
+}
+
 /// The `UniversalForward` fragment at one pixel (rgb; the pass writes alpha 1): `None` where
 /// `_ALPHATEST_ON` discards. `shadow` is the main light's shadow at the pixel's position
 /// (used where [`UrpForwardKeywords::reads_main_light_shadow`]; [`MainLightShadow::NONE`] elsewhere),
@@ -416,7 +441,8 @@ pub fn vertex_lighting(
 /// `_ADDITIONAL_LIGHTS_VERTEX`), `additional_shadows` each additional light's shadow
 /// attenuation at the pixel in the order of [`UrpForwardLights::additional`] (URP's
 /// `AdditionalLightShadow`, used where
-/// [`UrpForwardKeywords::reads_additional_light_shadows`]; missing entries are 1).
+/// [`UrpForwardKeywords::reads_additional_light_shadows`]; missing entries are 1), `tints` the
+/// lights' cookie colours (used with `_LIGHT_COOKIES`).
 #[allow(clippy::too_many_arguments)]
 pub fn shade_forward(
     k: &UrpForwardKeywords,
@@ -429,6 +455,7 @@ pub fn shade_forward(
     lights: &UrpForwardLights,
     vertex_lighting: Vec3,
     additional_shadows: &[f32],
+    tints: &CookieTints,
 ) -> Option<Vec3> {
     let sk = &k.surface;
     let s = urp_surface(sk, mat, tex)?;
@@ -451,6 +478,12 @@ pub fn shade_forward(
         shadow
     } else {
         MainLightShadow::NONE
+    };
+    // GetMainLight's colour times its cookie: the direct light and the subtractive
+    // lightmap's estimate of it both read it.
+    let light = &UrpLighting {
+        main_light_color: light.main_light_color * tint(k, tints.main),
+        ..*light
     };
     let baked = urp_baked_gi(sk, tex, light, n, shadow.attenuation, shadow.strength);
     let mut color = global_illumination(sk, &b, baked, n, v, s.occlusion, light, env);
@@ -476,9 +509,10 @@ pub fn shade_forward(
                     Some(&s) if reads_shadows => s,
                     _ => 1.0,
                 };
+                let cookie = tint(k, tints.additional.get(i).copied().unwrap_or(Vec3::ONE));
                 color += super::lighting::lighting_physically_based(
                     &direct,
-                    l.color,
+                    l.color * cookie,
                     attenuation * shadow,
                     dir,
                     n,
@@ -492,6 +526,11 @@ pub fn shade_forward(
     Some(color + s.emission)
 }
 
+/// `cookie` under `_LIGHT_COOKIES`, white without.
+fn tint(k: &UrpForwardKeywords, cookie: Vec3) -> Vec3 {
+    if k.light_cookies { cookie } else { Vec3::ONE }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -499,6 +538,17 @@ mod tests {
     use crate::reference::surface::Geometry;
     use crate::reference::urp::lighting::UrpLight;
     use glam::Vec4;
+
+    /// A white point light of range 4 2 above the pixel, on rendering layers `layers`.
+    fn point_above(layers: u32) -> UrpLightParams {
+        UrpLight::new(
+            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
+            0.0,
+            layers,
+        )
+        .params()
+        .unwrap()
+    }
 
     fn pixel(layers: u32) -> UrpPixel {
         UrpPixel {
@@ -529,6 +579,7 @@ mod tests {
             lights,
             vl,
             &[],
+            &CookieTints::WHITE,
         )
         .unwrap()
     }
@@ -538,13 +589,7 @@ mod tests {
         // Two point lights 2 above the pixel (0.2109375 each, as on paper below); the first
         // shadowed to 0.25 of its light. The shadow counts only with _ADDITIONAL_LIGHT_SHADOWS
         // and the per-pixel lights, and not with _RECEIVE_SHADOWS_OFF.
-        let point = UrpLight::new(
-            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
-            0.0,
-            1,
-        )
-        .params()
-        .unwrap();
+        let point = point_above(1);
         let lights = UrpForwardLights::new(0, vec![point, point]).unwrap();
         let run = |names: &[&str]| {
             let k = UrpForwardKeywords::from_names(names).unwrap();
@@ -559,6 +604,7 @@ mod tests {
                 &lights,
                 Vec3::ZERO,
                 &[0.25],
+                &CookieTints::WHITE,
             )
             .unwrap()
         };
@@ -585,13 +631,7 @@ mod tests {
         // A point light 2 above the pixel, range 4: 1/d² · (1 − (d²/r²)²)² = 1/4 · (1 − 1/16)²
         // = 0.2197265625; n·l = 1; a white dielectric's diffuse 0.96 (no specular):
         // 0.2109375 per pixel. Black main light, no GI.
-        let point = UrpLight::new(
-            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
-            0.0,
-            1,
-        )
-        .params()
-        .unwrap();
+        let point = point_above(1);
         let lights = UrpForwardLights::new(0, vec![point]).unwrap();
         let off = ["_SPECULARHIGHLIGHTS_OFF"];
         assert_eq!(
@@ -617,13 +657,7 @@ mod tests {
         );
         assert!((per_vertex - per_pixel).abs().max_element() < 1e-6);
         // Light layers: the light's layer 0 is the mesh's.
-        let elsewhere = UrpLight::new(
-            Light::point(Vec3::new(0.0, 0.0, 2.0), 4.0, Vec3::ONE),
-            0.0,
-            2,
-        )
-        .params()
-        .unwrap();
+        let elsewhere = point_above(2);
         let lights = UrpForwardLights::new(0, vec![elsewhere]).unwrap();
         let layered = [
             "_SPECULARHIGHLIGHTS_OFF",
@@ -633,6 +667,71 @@ mod tests {
         assert_eq!(
             shade(&layered, &lights, MainLightShadow::NONE, Vec3::ZERO),
             Vec3::ZERO
+        );
+    }
+
+    #[test]
+    fn cookies_tint_the_main_and_the_per_pixel_lights_only_under_their_keyword() {
+        // A white main light from +Z and a point light 2 above the white dielectric, specular
+        // off; the main light's cookie 0.5, the point light's 0.25.
+        let point = point_above(1);
+        let one = UrpForwardLights::new(1, vec![point]).unwrap();
+        let none = UrpForwardLights::new(1, vec![]).unwrap();
+        let light = UrpLighting {
+            main_light_dir: Vec3::Z,
+            main_light_color: Vec3::ONE,
+            ..UrpLighting::default()
+        };
+        let tints = CookieTints {
+            main: Vec3::splat(0.5),
+            additional: vec![Vec3::splat(0.25)],
+        };
+        let run = |names: &[&str], lights: &UrpForwardLights, tints: &CookieTints| {
+            let k = UrpForwardKeywords::from_names(names).unwrap();
+            shade_forward(
+                &k,
+                &UrpMaterial::default(),
+                &UrpTexels::default(),
+                &pixel(1),
+                &light,
+                &CubeFaces::uniform(Vec4::ZERO),
+                MainLightShadow::NONE,
+                lights,
+                Vec3::splat(0.1),
+                &[],
+                tints,
+            )
+            .unwrap()
+        };
+        let pixel_lights = [
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS",
+            "_LIGHT_COOKIES",
+        ];
+        let main = run(&pixel_lights, &none, &CookieTints::WHITE);
+        let both = run(&pixel_lights, &one, &CookieTints::WHITE);
+        let tinted = run(&pixel_lights, &one, &tints);
+        let want = main * 0.5 + (both - main) * 0.25;
+        assert!(
+            (tinted - want).abs().max_element() < 1e-6,
+            "{tinted} {want}"
+        );
+        // Without the keyword the tints are not read.
+        let plain = ["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS"];
+        assert_eq!(run(&plain, &one, &tints), both);
+        // The per-vertex lights take no cookie (URP's two-argument GetAdditionalLight).
+        let vertex = [
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS_VERTEX",
+            "_LIGHT_COOKIES",
+        ];
+        let only_additional = CookieTints {
+            main: Vec3::ONE,
+            additional: vec![Vec3::splat(0.25)],
+        };
+        assert_eq!(
+            run(&vertex, &one, &only_additional),
+            run(&vertex, &one, &CookieTints::WHITE)
         );
     }
 
@@ -664,6 +763,7 @@ mod tests {
                 &lights,
                 Vec3::ZERO,
                 &[],
+                &CookieTints::WHITE,
             )
             .unwrap()
         };
@@ -685,21 +785,39 @@ mod tests {
             lightmap: Vec3::ONE,
             ..UrpTexels::default()
         };
-        let got = shade_forward(
-            &sub,
-            &UrpMaterial::default(),
-            &tex,
-            &pixel(1),
-            &light,
-            &CubeFaces::uniform(Vec4::ZERO),
-            shadow,
-            &lights,
-            Vec3::ZERO,
-            &[],
-        )
-        .unwrap();
+        let subtractive = |k: &UrpForwardKeywords, tints: &CookieTints| {
+            shade_forward(
+                k,
+                &UrpMaterial::default(),
+                &tex,
+                &pixel(1),
+                &light,
+                &CubeFaces::uniform(Vec4::ZERO),
+                shadow,
+                &lights,
+                Vec3::ZERO,
+                &[],
+                tints,
+            )
+            .unwrap()
+        };
+        let got = subtractive(&sub, &CookieTints::WHITE);
         assert!(
             (got - Vec3::splat(0.4992 + 0.384)).abs().max_element() < 1e-6,
+            "{got}"
+        );
+        // With the main light's cookie 0.5 the subtractive estimate reads the tinted colour:
+        // lambert 0.5 · 0.6 = 0.3 subtracted → 0.7; 1 − 0.8 · 0.3 = 0.76; GI 0.76 · 0.96 =
+        // 0.7296; direct 0.384 · 0.5 = 0.192.
+        let mut cookies = sub;
+        cookies.light_cookies = true;
+        let half = CookieTints {
+            main: Vec3::splat(0.5),
+            additional: Vec::new(),
+        };
+        let got = subtractive(&cookies, &half);
+        assert!(
+            (got - Vec3::splat(0.7296 + 0.192)).abs().max_element() < 1e-6,
             "{got}"
         );
     }
