@@ -62,6 +62,13 @@ fn the_urp_frame_matches_the_reference_both_ways() {
     // they light; the warm point light casts none.
     let own = &report.additional_shadowed;
     assert!(own[0] == 0 && own[1] > 50 && own[2] > 50, "{report}");
+    // The main light's 4 × 4 cookie shows most of its texels across the frame, its edges
+    // crossing it; the cool point light's and the spot's cookies have edges where they light.
+    // The warm point light has no cookie.
+    assert!(report.main_cookie_texels >= 10, "{report}");
+    let edges = &report.cookie_edges;
+    assert!(edges[0] > 20 && edges[0] < report.compared / 5, "{report}");
+    assert!(edges[1] == 0 && edges[2] > 20 && edges[3] > 20, "{report}");
 }
 
 /// The main light through URP's screen-space shadow pass in both paths
@@ -107,8 +114,8 @@ fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
 /// 25 % too bright, the main light missing, the rendering layers ignored (the warm point light
 /// on every layer), the main light's shadow missing, not fading with the distance or drawn
 /// from one map where the frame has cascades, the additional lights' shadows missing or the
-/// spot's hard where it is soft — each
-/// fails on both paths; a light volume too small fails deferred only.
+/// spot's hard where it is soft, the main light's or the spot's cookie flipped, the cookies
+/// dropped — each fails on both paths; a light volume too small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
     let Some(ctx) = context() else {
@@ -117,8 +124,10 @@ fn a_wrong_light_is_caught_both_ways() {
     let lib = wgsl_variants_shaders::library().expect("bundled library");
     let truth = UrpFrame::new();
     let truth_shadow = render_urp_shadows(&ctx, &lib, &truth).expect("shadow");
+    // The warm point light, which has no cookie: the spot dimmed by its cookie (0.24 to 0.94)
+    // and 25 % brighter failed 59 forward pixels but 1 deferred one (four stores' steps).
     let mut brighter = truth.clone();
-    brighter.lights[2].params.color *= 1.25;
+    brighter.lights[0].params.color *= 1.25;
     let mut no_main = truth.clone();
     no_main.main_light.color = glam::Vec3::ZERO;
     no_main.lighting.main_light_color = glam::Vec3::ZERO;
@@ -140,8 +149,24 @@ fn a_wrong_light_is_caught_both_ways() {
     if let Some(spec) = &mut hard_spot.additional_shadows {
         spec.casting[2] = spec.casting[2].map(|(strength, _)| (strength, false));
     }
+    // A cookie mirrored across its x axis: light space x negated before the projection.
+    let mirror = glam::Mat4::from_scale(glam::Vec3::new(-1.0, 1.0, 1.0));
+    let mut flipped_main = truth.clone();
+    if let Some(c) = &mut flipped_main.cookies {
+        c.main.world_to_light = mirror * c.main.world_to_light;
+    }
+    let mut flipped_spot = truth.clone();
+    if let Some(spot) = flipped_spot
+        .cookies
+        .as_mut()
+        .and_then(|c| c.additional.lights[2].as_mut())
+    {
+        spot.world_to_light = mirror * spot.world_to_light;
+    }
+    let mut uncookied = truth.clone();
+    uncookied.cookies = None;
     for (what, wrong) in [
-        ("spot 25 % brighter", &brighter),
+        ("the warm point light 25 % brighter", &brighter),
         ("no main light", &no_main),
         ("rendering layers ignored", &unlayered),
         ("no main-light shadow", &unshadowed),
@@ -149,11 +174,15 @@ fn a_wrong_light_is_caught_both_ways() {
         ("one map instead of the cascades", &one_map),
         ("no additional-light shadows", &no_additional),
         ("the spot's shadow hard", &hard_spot),
+        ("the main light's cookie flipped", &flipped_main),
+        ("the spot's cookie flipped", &flipped_spot),
+        ("no cookies", &uncookied),
     ] {
         let shadow = render_urp_shadows(&ctx, &lib, wrong).expect("shadow");
         let forward = render_urp_forward(&ctx, &lib, wrong, &shadow).expect("forward");
         let deferred = render_urp_deferred(&ctx, &lib, wrong, &shadow).expect("deferred");
         let report = compare(&truth, &truth_shadow, &forward, &deferred).expect("compare");
+        println!("{what}: failures {:?}", report.failures);
         assert!(
             report.failures[0] > 0 && report.failures[2] > 0,
             "{what}: not caught\n{report}"

@@ -7,9 +7,8 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
-use super::rig::LightRig;
 use crate::{BoundResource, CheckError, GpuError, Resource};
-use wgsl_variants_shaders::reference::light::{Light, look_at_rh};
+use wgsl_variants_shaders::reference::light::{Light, LightShape, look_at_rh};
 use wgsl_variants_shaders::reference::urp::cookie::{
     AdditionalLightCookie, AdditionalLightCookies, CookieFormat, CookieProjection, CookieTexture,
     MainLightCookie,
@@ -48,6 +47,14 @@ impl DrawCookie<'_> {
         match self {
             DrawCookie::Main(cookie) => cookie.color(p),
             DrawCookie::Additional(cookies, index) => cookies.color(index as usize, p),
+        }
+    }
+
+    /// The colours of the texels the cookie may read at `p` (the reference's).
+    pub(crate) fn candidates(self, p: Vec3) -> Vec<Vec3> {
+        match self {
+            DrawCookie::Main(cookie) => cookie.candidates(p),
+            DrawCookie::Additional(cookies, index) => cookies.candidates(index as usize, p),
         }
     }
 }
@@ -112,19 +119,16 @@ fn refused(variant: &str, message: String) -> GpuError {
     })
 }
 
-/// The main light's cookie of the checks: a 4 × 4 RGB pattern projected along the rig's
-/// `DIRECTIONAL` light (the main light), its light-space square fitted around `positions` (the
-/// check's receivers) with a margin of a twentieth each side, so every texel lights some and
-/// their edges cross the picture. `what` names the pass in a refusal.
+/// The main light's cookie of the checks: a 4 × 4 RGB pattern projected along the main light
+/// (`light`, directional), its light-space square fitted around `positions` (the check's
+/// receivers) with a margin of a twentieth each side, so every texel lights some and their
+/// edges cross the picture. `what` names the pass in a refusal.
 pub(crate) fn main_light_cookie(
-    rig: &LightRig,
+    light: &Light,
     positions: &[Vec3],
     what: &str,
 ) -> Result<MainLightCookie, GpuError> {
-    let main = rig
-        .directional_light
-        .params()
-        .map_err(|e| refused(what, e.to_string()))?;
+    let main = light.params().map_err(|e| refused(what, e.to_string()))?;
     // The light's frame: looking along the light, z towards it.
     let up = if main.to_light.y.abs() < 0.9 {
         Vec3::Y
@@ -165,23 +169,56 @@ pub(crate) fn main_light_cookie(
 /// Width and height of the additional lights' atlas in texels: four 8 × 8 rects.
 pub const ATLAS_SIZE: u32 = 16;
 
-/// The additional lights' cookies of the lighting checks: a 16 × 16 atlas read in its alpha
-/// channel (its rgb differs, so reading the wrong channels shows), the rig's point light
-/// (URP's light index 0) in its lower-left quarter and the spot (index 1) in its upper-right one,
-/// the other two quarters different again (a light reading outside its rect shows). Each
-/// light's `world_to_light` is the built-in light's (`LightParams::world_to_light`: the spot's
-/// perspective over its cone's square, the point light's frame), as URP's. Index 2 and on have
-/// no cookie (an all-zero rect). `what` names the pass in a refusal.
+/// The rects of the additional lights' atlas (xy size, zw offset), given in turn to the lights
+/// with a cookie: its lower-left quarter, the upper-right, the upper-left, the lower-right.
+const ATLAS_RECTS: [Vec4; 4] = [
+    Vec4::new(0.5, 0.5, 0.0, 0.0),
+    Vec4::new(0.5, 0.5, 0.5, 0.5),
+    Vec4::new(0.5, 0.5, 0.0, 0.5),
+    Vec4::new(0.5, 0.5, 0.5, 0.0),
+];
+
+/// The additional lights' cookies of the checks: a 16 × 16 atlas read in its alpha channel (its
+/// rgb differs, so reading the wrong channels shows). `lights` are the additional lights in
+/// URP's order, `None` for a light without a cookie (an all-zero rect); the point and spot
+/// lights with one get the atlas's quarters in turn ([`ATLAS_RECTS`]: the first the lower-left,
+/// the second the upper-right; a quarter no light reads differs again, so a light reading
+/// outside its rect shows). Each light's `world_to_light` is the built-in light's
+/// (`LightParams::world_to_light`: the spot's perspective over its cone's square, the point
+/// light's frame), as URP's. `what` names the pass in a refusal.
 pub(crate) fn additional_light_cookies(
-    rig: &LightRig,
+    lights: &[Option<&Light>],
     what: &str,
 ) -> Result<AdditionalLightCookies, GpuError> {
-    let world_to_light = |light: &Light| {
-        light
+    let mut rects = ATLAS_RECTS.into_iter();
+    let mut cookie = |light: &Light| {
+        let projection = match light.shape {
+            LightShape::Point { .. } => CookieProjection::Point,
+            LightShape::Spot { .. } => CookieProjection::Spot,
+            LightShape::Directional { .. } => {
+                return Err(refused(
+                    what,
+                    "an additional directional light's cookie is not built".to_owned(),
+                ));
+            }
+        };
+        let uv_rect = rects
+            .next()
+            .ok_or_else(|| refused(what, "more than four cookies in the atlas".to_owned()))?;
+        let world_to_light = light
             .params()
-            .map(|p| p.world_to_light)
-            .map_err(|e| refused(what, e.to_string()))
+            .map_err(|e| refused(what, e.to_string()))?
+            .world_to_light;
+        Ok(AdditionalLightCookie {
+            world_to_light,
+            uv_rect,
+            projection,
+        })
     };
+    let entries = lights
+        .iter()
+        .map(|l| l.map(&mut cookie).transpose())
+        .collect::<Result<Vec<_>, _>>()?;
     let texels = (0..ATLAS_SIZE)
         .flat_map(|y| {
             (0..ATLAS_SIZE).map(move |x| {
@@ -197,16 +234,5 @@ pub(crate) fn additional_light_cookies(
         .collect();
     let atlas = CookieTexture::new(texels, (ATLAS_SIZE, ATLAS_SIZE), CookieFormat::Alpha)
         .map_err(|e| refused(what, e.to_string()))?;
-    let point = AdditionalLightCookie {
-        world_to_light: world_to_light(&rig.point_light)?,
-        uv_rect: Vec4::new(0.5, 0.5, 0.0, 0.0),
-        projection: CookieProjection::Point,
-    };
-    let spot = AdditionalLightCookie {
-        world_to_light: world_to_light(&rig.spot_light)?,
-        uv_rect: Vec4::new(0.5, 0.5, 0.5, 0.5),
-        projection: CookieProjection::Spot,
-    };
-    AdditionalLightCookies::new(atlas, vec![Some(point), Some(spot)])
-        .map_err(|e| refused(what, e.to_string()))
+    AdditionalLightCookies::new(atlas, entries).map_err(|e| refused(what, e.to_string()))
 }

@@ -136,8 +136,11 @@ impl UrpForwardScene {
             shadow,
             fade,
             additional_shadows,
-            main_cookie: main_light_cookie(rig, &positions, what)?,
-            cookies: additional_light_cookies(rig, what)?,
+            main_cookie: main_light_cookie(&rig.directional_light, &positions, what)?,
+            cookies: additional_light_cookies(
+                &[Some(&rig.point_light), Some(&rig.spot_light)],
+                what,
+            )?,
         })
     }
 

@@ -240,8 +240,16 @@ pub fn check_stencil_deferred(
         .pixels()
         .map(|(x, y)| rig.deferred_position(scene, x, y))
         .collect();
-    let cookie = main_light_cookie(rig, &positions, "stencil_deferred/DirectionalLit")?;
-    let atlas = additional_light_cookies(rig, "stencil_deferred/PunctualLit")?;
+    let cookie = main_light_cookie(
+        &rig.directional_light,
+        &positions,
+        "stencil_deferred/DirectionalLit",
+    )?;
+    // The rig's point light is URP's light index 0, its spot 1.
+    let atlas = additional_light_cookies(
+        &[Some(&rig.point_light), Some(&rig.spot_light)],
+        "stencil_deferred/PunctualLit",
+    )?;
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {

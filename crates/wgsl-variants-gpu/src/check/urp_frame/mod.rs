@@ -1,6 +1,7 @@
 //! URP's frame end to end (docs/urp.md §12): one scene ([`UrpFrame`]: the built-in frame's
 //! camera and opaque objects with URP Lit materials, a main light with its soft shadow and
-//! three additional lights on rendering layers, two of them casting shadows) drawn both ways
+//! three additional lights on rendering layers, two of them casting shadows; the main light,
+//! the cool point light and the spot with cookies, [`UrpFrameCookies`]) drawn both ways
 //! URP draws it, into the HDR camera target (`Rg11b10Ufloat`), after the shadows
 //! ([`render_urp_shadows`]: the main light's map or cascades, the additional lights' atlas):
 //!
@@ -32,7 +33,8 @@ use std::sync::Arc;
 use glam::Vec3;
 
 pub use scene::{
-    DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameLight, UrpFrameObject,
+    DEFAULT_LAYER, EVERY_LAYER, SHELTERED_LAYERS, UrpFrame, UrpFrameCookies, UrpFrameLight,
+    UrpFrameObject,
 };
 pub use shadow::{
     ADDITIONAL_SLICE_SIZE, MAIN_SHADOW_MAP_SIZE, UrpAdditionalShadowSpec, UrpFrameShadow,
@@ -121,7 +123,7 @@ fn text(
     Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
 }
 
-/// The main light's shadow as a receiver takes it: its keywords and bindings.
+/// The lights' shadows and cookies as a receiver takes them: their keywords and bindings.
 #[derive(Clone, Debug, Default)]
 struct Receiver {
     keywords: Vec<&'static str>,
@@ -130,7 +132,7 @@ struct Receiver {
 
 /// Object `o`'s draw of a `universal_lit` pass: the object's material keywords the pass
 /// declares (as Unity applies a material's keywords to each pass), the pass's own keywords
-/// `extra`, and the main light's shadow as `receiver` takes it.
+/// `extra`, and the lights' shadows and cookies as `receiver` takes them.
 fn object_draw(
     lib: &Library,
     frame: &UrpFrame,
@@ -190,8 +192,10 @@ pub fn render_urp_forward(
     let g = &frame.geometry;
     let (mut receiver, mut draws, mut depth) = (Receiver::default(), 0, None);
     receiver.keywords = shadows.forward_keywords();
+    receiver.keywords.extend(frame.cookie_keywords());
+    receiver.resources = frame.cookie_resources();
     if let Some(a) = &shadows.additional {
-        receiver.resources = a.resources();
+        receiver.resources.extend(a.resources());
     }
     if let Some(s) = &shadows.main {
         receiver.resources.extend(s.resources());
@@ -308,6 +312,14 @@ fn light_draws(
             Resource::Uniform(light.uniform()),
         )]
     };
+    let cookies = frame.draw_cookies();
+    // A light with a cookie: `_LIGHT_COOKIES` and its bindings.
+    let cookie = |k: usize, names: &mut Vec<&'static str>, resources: &mut Vec<BoundResource>| {
+        if let Some(c) = cookies[k] {
+            names.push("_LIGHT_COOKIES");
+            resources.extend(c.resources());
+        }
+    };
     let mut names = vec!["_DIRECTIONAL", "_DEFERRED_MAIN_LIGHT"];
     names.extend(common);
     let mut main_resources = light_resource(7, &frame.main_light);
@@ -315,6 +327,7 @@ fn light_draws(
         names.extend(s.receiver_keywords());
         main_resources.extend(s.resources());
     }
+    cookie(0, &mut names, &mut main_resources);
     main_resources.extend(screen);
     let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
     let mut draws = vec![
@@ -339,6 +352,7 @@ fn light_draws(
             resources.push(AdditionalAtlas::shadow_light_index(k as u32));
             resources.extend(a.resources());
         }
+        cookie(k + 1, &mut names, &mut resources);
         let (label, wgsl) = text(lib, "stencil_deferred", "PunctualLit", &names)?;
         let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
             .with_shared(shared)
@@ -557,6 +571,13 @@ pub struct UrpFrameReport {
     /// pick (0 to 3), in none, and in several (which URP's cascade index cannot handle; the
     /// frame must have none): all of them, and those in the shadow. Zeros with one map.
     pub cascades: [[usize; 6]; 2],
+    /// With `_LIGHT_COOKIES`, the main light's cookie texels (their colours) seen at the
+    /// compared pixels' centres clear of an edge (0 without cookies).
+    pub main_cookie_texels: usize,
+    /// Per light (the main light first, then each additional light): compared pixels whose
+    /// centre lies within 1/64 texel of an edge of the light's cookie (compared within the
+    /// range of the texels).
+    pub cookie_edges: Vec<usize>,
     /// The first mismatches, in pixel order (at most 20).
     pub mismatches: Vec<UrpFrameMismatch>,
 }
@@ -629,6 +650,13 @@ impl fmt::Display for UrpFrameReport {
                 shadowed.join(", ")
             )?;
         }
+        if self.main_cookie_texels > 0 {
+            writeln!(
+                f,
+                "  cookies: {} texels of the main light's seen; pixels on a cookie's texel edge (main light, then each additional light): {:?}",
+                self.main_cookie_texels, self.cookie_edges
+            )?;
+        }
         if self.cascades[0].iter().any(|&n| n > 0) {
             writeln!(
                 f,
@@ -659,9 +687,9 @@ pub fn check_urp_frame(
     compare(frame, &shadows, &forward, &deferred)
 }
 
-/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow` and
-/// the end `end` (0 the lower, 1 the upper) of each additional light's shadow interval in
-/// `shadows` (black where it discards).
+/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow`, the
+/// end `end` (0 the lower, 1 the upper) of each additional light's shadow interval in
+/// `shadows` and the cookies' `tints` ([`UrpFrame::cookie_tints`]; black where it discards).
 fn forward_reference(
     frame: &UrpFrame,
     lights: &UrpForwardLights,
@@ -669,9 +697,11 @@ fn forward_reference(
     geo: &Geometry,
     shadow: Option<MainLightShadow>,
     (shadows, end): (&UrpFrameShadows, usize),
+    tints: &CookieTints,
 ) -> Vec3 {
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(FORWARD_KEYWORDS);
+    names.extend(frame.cookie_keywords());
     if shadow.is_some() {
         names.push("_MAIN_LIGHT_SHADOWS");
     }
@@ -697,14 +727,14 @@ fn forward_reference(
         lights,
         Vec3::ZERO,
         &additional,
-        &CookieTints::WHITE,
+        tints,
     )
     .unwrap_or(Vec3::ZERO)
 }
 
 /// The reference colour of pixel `(x, y)`: what the ray through its centre sees, lit by URP's
-/// forward formulas and shadowed by `shadows` (the upper end of an uncertain tap); `None` on
-/// the background.
+/// forward formulas and shadowed by `shadows` (the upper end of an uncertain tap, the first
+/// cookie texel on an edge); `None` on the background.
 ///
 /// # Errors
 /// As [`UrpFrame::forward_lights`].
@@ -721,7 +751,17 @@ pub fn reference_rgb(
             .main
             .as_ref()
             .map(|s| s.at(h.geometry.world_position)[1]);
-        forward_reference(frame, &lights, h.object, &h.geometry, s, (shadows, 1))
+        let p = h.geometry.world_position;
+        let tints = frame.cookie_tints(p, 1).swap_remove(0);
+        forward_reference(
+            frame,
+            &lights,
+            h.object,
+            &h.geometry,
+            s,
+            (shadows, 1),
+            &tints,
+        )
     }))
 }
 
@@ -791,10 +831,15 @@ pub fn compare(
         uncertain: 0,
         additional_shadowed: vec![0; frame.lights.len()],
         cascades: [[0; 6]; 2],
+        main_cookie_texels: 0,
+        cookie_edges: vec![0; frame.lights.len() + 1],
         mismatches: Vec::new(),
     };
     let mut every_light: Vec<&UrpLightParams> = vec![&frame.main_light];
     every_light.extend(frame.lights.iter().map(|l| &l.params));
+    // Each light's cookie, the main light's first; the main cookie's texels seen.
+    let cookies = frame.draw_cookies();
+    let mut main_cookie_seen = std::collections::BTreeSet::new();
     for (i, (x, y)) in g.pixels().enumerate() {
         let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
         let hits: Vec<_> = window_offsets()
@@ -849,16 +894,44 @@ pub fn compare(
             .depth
             .as_ref()
             .map(|d| world_from_depth(inv_view_proj, x, y, g.width, g.height, d[i]));
-        let values: Vec<Vec3> = geos
-            .iter()
-            .flat_map(|geo| {
-                let p = geo.world_position;
-                let s = shadow.map(|s| s.received(prepass.unwrap_or(p), p));
-                [0, 1].map(|k| {
-                    forward_reference(frame, &lights, o, geo, s.map(|s| s[k]), (shadows, k))
-                })
-            })
-            .collect();
+        // Each texel the main light's cookie may read is shaded (the outcome need not grow
+        // with it), the additional lights' cookies at the ends of their ranges.
+        let mut values = Vec::with_capacity(2 * geos.len());
+        for geo in &geos {
+            let p = geo.world_position;
+            let s = shadow.map(|s| s.received(prepass.unwrap_or(p), p));
+            for k in [0, 1] {
+                for tints in frame.cookie_tints(p, k) {
+                    let at = (shadows, k);
+                    values.push(forward_reference(
+                        frame,
+                        &lights,
+                        o,
+                        geo,
+                        s.map(|s| s[k]),
+                        at,
+                        &tints,
+                    ));
+                }
+            }
+        }
+        let cookie_texels = |p: Vec3| {
+            cookies
+                .iter()
+                .map(|c| c.map_or(1, |c| c.candidates(p).len()))
+                .collect::<Vec<_>>()
+        };
+        for (k, n) in cookie_texels(hit.geometry.world_position)
+            .into_iter()
+            .enumerate()
+        {
+            report.cookie_edges[k] += usize::from(n > 1);
+        }
+        if let Some(c) = cookies[0]
+            && let [texel] = c.candidates(hit.geometry.world_position)[..]
+        {
+            main_cookie_seen.insert(texel.to_array().map(f32::to_bits));
+        }
         if let Some([lo, hi]) = shadows_at(hit.geometry.world_position) {
             report.shadowed += usize::from(lo.attenuation < 1.0);
             report.uncertain += usize::from(lo.attenuation != hi.attenuation);
@@ -927,6 +1000,8 @@ pub fn compare(
         // The main light's shadow at a position: its attenuation's two ends (1 without one).
         let main_shadow =
             |p: Vec3| shadow.map_or([1.0; 2], |s| s.received(p, p).map(|s| s.attenuation));
+        // GetStencilLight: the light's colour times its cookie; the light grows with both,
+        // so the ends of the cookie's and the shadow's ranges bound it.
         let light_at = |t: &UrpGBufferTexel, p: Vec3, i: usize, end: usize| {
             let shadow = if i == 0 {
                 main_shadow(p)[end]
@@ -934,7 +1009,15 @@ pub fn compare(
                 let to_light = every_light[i].sample(p).0;
                 shadows.additional_at(i - 1, p, to_light, camera)[end]
             };
-            stencil_deferred_light(t, p, camera, every_light[i], shadow, Some(layers))
+            let tint = cookies[i].map_or(Vec3::ONE, |c| {
+                let (lo, hi) = c.color(p);
+                [lo, hi][end]
+            });
+            let light = UrpLightParams {
+                color: every_light[i].color * tint,
+                ..*every_light[i]
+            };
+            stencil_deferred_light(t, p, camera, &light, shadow, Some(layers))
         };
         let (mut d_lo, mut d_hi) = (stored, stored);
         let mut decoded_light = Vec3::ZERO;
@@ -974,7 +1057,12 @@ pub fn compare(
         // keep it off.
         let total = values[0].max_element().max(1e-3);
         for (k, l) in frame.lights.iter().enumerate() {
-            let unmasked = stencil_deferred_light(&exact, q_point, camera, &l.params, 1.0, None);
+            let tint = cookies[k + 1].map_or(Vec3::ONE, |c| c.color(q_point).1);
+            let light = UrpLightParams {
+                color: l.params.color * tint,
+                ..l.params
+            };
+            let unmasked = stencil_deferred_light(&exact, q_point, camera, &light, 1.0, None);
             let matters = unmasked.max_element() > 0.01 * total;
             if l.params.lights_layers(frame.objects[o].rendering_layers) {
                 report.lit_by[k].1 += usize::from(matters);
@@ -987,5 +1075,6 @@ pub fn compare(
             }
         }
     }
+    report.main_cookie_texels = main_cookie_seen.len();
     Ok(report)
 }

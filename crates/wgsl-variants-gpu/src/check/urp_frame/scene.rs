@@ -1,17 +1,25 @@
 //! The URP frame's scene: the built-in frame's camera and opaque objects ([`FrameScene`]) with
 //! URP Lit materials, URP's per-frame lighting, a main light and three additional lights on
-//! rendering layers (docs/urp.md §12).
+//! rendering layers, their shadows and cookies (docs/urp.md §12).
 
 use glam::{Vec2, Vec3, Vec4};
 
 use super::super::frame::{FrameObject, FrameScene};
 use super::super::scene::cube_resource;
 use super::super::urp::{camera_uniform, lighting_uniform, material_uniform, object_uniform};
+use super::super::urp_cookies::{
+    DrawCookie, additional_light_cookies, atlas_resources, main_light_cookie, main_resources,
+};
 use super::shadow::{UrpAdditionalShadowSpec, UrpShadowSpec};
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
-use wgsl_variants_shaders::reference::urp::forward::{UrpForwardLights, UrpShadowFade};
+use wgsl_variants_shaders::reference::urp::cookie::{
+    AdditionalLightCookies, MainLightCookie, range,
+};
+use wgsl_variants_shaders::reference::urp::forward::{
+    CookieTints, UrpForwardLights, UrpShadowFade,
+};
 use wgsl_variants_shaders::reference::urp::gbuffer::{
     UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels,
 };
@@ -73,6 +81,18 @@ pub struct UrpFrame {
     pub main_shadow: Option<UrpShadowSpec>,
     /// The additional lights' shadows (`_ADDITIONAL_LIGHT_SHADOWS`), or none.
     pub additional_shadows: Option<UrpAdditionalShadowSpec>,
+    /// The lights' cookies (`_LIGHT_COOKIES`), or none.
+    pub cookies: Option<UrpFrameCookies>,
+}
+
+/// The URP frame's light cookies (`_LIGHT_COOKIES`): the main light's, and the additional
+/// lights' atlas with an entry for each light that has one.
+#[derive(Clone, Debug)]
+pub struct UrpFrameCookies {
+    /// The main light's cookie (the forward pass reads it wherever `_LIGHT_COOKIES` is on).
+    pub main: MainLightCookie,
+    /// The atlas and each additional light's entry, in the order of [`UrpFrame::lights`].
+    pub additional: AdditionalLightCookies,
 }
 
 /// Materials of the five objects: floor, metal sphere, glowing sphere, box, cutout box.
@@ -142,6 +162,9 @@ impl UrpFrame {
     /// let frame = UrpFrame::new();
     /// assert_eq!(frame.objects.len(), frame.geometry.objects.len());
     /// assert_eq!(frame.lights.len(), 3);
+    /// // The main light, the cool point light and the spot have cookies.
+    /// let cookies = frame.cookies.as_ref().unwrap();
+    /// assert_eq!(cookies.additional.lights.iter().flatten().count(), 2);
     /// ```
     pub fn new() -> UrpFrame {
         UrpFrame::sized(
@@ -175,11 +198,8 @@ impl UrpFrame {
                 .params()
                 .expect("the URP frame's lights are valid")
         };
-        let main_light = params(
-            Light::directional(-s.light_dir, s.light_color),
-            0.0,
-            EVERY_LAYER,
-        );
+        let sun = Light::directional(-s.light_dir, s.light_color);
+        let main_light = params(sun, 0.0, EVERY_LAYER);
         // The built-in frame's point and spot lights (its cookie sun is a directional light,
         // which URP's additional lights in the forward path are not).
         let from = |name: &'static str, i: usize, inner: f32, mask: u32| {
@@ -218,6 +238,24 @@ impl UrpFrame {
             bias: Vec2::new(-0.05, -0.08),
             fade: UrpShadowFade::between(9.0, 12.0),
         });
+        // Cookies: the main light's 4 × 4 pattern fitted around what the camera sees (every
+        // fourth pixel's surface), so its edges cross the frame; the cool point light's and
+        // the spot's rects of the lighting checks' atlas; the warm point light has none.
+        let seen: Vec<Vec3> = geometry
+            .pixels()
+            .filter(|(x, y)| x % 4 == 0 && y % 4 == 0)
+            .filter_map(|(x, y)| geometry.cast(f64::from(x) + 0.5, f64::from(y) + 0.5))
+            .map(|hit| hit.geometry.world_position)
+            .collect();
+        let what = "the URP frame";
+        let cookies = Some(UrpFrameCookies {
+            main: main_light_cookie(&sun, &seen, what).expect("the URP frame's cookie fits"),
+            additional: additional_light_cookies(
+                &[None, Some(&lights[1].light), Some(&lights[2].light)],
+                what,
+            )
+            .expect("the URP frame's lights take cookies"),
+        });
         UrpFrame {
             objects: materials(),
             geometry,
@@ -226,7 +264,63 @@ impl UrpFrame {
             lights,
             main_shadow,
             additional_shadows,
+            cookies,
         }
+    }
+
+    /// The passes' cookie keyword: `_LIGHT_COOKIES` where the frame's lights have cookies.
+    pub fn cookie_keywords(&self) -> Vec<&'static str> {
+        match self.cookies {
+            Some(_) => vec!["_LIGHT_COOKIES"],
+            None => Vec::new(),
+        }
+    }
+
+    /// The forward pass's cookie bindings (`universal/light_cookie`'s 20-25): the main light's
+    /// cookie and the additional lights' atlas; none without cookies.
+    pub fn cookie_resources(&self) -> Vec<BoundResource> {
+        let mut out = Vec::new();
+        if let Some(c) = &self.cookies {
+            out.extend(main_resources(&c.main));
+            out.extend(atlas_resources(&c.additional));
+        }
+        out
+    }
+
+    /// Each light's cookie as its deferred draw binds it: the main light's first, then each
+    /// additional light's (`None`: the light has no cookie, and its pass no `_LIGHT_COOKIES`).
+    pub(crate) fn draw_cookies(&self) -> Vec<Option<DrawCookie<'_>>> {
+        let mut out = vec![self.cookies.as_ref().map(|c| DrawCookie::Main(&c.main))];
+        out.extend((0..self.lights.len()).map(|k| {
+            self.cookies.as_ref().and_then(|c| {
+                c.additional.lights.get(k).copied().flatten()?;
+                Some(DrawCookie::Additional(&c.additional, k as u32))
+            })
+        }));
+        out
+    }
+
+    /// The cookie tints the forward pass may apply at `p`: one per texel of the main light's
+    /// cookie it may read there, each with the additional lights' cookies at the lower
+    /// (`end` 0) or upper (1) end of their ranges; white alone without cookies.
+    pub fn cookie_tints(&self, p: Vec3, end: usize) -> Vec<CookieTints> {
+        let Some(c) = &self.cookies else {
+            return vec![CookieTints::WHITE];
+        };
+        let additional: Vec<Vec3> = (0..self.lights.len())
+            .map(|k| {
+                let (lo, hi) = range(&c.additional.candidates(k, p));
+                [lo, hi][end]
+            })
+            .collect();
+        c.main
+            .candidates(p)
+            .into_iter()
+            .map(|main| CookieTints {
+                main,
+                additional: additional.clone(),
+            })
+            .collect()
     }
 
     /// The additional lights as the forward pass reads them.
