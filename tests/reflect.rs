@@ -152,7 +152,7 @@ fn full_space_binding_rules() {
         })
         .collect();
     let all = reflect_each(&lib, &variants);
-    assert_eq!(all.len(), 627_212);
+    assert_eq!(all.len(), 627_366);
     assert_stable_slots(&all);
     assert_eq!(assert_keyword_bindings(&all), 55_296 + 18432 + 110_592 + 8);
 }

@@ -1,11 +1,12 @@
-//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (48)
-//! and `stencil_deferred/DirectionalLit` (52), drawn over G-buffers `universal_lit`'s
+//! The GPU proof of URP's lighting passes: every variant of `stencil_deferred/PunctualLit` (96),
+//! `stencil_deferred/DirectionalLit` (156) and `stencil_deferred/SSAOOnly` (2), drawn over G-buffers `universal_lit`'s
 //! UniversalGBuffer pass rendered on the same GPU, compared texel by texel with the CPU
 //! reference (`wgsl_variants_shaders::reference::urp::lighting`), each keyword proven to change at
 //! least one texel; and libraries with planted bugs (a wrong specular constant, a flag ignored,
 //! the older URP's diffuse formula, the shadow fade dropped, the cascade selection ignored,
 //! the screen-space shadow read at another pixel, the main light's cookie flipped, a spot's
-//! cookie flipped, a point light reading the spot's rect of the cookie atlas)
+//! cookie flipped, a point light reading the spot's rect of the cookie atlas, the SSAO's direct
+//! part ignored, the first light's or the SSAOOnly pass's scale of GBuffer3 wrong)
 //! are caught where, and only where, the bug shows.
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
@@ -28,7 +29,7 @@ fn run(lib: &Library, pass: &str) -> Option<CheckReport> {
 fn every_lighting_variant_matches_the_reference() {
     let lib = wgsl_variants_shaders::library().unwrap();
     // (pass, variants, keywords judged: every set's options but the first)
-    for (pass, variants, keywords) in [("PunctualLit", 48, 6), ("DirectionalLit", 52, 8)] {
+    for (pass, variants, keywords) in [("PunctualLit", 96, 7), ("DirectionalLit", 156, 10)] {
         let Some(report) = run(&lib, pass) else {
             return;
         };
@@ -82,7 +83,91 @@ fn every_lighting_variant_matches_the_reference() {
             pass == "PunctualLit",
             "the atlas tints PunctualLit's pixels only: {report}"
         );
+        // The first directional light scales GBuffer3 somewhere (DirectionalLit only).
+        let rescaled = p
+            .notes
+            .iter()
+            .find(|n| n.contains("under the screen-space occlusion"))
+            .unwrap_or_else(|| panic!("no occlusion note: {report}"));
+        assert_eq!(
+            rescaled.contains("the first directional light scales GBuffer3"),
+            pass == "DirectionalLit",
+            "{report}"
+        );
     }
+}
+
+/// URP's SSAOOnly pass: both variants over GBuffer3, the occlusion where it is lower than the
+/// surface's own and GBuffer3 kept where it is not, the keyword changing texels; nothing drawn
+/// without it.
+#[test]
+fn the_ssao_only_pass_matches_the_reference() {
+    let lib = wgsl_variants_shaders::library().unwrap();
+    let Some(report) = run(&lib, "SSAOOnly") else {
+        return;
+    };
+    let p = &report.passes[0];
+    for note in &p.notes {
+        eprintln!("  note: {note}");
+    }
+    assert!(p.passed() && p.mismatches == 0, "{report}");
+    assert_eq!((p.variants_run, p.draws), (2, 6), "{report}");
+    assert!(p.keywords.iter().all(|k| k.pairs_changed > 0), "{report}");
+    let note = &p.notes[0];
+    let count = |after: &str| -> usize {
+        let tail = &note[note.find(after).expect(after) + after.len()..];
+        tail.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    assert!(count("; in ") > 100, "{note}");
+    assert!(count("less than 1, in ") > 20, "{note}");
+}
+
+#[test]
+fn an_ignored_direct_occlusion_is_caught_only_under_ssao() {
+    // The light not dimmed by the SSAO's direct part.
+    let Some(bad) = mismatching(
+        "universal/stencil_deferred_pass.wgsl",
+        "let color = cookie_color * ao.y;",
+        "let color = cookie_color;",
+        "PunctualLit",
+    ) else {
+        return;
+    };
+    common::mutate::assert_each_has(&bad, &["_SCREEN_SPACE_OCCLUSION"]);
+}
+
+#[test]
+fn the_first_lights_occlusion_without_the_surfaces_is_caught_only_in_the_first_light() {
+    // GBuffer3 scaled by the SSAO itself, as if the G-buffer pass had not applied the
+    // surface's occlusion already (the ratio dropped).
+    let Some(bad) = mismatching(
+        "universal/stencil_deferred_pass.wgsl",
+        "let alpha = urp_deferred_indirect_occlusion(ao.x, g1.a);",
+        "let alpha = ao.x;",
+        "DirectionalLit",
+    ) else {
+        return;
+    };
+    common::mutate::assert_each_has(&bad, &["_DEFERRED_FIRST_LIGHT"]);
+}
+
+#[test]
+fn an_ssao_only_pass_that_always_divides_is_caught() {
+    // The ratio taken even where the surface's own occlusion is the lower (GBuffer3 brightened).
+    let Some(bad) = mismatching(
+        "universal/ambient_occlusion.wgsl",
+        "if indirect < surface {",
+        "if surface > 0.0 {",
+        "SSAOOnly",
+    ) else {
+        return;
+    };
+    // Only the G-buffer with an occlusion map has texels whose own occlusion is the lower.
+    assert!(!bad.is_empty());
+    common::mutate::assert_each_has(
+        &bad,
+        &["SSAOOnly {_SCREEN_SPACE_OCCLUSION}", "_OCCLUSIONMAP"],
+    );
 }
 
 #[test]
@@ -96,12 +181,7 @@ fn a_flipped_cookie_is_caught_only_under_the_main_lights_cookie() {
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(
-            k.contains("_LIGHT_COOKIES") && k.contains("_DEFERRED_MAIN_LIGHT"),
-            "{k}"
-        );
-    }
+    common::mutate::assert_each_has(&bad, &["_LIGHT_COOKIES", "_DEFERRED_MAIN_LIGHT"]);
 }
 
 #[test]
@@ -115,9 +195,7 @@ fn a_flipped_spot_cookie_is_caught_only_under_the_spots_cookie() {
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_LIGHT_COOKIES") && k.contains("_SPOT"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_LIGHT_COOKIES", "_SPOT"]);
 }
 
 #[test]
@@ -131,9 +209,7 @@ fn a_point_light_reading_the_spots_cookie_is_caught_only_for_the_point_light() {
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_LIGHT_COOKIES") && k.contains("_POINT"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_LIGHT_COOKIES", "_POINT"]);
 }
 
 /// Runs `pass` over the bundled library with one planted bug and returns the keyword sets of
@@ -192,10 +268,7 @@ fn a_punctual_light_reading_another_lights_shadow_is_caught_only_for_the_spot() 
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_SPOT"), "{k}");
-        assert!(k.contains("_ADDITIONAL_LIGHT_SHADOWS"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_SPOT", "_ADDITIONAL_LIGHT_SHADOWS"]);
 }
 
 #[test]
@@ -210,9 +283,7 @@ fn an_ignored_shadow_fade_is_caught_only_in_the_main_lights_shadowed_variants() 
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_MAIN_LIGHT_SHADOWS"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_MAIN_LIGHT_SHADOWS"]);
 }
 
 #[test]
@@ -226,9 +297,7 @@ fn an_ignored_cascade_selection_is_caught_only_in_the_cascaded_variants() {
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_MAIN_LIGHT_SHADOWS_CASCADE"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_MAIN_LIGHT_SHADOWS_CASCADE"]);
 }
 
 #[test]
@@ -241,9 +310,7 @@ fn the_screen_space_shadow_read_at_another_pixel_is_caught_only_with_screen_shad
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_MAIN_LIGHT_SHADOWS_SCREEN"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_MAIN_LIGHT_SHADOWS_SCREEN"]);
 }
 
 #[test]
@@ -258,9 +325,7 @@ fn the_older_specular_setup_diffuse_is_caught_only_in_the_specular_setup() {
     ) else {
         return;
     };
-    for k in &bad {
-        assert!(k.contains("_SPECULAR_SETUP"), "{k}");
-    }
+    common::mutate::assert_each_has(&bad, &["_SPECULAR_SETUP"]);
 }
 
 #[test]

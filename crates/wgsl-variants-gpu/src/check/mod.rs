@@ -34,7 +34,7 @@
 //! | [`urp_forward`] | `universal_lit/UniversalForward` (393,216 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (its map, its cascades or a stand-in screen-space texture) and three additional lights (two casting shadows from [`urp_additional_shadows`]'s atlas), every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | `urp_depth_only` | `universal_lit/DepthOnly` (all 4 variants): the URP quad through the rig's camera and two light boxes (one clipping it), every texel of the `R32Float` target and the depth buffer against the alpha-tested reference |
-//! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 100 variants: 48 and 52) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map, the cascades or the screen-space texture of [`screen_shadows`] |
+//! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 252 variants: 96 and 156) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map, the cascades or the screen-space texture of [`screen_shadows`], the screen-space occlusion; `stencil_deferred/SSAOOnly` (2) over their GBuffer3 (`urp_ssao_only`) |
 //! | `urp_screen_shadows` | `universal_screen_space_shadows/ScreenSpaceShadows` (all 4 variants): the main light's map or cascades turned into URP's screen-space shadow over the rig's depth, every pixel against the reference |
 //! | [`urp_frame`] | URP's frame (five objects, a main light with its shadow and three additional lights on rendering layers, shadows and cookies) through `UniversalForward` and through `UniversalGBuffer` + `stencil_deferred` (the punctual lights as their volumes after URP's stencil volume pass), every pixel against the reference and forward against deferred (the `gpu_urp_frame` test; `render --frame urp`) |
 //! | [`skybox`] | `skybox/Cubemap` (its one variant) through a wide view over five faces, their edges and a corner, HDR and LDR |
@@ -96,7 +96,9 @@ mod urp_depth_only;
 pub mod urp_forward;
 pub mod urp_frame;
 pub mod urp_lighting;
+mod urp_occlusion;
 mod urp_screen_shadows;
+mod urp_ssao_only;
 mod volume_draw;
 pub mod volumes;
 mod workers;
@@ -116,7 +118,7 @@ use pass_check::{Needs, PassCheck, Setup};
 use wgsl_variants::Library;
 
 /// The passes the check knows, as `(shader, pass)`.
-pub const PASSES: [(&str, &str); 17] = [
+pub const PASSES: [(&str, &str); 18] = [
     ("standard", "Deferred"),
     ("standard", "ForwardBase"),
     ("standard", "ForwardAdd"),
@@ -132,6 +134,7 @@ pub const PASSES: [(&str, &str); 17] = [
     ("universal_lit", "DepthOnly"),
     ("stencil_deferred", "PunctualLit"),
     ("stencil_deferred", "DirectionalLit"),
+    ("stencil_deferred", "SSAOOnly"),
     ("universal_screen_space_shadows", "ScreenSpaceShadows"),
     ("skybox", "Cubemap"),
 ];
@@ -155,6 +158,7 @@ static CHECKS: &[&dyn PassCheck] = &[
     &urp_depth_only::URP_DEPTH_ONLY,
     &urp_lighting::PUNCTUAL_LIT,
     &urp_lighting::DIRECTIONAL_LIT,
+    &urp_ssao_only::SSAO_ONLY,
     &urp_screen_shadows::URP_SCREEN_SHADOWS,
     &skybox::CUBEMAP,
     &deferred::CHAIN,

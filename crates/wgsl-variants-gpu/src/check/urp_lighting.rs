@@ -20,7 +20,10 @@
 //! 5), with `_MAIN_LIGHT_SHADOWS` over the main light's map of [`super::screen_shadows`], and
 //! with `_LIGHT_COOKIES` under `urp_cookies::main_light_cookie`'s cookie; the point and spot
 //! lights under `_LIGHT_COOKIES` read their rects of `urp_cookies::additional_light_cookies`'
-//! atlas.
+//! atlas. Under `_SCREEN_SPACE_OCCLUSION` every light reads `urp_occlusion::ScreenOcclusion`'s
+//! pattern (the light times the direct occlusion), and a directional light, blended One
+//! SrcAlpha as URP's, under `_DEFERRED_FIRST_LIGHT` also scales GBuffer3 by the indirect
+//! occlusion's ratio to the surface's (`deferred_indirect_occlusion`).
 
 use std::time::Instant;
 
@@ -38,6 +41,7 @@ use super::shadows::within;
 use super::urp::{UrpScene, fade_across, main_shadow_resources};
 use super::urp_additional_shadows::{AdditionalAtlas, rig_casting};
 use super::urp_cookies::{DrawCookie, additional_light_cookies, main_light_cookie};
+use super::urp_occlusion::ScreenOcclusion;
 use super::volumes::{LightPipelineInput, StencilScheme, render_volume};
 use crate::light_volume::{LightDraw, light_draw};
 use crate::{
@@ -48,6 +52,9 @@ use wgsl_variants::Library;
 use wgsl_variants_shaders::reference::light::{Light, LightType};
 use wgsl_variants_shaders::reference::shadow::{ShadowKeywords, ShadowMaps, shadow_factor};
 use wgsl_variants_shaders::reference::tolerance::rg11b10_within;
+use wgsl_variants_shaders::reference::urp::ambient_occlusion::{
+    AmbientOcclusionFactor, deferred_indirect_occlusion,
+};
 use wgsl_variants_shaders::reference::urp::forward::{MainLightShadows, UrpShadowFade};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLight, UrpLightKind, UrpLightParams, stencil_deferred_light,
@@ -57,7 +64,7 @@ use wgsl_variants_shaders::reference::urp::ufloat::unpack_rg11b10;
 /// The material keywords of the G-buffers the lighting variants read (each also rendered
 /// with `_GBUFFER_NORMALS_OCT`, and always with `_WRITE_RENDERING_LAYERS`).
 pub const GBUFFER_INPUTS: [&[&str]; 3] = [
-    &["_NORMALMAP", "_METALLICSPECGLOSSMAP"],
+    &["_NORMALMAP", "_METALLICSPECGLOSSMAP", "_OCCLUSIONMAP"],
     &["_NORMALMAP", "_SPECULAR_SETUP", "_METALLICSPECGLOSSMAP"],
     &["_RECEIVE_SHADOWS_OFF", "_SPECULARHIGHLIGHTS_OFF"],
 ];
@@ -177,6 +184,8 @@ struct LightingKeywords {
     oct: bool,
     layers: bool,
     cookies: bool,
+    occlusion: bool,
+    first_light: bool,
 }
 
 impl LightingKeywords {
@@ -204,6 +213,8 @@ impl LightingKeywords {
             "_GBUFFER_NORMALS_OCT",
             "_LIGHT_LAYERS",
             "_LIGHT_COOKIES",
+            "_SCREEN_SPACE_OCCLUSION",
+            "_DEFERRED_FIRST_LIGHT",
         ];
         if let Some(unknown) = names.iter().find(|n| !known.contains(n)) {
             return Err(format!("keyword {unknown} is unknown to the reference"));
@@ -217,6 +228,8 @@ impl LightingKeywords {
             oct: has("_GBUFFER_NORMALS_OCT"),
             layers: has("_LIGHT_LAYERS"),
             cookies: has("_LIGHT_COOKIES"),
+            occlusion: has("_SCREEN_SPACE_OCCLUSION"),
+            first_light: has("_DEFERRED_FIRST_LIGHT"),
         })
     }
 }
@@ -250,6 +263,7 @@ pub fn check_stencil_deferred(
         &[Some(&rig.point_light), Some(&rig.spot_light)],
         "stencil_deferred/PunctualLit",
     )?;
+    let occlusion = ScreenOcclusion::new(scene.width, scene.height);
     let urp = UrpScene::new(scene, super::urp::DEFAULT_SEED);
     let mut gbuffers = Vec::new();
     for material in GBUFFER_INPUTS {
@@ -272,6 +286,9 @@ pub fn check_stencil_deferred(
     // Comparisons under a cookie, and those on a texel's edge: the main light's, then the
     // point and spot lights'.
     let mut cookied = [(0usize, 0usize); 2];
+    // Comparisons under the screen-space occlusion, and those where the first light scales
+    // GBuffer3 by less than 1.
+    let (mut occluded, mut rescaled) = (0usize, 0usize);
     for choice in &choices {
         let variant = wgsl_variants::Variant {
             pass,
@@ -302,6 +319,11 @@ pub fn check_stencil_deferred(
         for gbuffer in gbuffers.iter().filter(|g| g.oct == k.oct) {
             for mask in [MATCHING_LAYERS, OTHER_LAYERS] {
                 let light = lights.params(k.kind, k.main, mask)?;
+                let extras = LightExtras {
+                    additional: light_index.map(|i| (&additional, i)),
+                    cookie: draw_cookie,
+                    occlusion: k.occlusion.then_some(&occlusion),
+                };
                 let out = draw_light(
                     ctx,
                     (&label, &wgsl),
@@ -310,8 +332,7 @@ pub fn check_stencil_deferred(
                     gbuffer,
                     (&light, k.main),
                     (main_shadow, &fade),
-                    light_index.map(|i| (&additional, i)),
-                    draw_cookie,
+                    extras,
                     gbuffer.targets[3].clone(),
                 )?;
                 report.draws += 1;
@@ -381,13 +402,30 @@ pub fn check_stencil_deferred(
                         }
                         None => (Vec3::ONE, Vec3::ONE),
                     };
+                    // The screen-space occlusion: the light times its direct part; URP returns
+                    // before it where the layers keep the light off, so GBuffer3 is kept whole
+                    // there.
+                    let culled = layers.is_some_and(|l| !light.lights_layers(l));
+                    let ao = if k.occlusion {
+                        occluded += 1;
+                        occlusion.factor(x, y)
+                    } else {
+                        AmbientOcclusionFactor::NONE
+                    };
+                    let keep = if k.first_light && k.occlusion && !culled {
+                        let surface = f32::from(texel_bytes(1)[3]) / 255.0;
+                        deferred_indirect_occlusion(ao.indirect, surface)
+                    } else {
+                        1.0
+                    };
+                    rescaled += usize::from(keep < 1.0);
                     let [want_lo, want_hi] =
                         [(lo, tint_lo), (hi, tint_hi)].map(|(shadow, tint)| {
                             let tinted = UrpLightParams {
-                                color: light.color * tint,
+                                color: light.color * tint * ao.direct,
                                 ..light
                             };
-                            stored
+                            stored * keep
                                 + stencil_deferred_light(
                                     &texel,
                                     p,
@@ -434,6 +472,17 @@ pub fn check_stencil_deferred(
             cookied[0].0, cookie.texture.size.0, cookie.texture.size.1, cookied[0].1
         ));
     }
+    if occluded > 0 {
+        report.notes.push(format!(
+            "{occluded} pixel comparisons under the screen-space occlusion (an R8Unorm pattern of 16 levels, direct lighting strength {}){}",
+            super::urp_occlusion::DIRECT_STRENGTH,
+            if rescaled > 0 {
+                format!("; in {rescaled} the first directional light scales GBuffer3 by the indirect occlusion's ratio to the surface's (blended One SrcAlpha)")
+            } else {
+                String::new()
+            }
+        ));
+    }
     if cookied[1].0 > 0 {
         report.notes.push(format!(
             "{} pixel comparisons under a point or spot light's cookie (their 8×8 rects of a {}×{} atlas read in alpha, nearest, clamped; the spot through its perspective, the point light through the octahedral map), {} with a coordinate within 1/64 texel of an edge (compared within the range of the texels)",
@@ -441,7 +490,7 @@ pub fn check_stencil_deferred(
         ));
     }
     report.notes.push(format!(
-        "full-screen draws over {} UniversalGBuffer G-buffers, each with a light sharing a layer with the mesh and one that does not; One/One onto GBuffer3 Rg11b10Ufloat; positions rebuilt from the depth of a perspective camera",
+        "full-screen draws over {} UniversalGBuffer G-buffers, each with a light sharing a layer with the mesh and one that does not; onto GBuffer3 Rg11b10Ufloat blended as URP's (a punctual light One One, a directional one One SrcAlpha); positions rebuilt from the depth of a perspective camera",
         GBUFFER_INPUTS.len() * 2
     ));
     report.seconds = start.elapsed().as_secs_f64();
@@ -500,19 +549,29 @@ pub(crate) fn light_gbuffer(
             gbuffer,
             (&light, main),
             (main_shadow, &fade),
-            None,
-            None,
+            LightExtras::default(),
             gbuffer3,
         )?;
     }
     Ok(gbuffer3)
 }
 
+/// What a lighting draw binds beyond the G-buffer, the light and the main light's shadow.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct LightExtras<'a> {
+    /// For a punctual light: the additional lights' shadows and its index in them (URP's
+    /// `_ShadowLightIndex`).
+    pub(crate) additional: Option<(&'a AdditionalAtlas, u32)>,
+    /// The light's cookie.
+    pub(crate) cookie: Option<DrawCookie<'a>>,
+    /// The screen-space occlusion (`_SCREEN_SPACE_OCCLUSION`).
+    pub(crate) occlusion: Option<&'a ScreenOcclusion>,
+}
+
 /// Draws one lighting variant (`label`, `wgsl`) full-screen over `gbuffer` with `light` (the
-/// main light's binding when `main`), the main light's shadow map and, for a punctual light,
-/// the additional lights' shadows with the light's index in them (URP's `_ShadowLightIndex`),
-/// and the light's cookie when given, One/One onto `gbuffer3` (the GBuffer3 contents to
-/// start from); returns GBuffer3 after the draw.
+/// main light's binding when `main`), the main light's shadow map and the `extras`, onto
+/// `gbuffer3` (the GBuffer3 contents to start from) with URP's blend for the light's kind
+/// ([`light_blend`]); returns GBuffer3 after the draw.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_light(
     ctx: &GpuContext,
@@ -522,8 +581,7 @@ pub(crate) fn draw_light(
     gbuffer: &UrpGBuffer,
     (light, main): (&UrpLightParams, bool),
     main_shadow: (&ScreenShadow, &UrpShadowFade),
-    additional: Option<(&AdditionalAtlas, u32)>,
-    cookie: Option<DrawCookie<'_>>,
+    extras: LightExtras<'_>,
     gbuffer3: Vec<u8>,
 ) -> Result<Vec<u8>, GpuError> {
     let mut job = RenderJob::new(label, wgsl, "vs_main", "fs_main");
@@ -531,19 +589,22 @@ pub(crate) fn draw_light(
     job.height = scene.height;
     job.targets = vec![
         ColorTarget::new(TargetFormat::Rg11b10Ufloat)
-            .with_blend(add_blend())
+            .with_blend(light_blend(light.kind))
             .with_initial(gbuffer3),
     ];
     job.resources = resources(scene, camera, gbuffer, light, main);
     job.resources
         .extend(main_shadow_resources(main_shadow.0, main_shadow.1));
-    if let Some((atlas, index)) = additional {
+    if let Some((atlas, index)) = extras.additional {
         job.resources.extend(atlas.resources());
         job.resources
             .push(AdditionalAtlas::shadow_light_index(index));
     }
-    if let Some(cookie) = cookie {
+    if let Some(cookie) = extras.cookie {
         job.resources.extend(cookie.resources());
+    }
+    if let Some(occlusion) = extras.occlusion {
+        job.resources.extend(occlusion.resources());
     }
     Ok(render(ctx, &job)?.remove(0))
 }
@@ -623,7 +684,29 @@ pub(crate) fn main_light_shadow<'r>(
         })
 }
 
-/// URP's lighting blend: `One One` on colour (GBuffer3 += light), `Zero One` on alpha.
+/// URP's blend of a lighting draw: a directional light's [`keep_blend`], a punctual light's
+/// [`add_blend`].
+pub(crate) fn light_blend(kind: UrpLightKind) -> wgpu::BlendState {
+    match kind {
+        UrpLightKind::Directional => keep_blend(),
+        UrpLightKind::Point | UrpLightKind::Spot => add_blend(),
+    }
+}
+
+/// URP's blend of the directional lights and the SSAOOnly pass: `One SrcAlpha` on colour
+/// (GBuffer3 = light + GBuffer3 · alpha, the alpha what GBuffer3 keeps), `Zero One` on alpha.
+pub(crate) fn keep_blend() -> wgpu::BlendState {
+    wgpu::BlendState {
+        color: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::SrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        },
+        ..add_blend()
+    }
+}
+
+/// URP's punctual lighting blend: `One One` on colour (GBuffer3 += light), `Zero One` on alpha.
 pub(crate) fn add_blend() -> wgpu::BlendState {
     wgpu::BlendState {
         color: wgpu::BlendComponent {
@@ -824,8 +907,7 @@ pub fn compare_urp_volume(
         &gbuffer,
         (&light, false),
         (main_shadow, &fade),
-        None,
-        None,
+        LightExtras::default(),
         initial.clone(),
     )?;
     let input = LightPipelineInput {

@@ -34,3 +34,13 @@ pub fn caught_in(report: &wgsl_variants_gpu::check::CheckReport) -> Vec<String> 
     );
     p.mismatches_by_variant.keys().cloned().collect()
 }
+
+/// Asserts that every caught variant (`caught`, from [`caught_in`]) names each of `tokens`:
+/// the planted bug shows only where they are on.
+pub fn assert_each_has(caught: &[String], tokens: &[&str]) {
+    for k in caught {
+        for token in tokens {
+            assert!(k.contains(token), "caught in `{k}`, which lacks {token}");
+        }
+    }
+}

@@ -20,13 +20,18 @@
 //            20-22 the main light's cookie (universal/light_cookie: _LIGHT_COOKIES with
 //               _DEFERRED_MAIN_LIGHT),
 //            23-25 the additional lights' cookie atlas (universal/light_cookie: _LIGHT_COOKIES
-//               with _POINT or _SPOT)
+//               with _POINT or _SPOT),
+//            26-27 the screen-space occlusion (universal/ambient_occlusion:
+//               _SCREEN_SPACE_OCCLUSION)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
 //   @vertex   vs_main    a full-screen triangle (directional lights; volumes crossing the near plane)
 //   @vertex   vs_volume  the light's volume (world positions at @location(0))
-//   @fragment fs_main    -> @location(0) the light (rgb; the host blends One One onto GBuffer3)
+//   @fragment fs_main    -> @location(0) the light (rgb) and what GBuffer3 keeps (a): the host
+//                        blends a punctual light One One and a directional one One SrcAlpha
+//                        (URP's), so a is 1 but under _DEFERRED_FIRST_LIGHT with
+//                        _SCREEN_SPACE_OCCLUSION, where it is the indirect occlusion's ratio
 
 #import internal/fullscreen
 #import deferred/depth
@@ -35,6 +40,7 @@
 #import universal/main_light_shadow
 #import universal/additional_light_shadow
 #import universal/light_cookie
+#import universal/ambient_occlusion
 
 @group(0) @binding(0) var gbuffer0: texture_2d<f32>;
 @group(0) @binding(1) var gbuffer1: texture_2d<f32>;
@@ -92,9 +98,10 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let l = light;
 #endif
 #if defined(_LIGHT_LAYERS)
-    // Not a discard: URP's pass must still clear the stencil bit of this pixel.
+    // Not a discard: URP's pass must still clear the stencil bit of this pixel. URP returns
+    // before the occlusion, so GBuffer3 is kept whole (alpha 1) here.
     if (l.layer_mask.x & textureLoad(rendering_layers, pixel, 0).r) == 0u {
-        return vec4f(0.0);
+        return vec4f(0.0, 0.0, 0.0, 1.0);
     }
 #endif
     let g0 = textureLoad(gbuffer0, pixel, 0);
@@ -115,19 +122,28 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let attenuation = s.w * urp_deferred_shadow(p, pixel, flags, s.xyz);
 #if defined(_DEFERRED_MAIN_LIGHT) && defined(_LIGHT_COOKIES)
     // GetStencilLight: the main light's colour times its cookie.
-    let color = l.color.rgb * urp_main_light_cookie(p);
+    let cookie_color = l.color.rgb * urp_main_light_cookie(p);
 #elif defined(_SPOT) && defined(_LIGHT_COOKIES)
     // A punctual light's colour times its rect of the atlas (no all-zero test: the keyword
     // says the light has a cookie).
-    let color = l.color.rgb * urp_spot_light_cookie(cookie_light_index.x, p);
+    let cookie_color = l.color.rgb * urp_spot_light_cookie(cookie_light_index.x, p);
 #elif defined(_POINT) && defined(_LIGHT_COOKIES)
-    let color = l.color.rgb * urp_point_light_cookie(cookie_light_index.x, p);
+    let cookie_color = l.color.rgb * urp_point_light_cookie(cookie_light_index.x, p);
 #else
-    let color = l.color.rgb;
+    let cookie_color = l.color.rgb;
+#endif
+    // The direct occlusion dims the light; the first directional light also scales what the
+    // G-buffer pass left in GBuffer3 (its alpha, blended One SrcAlpha).
+    let ao = urp_screen_space_ambient_occlusion(pixel);
+    let color = cookie_color * ao.y;
+#if defined(_DIRECTIONAL) && defined(_DEFERRED_FIRST_LIGHT) && defined(_SCREEN_SPACE_OCCLUSION)
+    let alpha = urp_deferred_indirect_occlusion(ao.x, g1.a);
+#else
+    let alpha = 1.0;
 #endif
     let brdf = urp_brdf_from_gbuffer(g0.rgb, g1.rgb, g2.a, (flags & URP_FLAG_SPECULAR_SETUP) != 0u);
     let n = urp_unpack_normal(g2.rgb);
     let v = urp_safe_normalize(deferred_camera.position.xyz - p);
     let c = urp_lighting_physically_based(brdf, color, attenuation, s.xyz, n, v, (flags & URP_FLAG_SPECULAR_HIGHLIGHTS_OFF) != 0u);
-    return vec4f(c, 0.0);
+    return vec4f(c, alpha);
 }

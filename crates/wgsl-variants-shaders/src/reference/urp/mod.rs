@@ -23,6 +23,7 @@
 //! | [`shadow`] | the ShadowCaster pass: URP's shadow bias and near-plane pancaking; the main light's map read |
 //! | [`additional_shadow`] | additional-light realtime shadows: the atlas slice (a point light's cube face), the coordinate, the tap |
 //! | [`cookie`] | light cookies: the main light's and the additional lights' atlas (spot perspective, point octahedral), the texel a nearest sampler reads, the formats |
+//! | [`ambient_occlusion`] | screen-space ambient occlusion as the lighting reads it: the direct and indirect factors, the deferred path's GBuffer3 scale |
 //! | [`accuracy`] | angular round-trip error of the normal encodings over a sphere of directions |
 //!
 //! ```
@@ -44,6 +45,7 @@
 
 pub mod accuracy;
 pub mod additional_shadow;
+pub mod ambient_occlusion;
 pub mod cookie;
 pub mod flags;
 pub mod forward;
