@@ -511,7 +511,7 @@ fn a_wesl_tree_is_listed_covered_emitted_and_exported() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(
-        String::from_utf8_lossy(&out.stdout).contains("total: 18 passes"),
+        String::from_utf8_lossy(&out.stdout).contains("total: 19 passes"),
         "{}",
         String::from_utf8_lossy(&out.stdout)
     );
