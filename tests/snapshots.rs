@@ -33,11 +33,12 @@ fn covering_snapshots_of_every_pass() {
 }
 
 /// `assert_variant_snapshots!` over the bundled library: the covering snapshots and the
-/// manifest of all 627,366 variants. About 6 minutes on 2 cores (the fresh-clone CI run of
-/// 2026-11-29, when this was CI's form):
+/// manifest of all 1,020,582 variants. About 6 minutes on 2 cores for 627,366 of them (the
+/// fresh-clone CI run of 2026-11-29, when this was CI's form); `universal_lit`'s 835,596 alone
+/// took 10.4 minutes (`wgsl-variants manifest --summary --shader universal_lit`, 2026-11-29):
 /// `cargo test --release --ignore-rust-version --test snapshots -- --ignored`.
 #[test]
-#[ignore = "the full space (430580 variants): cargo test --release --test snapshots -- --ignored"]
+#[ignore = "the full space (1020582 variants): cargo test --release --test snapshots -- --ignored"]
 fn full_space_manifest() {
     let lib = wgsl_variants_shaders::library().unwrap();
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
@@ -148,7 +149,7 @@ fn manifest_names_every_pass_with_its_size() {
 /// the committed manifest snapshot, so the output does not depend on the thread count. On
 /// every bundled pass under 20,000 variants (the largest, `standard/ForwardAdd`, 18,432): each
 /// is split between threads the same way as a larger one, and the four larger passes (49,152
-/// to 393,216 variants) compile 313,600 distinct texts, the full-space test's work.
+/// to 786,432 variants) compile 473,344 distinct texts, the full-space test's work.
 #[test]
 fn canonical_output_is_deterministic_across_thread_counts() {
     let lib = wgsl_variants_shaders::library().unwrap();

@@ -4,7 +4,7 @@
 //! The tests run over this selection instead: every variant of a pass whose space holds at
 //! most [`FULL_UP_TO`] variants, and a t = [`COVER_T`] covering set of a larger one (the
 //! standard shader's three lit passes, 55,296, 18,432 and 110,592 variants; URP's
-//! `UniversalGBuffer`, 49,152, and `UniversalForward`, 393,216). The full-space form of each
+//! `UniversalGBuffer`, 49,152, and `UniversalForward`, 786,432). The full-space form of each
 //! such test is an `#[ignore]`d test of its own, run by `cargo test --release -- --ignored`
 //! (`docs/guide/testing.md` gives each command and its time).
 

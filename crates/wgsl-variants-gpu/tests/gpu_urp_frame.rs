@@ -69,6 +69,8 @@ fn the_urp_frame_matches_the_reference_both_ways() {
     let edges = &report.cookie_edges;
     assert!(edges[0] > 20 && edges[0] < report.compared / 5, "{report}");
     assert!(edges[1] == 0 && edges[2] > 20 && edges[3] > 20, "{report}");
+    // The screen-space occlusion reaches GBuffer3 through the main light in much of the frame.
+    assert!(report.occluded > 500, "{report}");
 }
 
 /// The main light through URP's screen-space shadow pass in both paths
@@ -115,7 +117,8 @@ fn the_urp_frame_with_screen_space_shadows_matches_the_reference() {
 /// on every layer), the main light's shadow missing, not fading with the distance or drawn
 /// from one map where the frame has cascades, the additional lights' shadows missing or the
 /// spot's hard where it is soft, the main light's or the spot's cookie flipped, the cookies
-/// dropped — each fails on both paths; a light volume too small fails deferred only.
+/// dropped, the screen-space occlusion ignored — each fails on both paths; a light volume too
+/// small fails deferred only.
 #[test]
 fn a_wrong_light_is_caught_both_ways() {
     let Some(ctx) = context() else {
@@ -165,6 +168,8 @@ fn a_wrong_light_is_caught_both_ways() {
     }
     let mut uncookied = truth.clone();
     uncookied.cookies = None;
+    let mut unoccluded = truth.clone();
+    unoccluded.occlusion = None;
     for (what, wrong) in [
         ("the warm point light 25 % brighter", &brighter),
         ("no main light", &no_main),
@@ -177,6 +182,7 @@ fn a_wrong_light_is_caught_both_ways() {
         ("the main light's cookie flipped", &flipped_main),
         ("the spot's cookie flipped", &flipped_spot),
         ("no cookies", &uncookied),
+        ("the screen-space occlusion ignored", &unoccluded),
     ] {
         let shadow = render_urp_shadows(&ctx, &lib, wrong).expect("shadow");
         let forward = render_urp_forward(&ctx, &lib, wrong, &shadow).expect("forward");

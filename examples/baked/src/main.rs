@@ -256,6 +256,7 @@ fn urp_uniforms(gpu: &Gpu, camera: &Camera) -> Vec<Uniform> {
                 subtractive_shadow_color: [0.2, 0.2, 0.3, 0.0],
                 glossy_environment_color: [0.3, 0.35, 0.4, 0.0],
                 probes_occlusion: [1.0; 4],
+                ambient_occlusion_params: [0.0; 4],
             },
         ),
         Uniform::new(

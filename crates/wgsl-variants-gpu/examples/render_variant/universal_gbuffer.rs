@@ -796,7 +796,7 @@ mod tables {
     use super::*;
 
     const BINDING_0: BindingEntry = BindingEntry { group: 0, binding: 0, name: "camera", kind: BindingKind::UniformBuffer { size: 80, rust_type: "Camera" }, visibility: &[Stage::Vertex, Stage::Fragment], count: None };
-    const BINDING_1: BindingEntry = BindingEntry { group: 0, binding: 1, name: "lighting", kind: BindingKind::UniformBuffer { size: 144, rust_type: "Lighting" }, visibility: &[Stage::Fragment], count: None };
+    const BINDING_1: BindingEntry = BindingEntry { group: 0, binding: 1, name: "lighting", kind: BindingKind::UniformBuffer { size: 160, rust_type: "Lighting" }, visibility: &[Stage::Fragment], count: None };
     const BINDING_2: BindingEntry = BindingEntry { group: 0, binding: 2, name: "environment", kind: BindingKind::Texture { sample_type: SampleType::Float, dimension: Dimension::Cube, multisampled: false }, visibility: &[Stage::Fragment], count: None };
     const BINDING_3: BindingEntry = BindingEntry { group: 0, binding: 3, name: "environment_sampler", kind: BindingKind::Sampler { comparison: false }, visibility: &[Stage::Fragment], count: None };
     const BINDING_4: BindingEntry = BindingEntry { group: 1, binding: 0, name: "material", kind: BindingKind::UniformBuffer { size: 80, rust_type: "Material" }, visibility: &[Stage::Fragment], count: None };
@@ -4096,7 +4096,7 @@ pub mod structs {
         assert!(core::mem::offset_of!(Camera, position) == 64);
     };
 
-    /// WGSL `Lighting`: 144 bytes, aligned to 16.
+    /// WGSL `Lighting`: 160 bytes, aligned to 16.
     ///
     /// Used by 49152 of 49152 variants.
     /// Bound at @group(0) @binding(1) `lighting`.
@@ -4121,10 +4121,12 @@ pub mod structs {
         pub glossy_environment_color: [f32; 4],
         /// `probes_occlusion: vec4<f32>`
         pub probes_occlusion: [f32; 4],
+        /// `ambient_occlusion_params: vec4<f32>`
+        pub ambient_occlusion_params: [f32; 4],
     }
 
     const _: () = {
-        assert!(core::mem::size_of::<Lighting>() == 144);
+        assert!(core::mem::size_of::<Lighting>() == 160);
         assert!(core::mem::align_of::<Lighting>() == 16);
         assert!(core::mem::offset_of!(Lighting, sh_r) == 0);
         assert!(core::mem::offset_of!(Lighting, sh_g) == 16);
@@ -4135,6 +4137,7 @@ pub mod structs {
         assert!(core::mem::offset_of!(Lighting, subtractive_shadow_color) == 96);
         assert!(core::mem::offset_of!(Lighting, glossy_environment_color) == 112);
         assert!(core::mem::offset_of!(Lighting, probes_occlusion) == 128);
+        assert!(core::mem::offset_of!(Lighting, ambient_occlusion_params) == 144);
     };
 
     /// WGSL `Material`: 80 bytes, aligned to 16.

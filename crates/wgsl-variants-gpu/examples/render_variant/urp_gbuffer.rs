@@ -59,6 +59,10 @@ macro_rules! urp_uniforms {
             subtractive_shadow_color: v4(l.subtractive_shadow_color.extend(0.0)),
             glossy_environment_color: v4(l.glossy_environment_color.extend(0.0)),
             probes_occlusion: v4(l.probes_occlusion),
+            // URP's _AmbientOcclusionParam as the GPU check sets it (only the forward pass's
+            // SSAO reads it).
+            ambient_occlusion_params:
+                wgsl_variants_gpu::check::urp_occlusion::AMBIENT_OCCLUSION_PARAM,
         };
         let material = $structs::Material {
             base_color: v4(m.base_color),

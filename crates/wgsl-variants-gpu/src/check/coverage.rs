@@ -1,9 +1,10 @@
 //! Which variants a check runs and how keyword coverage is judged over them: the pairs that
 //! differ in one keyword, the partners a covering set needs for that, and the small passes
-//! that are run whole.
+//! that are run whole (or through the covering set the options ask for).
 
 use std::collections::{HashMap, HashSet};
 
+use super::options::CheckOptions;
 use super::report::{KeywordCoverage, PassReport};
 use crate::{CheckError, GpuError};
 use wgsl_variants::Library;
@@ -100,21 +101,70 @@ pub(crate) fn add_partners<T: PartialEq>(
     Ok(choices.len() - original)
 }
 
-/// `shader/pass` and every variant of its full space (at most 1000: the small passes the
-/// checks run whole).
-pub(crate) fn small_pass<'l>(
-    lib: &'l Library,
-    shader: &str,
-    pass: &str,
-) -> Result<(&'l Pass, Vec<Choice>), GpuError> {
-    let what = format!("{shader}/{pass}");
-    let pass = lib
-        .pass(shader, pass)
-        .map_err(|e| CheckError::lookup(&what, e))?;
-    let choices = wgsl_variants::Space::full(pass)
-        .enumerate(1000)
-        .map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
-    Ok((pass, choices))
+/// A pass the checks run whole (at most 1000 variants), and the variants one check of it runs:
+/// all of them, or the covering set the options ask for ([`CheckOptions::cover_for`]: the
+/// command line's `--cover T` without `--cover-above`).
+pub(crate) struct SmallPass<'l> {
+    /// The pass.
+    pub(crate) pass: &'l Pass,
+    /// The variants to run.
+    pub(crate) choices: Vec<Choice>,
+    /// The covering strength, when `choices` is a covering set.
+    cover: Option<usize>,
+    /// The size of the full space.
+    full: usize,
+}
+
+impl<'l> SmallPass<'l> {
+    /// `shader/pass` of `lib` and the variants `options` select in it.
+    pub(crate) fn new(
+        lib: &'l Library,
+        shader: &str,
+        pass: &str,
+        options: &CheckOptions,
+    ) -> Result<SmallPass<'l>, GpuError> {
+        let what = format!("{shader}/{pass}");
+        let pass = lib
+            .pass(shader, pass)
+            .map_err(|e| CheckError::lookup(&what, e))?;
+        let full = wgsl_variants::Space::full(pass).enumerate(1000);
+        let full = full.map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
+        // A strength of at least the pass's keyword sets covers its whole space.
+        let cover = options
+            .cover_for(full.len() as u64)
+            .filter(|&t| t < pass.sets.len());
+        let choices = match cover {
+            Some(t) => wgsl_variants::Space::full(pass)
+                .covering(t)
+                .map_err(CheckError::from)?,
+            None => full.clone(),
+        };
+        Ok(SmallPass {
+            pass,
+            choices,
+            cover,
+            full: full.len(),
+        })
+    }
+
+    /// Records the variants run with their `outputs` (one per variant, in order): over the
+    /// full space, whether each keyword changed some pair's output
+    /// ([`judge_every_variant`]); over a covering set, which holds few such pairs, a note
+    /// instead (keyword coverage is judged on the full space only, as with `--sample`).
+    pub(crate) fn judge<T: PartialEq>(&self, report: &mut PassReport, outputs: &[T]) {
+        match self.cover {
+            None => judge_every_variant(report, self.pass, &self.choices, outputs),
+            Some(t) => {
+                report.variants_run += self.choices.len();
+                report.distinct_shaders += self.choices.len();
+                report.notes.push(format!(
+                    "{t}-wise covering set of {} of the {} variants (keyword coverage is judged on the full space only)",
+                    self.choices.len(),
+                    self.full
+                ));
+            }
+        }
+    }
 }
 
 /// The number of variants in a pass's full space (saturated at `u64::MAX`): what

@@ -11,9 +11,10 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 use super::compare::{compare_texel, format_name, pixel};
-use super::coverage::{judge_every_variant, small_pass};
+use super::coverage::SmallPass;
 use super::gbuffer::{CHAIN_INPUTS, GBufferImage, render_gbuffer};
 use super::lighting::render_lighting;
+use super::options::CheckOptions;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::PassReport;
 use super::rig::shadowed;
@@ -122,15 +123,17 @@ fn stored_baked(gbuffer: &GBufferImage, shadow: ShadowKeywords, light: LightType
 
 /// Checks every variant of `deferred_shading/Lighting` over the LDR and HDR G-buffers of each
 /// `CHAIN_INPUTS` keyword set of the deferred chain check, and that each keyword changes the
-/// result.
+/// result; or the covering set `options` ask for ([`CheckOptions::cover_for`]).
 pub fn check_deferred_shading(
     ctx: &GpuContext,
     lib: &Library,
     scene: &TestScene,
     rig: &LightRig,
+    options: &CheckOptions,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let (pass, choices) = small_pass(lib, "deferred_shading", "Lighting")?;
+    let small = SmallPass::new(lib, "deferred_shading", "Lighting", options)?;
+    let (pass, choices) = (small.pass, small.choices.as_slice());
     let mut report = PassReport::new("deferred_shading", "Lighting");
     // The G-buffers, rendered once per input, HDR mode and shadowmask (RT4 or not).
     let mut gbuffers: HashMap<(usize, bool, bool), GBufferImage> = HashMap::new();
@@ -151,7 +154,7 @@ pub fn check_deferred_shading(
     }
     // outputs[v][n]: variant v over input n.
     let mut outputs: Vec<Vec<Vec<[f32; 4]>>> = Vec::new();
-    for choice in &choices {
+    for choice in choices {
         let variant = wgsl_variants::Variant {
             pass,
             choice: choice.clone(),
@@ -182,7 +185,7 @@ pub fn check_deferred_shading(
         }
         outputs.push(per_input);
     }
-    judge_every_variant(&mut report, pass, &choices, &outputs);
+    small.judge(&mut report, &outputs);
     report.notes.push(format!(
         "full-screen draws over {} G-buffers (LDR and HDR, with RT4 for SHADOWS_SHADOWMASK and without); positions rebuilt from the depth of a perspective camera; HDR: One/One onto Rgba16Float RT3, LDR: DstColor/Zero onto the Rgb10a2Unorm exp2(-c) RT3",
         gbuffers.len()
@@ -220,6 +223,7 @@ impl PassCheck for Lighting {
             setup.lib,
             setup.scene,
             setup.rig,
+            setup.options,
         )?])
     }
 }

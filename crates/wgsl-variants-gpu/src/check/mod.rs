@@ -31,7 +31,7 @@
 //! | [`forward_deferred`] | the same surface lit by ForwardAdd and by G-buffer + Lighting (HDR), compared per pixel |
 //! | deferred | `deferred_reflections/Reflections` (probe by probe), `deferred_reflections/Add` (both variants), `deferred_final/Final` |
 //! | [`urp`] | `universal_lit/UniversalGBuffer` (49,152 variants: a t = 3 covering set plus one partner per keyword by default, every variant with [`CheckOptions::full`]) on [`urp::UrpScene`], every texel of every target against [`wgsl_variants_shaders::reference::urp::gbuffer`] |
-//! | [`urp_forward`] | `universal_lit/UniversalForward` (393,216 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (its map, its cascades or a stand-in screen-space texture) and three additional lights (two casting shadows from [`urp_additional_shadows`]'s atlas), every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
+//! | [`urp_forward`] | `universal_lit/UniversalForward` (786,432 variants: covered like `UniversalGBuffer`) on [`urp::UrpScene`] lit by the [`LightRig`]'s main light (its map, its cascades or a stand-in screen-space texture) and three additional lights (two casting shadows from [`urp_additional_shadows`]'s atlas), every texel of the `Rg11b10Ufloat` camera target against [`wgsl_variants_shaders::reference::urp::forward`] |
 //! | [`urp_caster`] | `universal_lit/ShadowCaster` (all 8 variants): the URP quad into a directional and a spot map, every texel against the biased, pancaked, alpha-tested reference |
 //! | `urp_depth_only` | `universal_lit/DepthOnly` (all 4 variants): the URP quad through the rig's camera and two light boxes (one clipping it), every texel of the `R32Float` target and the depth buffer against the alpha-tested reference |
 //! | [`urp_lighting`] | `stencil_deferred/PunctualLit` and `DirectionalLit` (all 252 variants: 96 and 156) over `UniversalGBuffer` G-buffers, positions from depth, the main light's shadow over the map, the cascades or the screen-space texture of [`screen_shadows`], the screen-space occlusion; `stencil_deferred/SSAOOnly` (2) over their GBuffer3 (`urp_ssao_only`) |
@@ -96,7 +96,7 @@ mod urp_depth_only;
 pub mod urp_forward;
 pub mod urp_frame;
 pub mod urp_lighting;
-mod urp_occlusion;
+pub mod urp_occlusion;
 mod urp_screen_shadows;
 mod urp_ssao_only;
 mod volume_draw;

@@ -20,8 +20,11 @@ pub struct CheckOptions {
     /// Only this shard of each standard pass's variants (variant i of a pass is in shard
     /// `i % N`); with `sample`, both apply. Keyword coverage is judged on the full space only.
     pub shard: Option<wgsl_variants::variants::Shard>,
-    /// Check a t-wise covering set of each standard pass instead of its full space
-    /// ([`wgsl_variants::Space::covering`]); `sample` and `shard` then apply to it.
+    /// Check a t-wise covering set of each pass instead of its full space
+    /// ([`wgsl_variants::Space::covering`]); `sample` and `shard` then apply to it (standard
+    /// passes). The passes that are otherwise run whole (URP's lighting, shadow-caster and
+    /// depth passes, the built-in deferred lighting) judge keyword coverage on the full space
+    /// only.
     pub cover: Option<usize>,
     /// With `cover`, cover only passes whose space holds more than this many variants (as
     /// `validate --cover-above`). Without `cover`, passes past this many variants (default

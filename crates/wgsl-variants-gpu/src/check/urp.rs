@@ -29,6 +29,7 @@ use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::scene::{MapTexture, Rng, TestScene, cube_resource, push_mat4, push_vec4};
 use super::standard::CLEAR;
+use super::urp_occlusion::AMBIENT_OCCLUSION_PARAM;
 use super::workers::{Worker, render_all};
 use crate::urp::writes_shadow_mask;
 use crate::{
@@ -302,7 +303,8 @@ pub(crate) fn camera_uniform(view_proj: Mat4, l: &UrpLighting) -> Vec<u8> {
     out
 }
 
-/// `wgsl/universal/bindings.wgsl`'s `Lighting`.
+/// `wgsl/universal/bindings.wgsl`'s `Lighting`, its `_AmbientOcclusionParam` the checks' SSAO
+/// ([`AMBIENT_OCCLUSION_PARAM`]).
 pub(crate) fn lighting_uniform(l: &UrpLighting) -> Vec<u8> {
     let mut out = Vec::new();
     for v in [
@@ -315,6 +317,7 @@ pub(crate) fn lighting_uniform(l: &UrpLighting) -> Vec<u8> {
         l.subtractive_shadow_color.extend(0.0),
         l.glossy_environment_color.extend(0.0),
         l.probes_occlusion,
+        Vec4::from_array(AMBIENT_OCCLUSION_PARAM),
     ] {
         push_vec4(&mut out, v);
     }

@@ -13,7 +13,8 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::coverage::{judge_every_variant, small_pass};
+use super::coverage::SmallPass;
+use super::options::CheckOptions;
 use super::pass_check::{PassCheck, Setup};
 use super::quad_raster::{AlphaTest, Expected, rasterize_quad};
 use super::report::{Mismatch, PassReport};
@@ -132,22 +133,25 @@ fn reference_map(
     rasterize_quad(urp, place, (MAP_SIZE, MAP_SIZE), alpha, false)
 }
 
-/// Checks every variant of `universal_lit/ShadowCaster` against the reference map (module docs).
+/// Checks every variant of `universal_lit/ShadowCaster` (or the covering set `options` ask
+/// for: [`CheckOptions::cover_for`]) against the reference map (module docs).
 pub fn check_urp_shadow_caster(
     ctx: &GpuContext,
     lib: &Library,
     scene: &TestScene,
     rig: &super::rig::LightRig,
+    options: &CheckOptions,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let (pass, choices) = small_pass(lib, "universal_lit", "ShadowCaster")?;
+    let small = SmallPass::new(lib, "universal_lit", "ShadowCaster", options)?;
+    let (pass, choices) = (small.pass, small.choices.as_slice());
     let urp = UrpScene::new(scene, DEFAULT_SEED);
     let [directional, tight, spot] = views(rig, scene)?;
     let mesh = scene.quad();
     let mut report = PassReport::new("universal_lit", "ShadowCaster");
     let (mut edges, mut clear, mut discarded, mut pancaked) = (0usize, 0usize, 0usize, 0usize);
     let mut outputs = Vec::new();
-    for choice in &choices {
+    for choice in choices {
         let variant = wgsl_variants::Variant {
             pass,
             choice: choice.clone(),
@@ -214,7 +218,7 @@ pub fn check_urp_shadow_caster(
         }
         outputs.push(per_view);
     }
-    judge_every_variant(&mut report, pass, &choices, &outputs);
+    small.judge(&mut report, &outputs);
     report.notes.push(format!(
         "{MAP_SIZE}x{MAP_SIZE} Depth16Unorm maps of the URP scene's quad: directional light (orthographic boxes of radius {REGION_RADIUS} and {TIGHT_RADIUS}, bias {DIRECTIONAL_BIAS}; {pancaked} texels on a triangle with a vertex pancaked onto the near plane) without _CASTING_PUNCTUAL_LIGHT_SHADOW, spot light (perspective, bias {SPOT_BIAS}) with it; {clear} clear texel comparisons ({discarded} discarded by the alpha test), {edges} edge texels left to the rasterizer"
     ));
@@ -243,6 +247,7 @@ impl PassCheck for UrpShadowCaster {
             setup.lib,
             setup.scene,
             setup.rig,
+            setup.options,
         )?])
     }
 }

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::coverage::{judge_every_variant, small_pass};
+use super::coverage::SmallPass;
 use super::pass_check::{PassCheck, Setup};
 use super::quad_raster::{AlphaTest, Expected, rasterize_quad};
 use super::report::{Mismatch, PassReport};
@@ -59,7 +59,8 @@ fn resources(urp: &UrpScene, view_proj: Mat4) -> Vec<BoundResource> {
 pub(crate) fn check_urp_depth_only(setup: &Setup<'_>) -> Result<PassReport, GpuError> {
     let start = Instant::now();
     let (scene, rig) = (setup.scene, setup.rig);
-    let (pass, choices) = small_pass(setup.lib, PASS.0, PASS.1)?;
+    let small = SmallPass::new(setup.lib, PASS.0, PASS.1, setup.options)?;
+    let (pass, choices) = (small.pass, small.choices.as_slice());
     let urp = UrpScene::new(scene, DEFAULT_SEED);
     let [directional, tight, _] = views(rig, scene)?;
     let views = [
@@ -83,7 +84,7 @@ pub(crate) fn check_urp_depth_only(setup: &Setup<'_>) -> Result<PassReport, GpuE
     let mut report = PassReport::new(PASS.0, PASS.1);
     let (mut edges, mut clear, mut discarded, mut depths) = (0usize, 0usize, 0usize, 0usize);
     let mut outputs = Vec::new();
-    for choice in &choices {
+    for choice in choices {
         let variant = wgsl_variants::Variant {
             pass,
             choice: choice.clone(),
@@ -160,7 +161,7 @@ pub(crate) fn check_urp_depth_only(setup: &Setup<'_>) -> Result<PassReport, GpuE
         }
         outputs.push(per_view);
     }
-    judge_every_variant(&mut report, pass, &choices, &outputs);
+    small.judge(&mut report, &outputs);
     report.notes.push(format!(
         "the URP scene's quad through the rig's {}x{} perspective camera and the directional light's {MAP_SIZE}x{MAP_SIZE} boxes (the tight one clips the quad at its near plane); {depths} depth and {clear} clear texel comparisons ({discarded} discarded by the alpha test), {edges} edge texels left to the rasterizer",
         scene.width, scene.height

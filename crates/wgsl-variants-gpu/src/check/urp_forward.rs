@@ -20,7 +20,8 @@
 //! and the atlas of the lighting check (`urp_cookies::additional_light_cookies`): the
 //! point and the spot light read their rects, the second point light has none (an all-zero
 //! rect: white); where a cookie coordinate is within 1/64 texel of an edge, the texel is
-//! compared within the outcomes of the texels it may read.
+//! compared within the outcomes of the texels it may read. `_SCREEN_SPACE_OCCLUSION`: the SSAO
+//! pattern of the lighting checks (`urp_occlusion::ScreenOcclusion`), read at each pixel.
 
 use glam::{Vec3, Vec4};
 
@@ -41,6 +42,7 @@ use super::urp_cookies::{
 use super::urp_lighting::{
     MATCHING_LAYERS, OTHER_LAYERS, main_light_shadow, shadowed, spot_inner_degrees,
 };
+use super::urp_occlusion::ScreenOcclusion;
 use crate::{
     BoundResource, CheckError, ColorTarget, GpuContext, GpuError, RenderJob, Resource, TargetFormat,
 };
@@ -51,8 +53,8 @@ use wgsl_variants_shaders::reference::urp::cookie::{
     AdditionalLightCookies, MainLightCookie, range,
 };
 use wgsl_variants_shaders::reference::urp::forward::{
-    CookieTints, MainLightShadow, MainLightShadows, UrpForwardKeywords, UrpForwardLights,
-    UrpShadowFade, shade_forward, vertex_lighting,
+    CookieTints, ForwardInputs, MainLightShadow, MainLightShadows, UrpForwardKeywords,
+    UrpForwardLights, UrpShadowFade, shade_forward, vertex_lighting,
 };
 use wgsl_variants_shaders::reference::urp::gbuffer::UrpTexel;
 use wgsl_variants_shaders::reference::urp::lighting::UrpLight;
@@ -78,6 +80,8 @@ pub struct UrpForwardScene {
     pub main_cookie: MainLightCookie,
     /// The additional lights' cookies (`_LIGHT_COOKIES`): the point and the spot light's rects.
     pub cookies: AdditionalLightCookies,
+    /// The SSAO texture (`_SCREEN_SPACE_OCCLUSION`).
+    occlusion: ScreenOcclusion,
 }
 
 impl UrpForwardScene {
@@ -130,6 +134,7 @@ impl UrpForwardScene {
         let in_shadow: Vec<Vec3> = (0..2).flat_map(|i| atlas.shadowed(i, &positions)).collect();
         let additional_shadows = atlas.faded(fade_across(&in_shadow, camera));
         let what = "universal_lit/UniversalForward";
+        let occlusion = ScreenOcclusion::new(urp.scene.width, urp.scene.height);
         Ok(UrpForwardScene {
             urp,
             lights,
@@ -141,6 +146,7 @@ impl UrpForwardScene {
                 &[Some(&rig.point_light), Some(&rig.spot_light)],
                 what,
             )?,
+            occlusion,
         })
     }
 
@@ -219,17 +225,15 @@ impl UrpForwardScene {
         [lo, hi]
     }
 
-    /// The main light's cookie colours the pixel at `p` may read (white alone without
-    /// `_LIGHT_COOKIES`), and each additional light's cookie at the lower and the upper end of
-    /// its range.
-    fn cookie_tints(&self, k: &UrpForwardKeywords, p: Vec3) -> (Vec<Vec3>, [Vec<Vec3>; 2]) {
+    /// The cookie tints the pixel at `p` may take with the additional lights' cookies at the
+    /// lower and the upper end of their ranges ([`CookieTints::candidates`]); white alone
+    /// without `_LIGHT_COOKIES`.
+    fn cookie_tints(&self, k: &UrpForwardKeywords, p: Vec3) -> [Vec<CookieTints>; 2] {
         if !k.light_cookies {
-            return (vec![Vec3::ONE], [Vec::new(), Vec::new()]);
+            return [vec![CookieTints::WHITE], vec![CookieTints::WHITE]];
         }
-        let (lo, hi) = (0..self.lights.additional().len())
-            .map(|i| range(&self.cookies.candidates(i, p)))
-            .unzip();
-        (self.main_cookie.candidates(p), [lo, hi])
+        let lights = self.lights.additional().len();
+        [0, 1].map(|end| CookieTints::candidates(&self.main_cookie, &self.cookies, lights, p, end))
     }
 
     /// The reference texel at pixel `(x, y)`; `None` where the variant discards it. Shading
@@ -244,13 +248,16 @@ impl UrpForwardScene {
         let p = pixel.geometry.world_position;
         let additional = self.additional_light_shadows(k, p);
         let shadows = self.main_light_shadow(k, p, (x, y));
-        let (main_tints, additional_tints) = self.cookie_tints(k, p);
-        let mut outcomes = Vec::with_capacity(2 * main_tints.len());
-        for end in [0, 1] {
-            for &main in &main_tints {
-                let tints = CookieTints {
-                    main,
-                    additional: additional_tints[end].clone(),
+        let tints_by_end = self.cookie_tints(k, p);
+        let mut outcomes = Vec::with_capacity(2 * tints_by_end[0].len());
+        for (end, candidates) in tints_by_end.into_iter().enumerate() {
+            for tints in candidates {
+                let inputs = ForwardInputs {
+                    shadow: shadows[end],
+                    vertex_lighting: vl,
+                    additional_shadows: additional[end].clone(),
+                    tints,
+                    occlusion: self.occlusion.factor(x, y),
                 };
                 outcomes.push(shade_forward(
                     k,
@@ -259,11 +266,8 @@ impl UrpForwardScene {
                     &pixel,
                     &urp.lighting,
                     urp.environment(),
-                    shadows[end],
                     &self.lights,
-                    vl,
-                    &additional[end],
-                    &tints,
+                    &inputs,
                 )?);
             }
         }
@@ -285,7 +289,8 @@ impl UrpColorPass for UrpForwardScene {
     }
 
     /// The URP scene's resources, the lights (0/4), the main light's shadow (0/10-16), the
-    /// additional lights' shadows (0/17-19) and the cookies (0/20-25).
+    /// additional lights' shadows (0/17-19), the cookies (0/20-25) and the SSAO texture
+    /// (0/26-27).
     fn resources(&self) -> Vec<BoundResource> {
         let mut out = self.urp.resources();
         out.push(BoundResource::new(
@@ -297,6 +302,7 @@ impl UrpColorPass for UrpForwardScene {
         out.extend(self.additional_shadows.resources());
         out.extend(main_resources(&self.main_cookie));
         out.extend(atlas_resources(&self.cookies));
+        out.extend(self.occlusion.resources());
         out
     }
 

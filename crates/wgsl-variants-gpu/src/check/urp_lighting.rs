@@ -31,7 +31,8 @@ use glam::Vec3;
 
 use super::camera::{LightingCamera, depth_camera_resources};
 use super::compare::format_name;
-use super::coverage::{judge_every_variant, small_pass};
+use super::coverage::SmallPass;
+use super::options::CheckOptions;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::rig::LightRig;
@@ -234,8 +235,8 @@ impl LightingKeywords {
     }
 }
 
-/// Checks every variant of `stencil_deferred`'s `pass` (`PunctualLit` or `DirectionalLit`).
-/// `rig` must have its screen shadows rendered ([`LightRig::render_screen_shadows`]): the
+/// Checks every variant of `stencil_deferred`'s `pass` (`PunctualLit` or `DirectionalLit`), or
+/// the covering set `options` ask for ([`CheckOptions::cover_for`]). `rig` must have its screen shadows rendered ([`LightRig::render_screen_shadows`]): the
 /// main light's map is the `DIRECTIONAL` light's.
 pub fn check_stencil_deferred(
     ctx: &GpuContext,
@@ -243,9 +244,11 @@ pub fn check_stencil_deferred(
     scene: &TestScene,
     rig: &LightRig,
     pass_name: &str,
+    options: &CheckOptions,
 ) -> Result<PassReport, GpuError> {
     let start = Instant::now();
-    let (pass, choices) = small_pass(lib, "stencil_deferred", pass_name)?;
+    let small = SmallPass::new(lib, "stencil_deferred", pass_name, options)?;
+    let (pass, choices) = (small.pass, small.choices.as_slice());
     let main_shadow = main_light_shadow(rig, "stencil_deferred")?;
     let fade = lighting_fade(rig, scene, main_shadow);
     let additional = additional_shadows(ctx, lib, scene, rig)?;
@@ -289,7 +292,7 @@ pub fn check_stencil_deferred(
     // Comparisons under the screen-space occlusion, and those where the first light scales
     // GBuffer3 by less than 1.
     let (mut occluded, mut rescaled) = (0usize, 0usize);
-    for choice in &choices {
+    for choice in choices {
         let variant = wgsl_variants::Variant {
             pass,
             choice: choice.clone(),
@@ -455,7 +458,7 @@ pub fn check_stencil_deferred(
         }
         outputs.push(per_draw);
     }
-    judge_every_variant(&mut report, pass, &choices, &outputs);
+    small.judge(&mut report, &outputs);
     if shadowed > 0 {
         report.notes.push(format!(
             "{shadowed} pixel comparisons in the main light's shadow, {uncertain} of them with a tap within a hair of flipping (compared within the interval of its outcomes)"
@@ -993,6 +996,7 @@ impl PassCheck for StencilDeferred {
             setup.scene,
             setup.rig,
             self.passes[0].1,
+            setup.options,
         )?])
     }
 }

@@ -9,7 +9,7 @@
 use std::time::Instant;
 
 use super::compare::format_name;
-use super::coverage::judge_every_variant;
+use super::coverage::SmallPass;
 use super::pass_check::{Needs, PassCheck, Setup};
 use super::report::{Mismatch, PassReport};
 use super::scene::texture;
@@ -32,8 +32,8 @@ pub(crate) fn check_ssao_only(setup: &Setup<'_>) -> Result<PassReport, GpuError>
     let start = Instant::now();
     let scene = setup.scene;
     let (w, h) = (scene.width, scene.height);
-    let pass = setup.pass(PASS.0, PASS.1)?;
-    let choices: Vec<_> = wgsl_variants::Space::full(pass).iter().collect();
+    let small = SmallPass::new(setup.lib, PASS.0, PASS.1, setup.options)?;
+    let (pass, choices) = (small.pass, small.choices.as_slice());
     let occlusion = ScreenOcclusion::new(w, h);
     let urp = UrpScene::new(scene, DEFAULT_SEED);
     let gbuffers = GBUFFER_INPUTS
@@ -43,7 +43,7 @@ pub(crate) fn check_ssao_only(setup: &Setup<'_>) -> Result<PassReport, GpuError>
     let mut report = PassReport::new(PASS.0, PASS.1);
     let (mut rescaled, mut whole, mut lit) = (0usize, 0usize, 0usize);
     let mut images = Vec::with_capacity(choices.len());
-    for choice in &choices {
+    for choice in choices {
         let variant = wgsl_variants::Variant {
             pass,
             choice: choice.clone(),
@@ -109,7 +109,7 @@ pub(crate) fn check_ssao_only(setup: &Setup<'_>) -> Result<PassReport, GpuError>
         }
         images.push(per_variant);
     }
-    judge_every_variant(&mut report, pass, &choices, &images);
+    small.judge(&mut report, &images);
     report.notes.push(format!(
         "full-screen draws over GBuffer3 of {} UniversalGBuffer G-buffers ({lit} comparisons with a non-zero GBuffer3), blended One SrcAlpha; the SSAO texture an R8Unorm pattern of 16 levels; in {rescaled} comparisons the pass scales GBuffer3 by less than 1, in {whole} the surface's own occlusion is the lower and GBuffer3 is kept",
         gbuffers.len()

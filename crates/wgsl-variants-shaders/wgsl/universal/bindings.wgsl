@@ -17,7 +17,10 @@ struct Camera {
 
 // unity_SHAr/g/b (L0 + L1); the main light (direction TO the light, colour); the main light's
 // shadow attenuation at this object (x, a stand-in for a shadow-map sample) and strength (y);
-// _SubtractiveShadowColor; _GlossyEnvironmentColor; unity_ProbesOcclusion.
+// _SubtractiveShadowColor; _GlossyEnvironmentColor; unity_ProbesOcclusion; URP's
+// _AmbientOcclusionParam (w: the SSAO feature's direct lighting strength, which the forward pass
+// reads under _SCREEN_SPACE_OCCLUSION; the deferred passes, which bind no Lighting, take it at
+// their own binding: universal/ambient_occlusion).
 struct Lighting {
     sh_r: vec4f,
     sh_g: vec4f,
@@ -28,6 +31,7 @@ struct Lighting {
     subtractive_shadow_color: vec4f,
     glossy_environment_color: vec4f,
     probes_occlusion: vec4f,
+    ambient_occlusion_params: vec4f,
 }
 
 // URP Lit's properties: _BaseColor, _SpecColor (rgb), _EmissionColor (rgb);

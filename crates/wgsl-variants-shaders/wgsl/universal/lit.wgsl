@@ -34,12 +34,13 @@
 #tag LightMode UniversalForward
 // URP Lit's forward pass: the same material keywords; the pipeline keywords of the main
 // light's shadow (none, one map, cascades, hard or soft; or the screen-space pass's texel),
-// the additional lights (none, per vertex, per pixel) and their shadows, light layers and baked
-// lighting (a lightmap, with subtractive mixing). The additional lights' shadows and
-// subtractive mixing change nothing without the keyword they refine (only the per-pixel
-// lights read their shadows), so they require it: 1024 · 4 · 2 · (3 + 1) · 2 · 3 = 196608
-// variants. _SHADOWS_SOFT softens the main light's map or cascades and the additional lights'
-// shadows, so it is declared on its own as URP declares it; a pairwise require cannot say
+// the additional lights (none, per vertex, per pixel) and their shadows, light layers, baked
+// lighting (a lightmap, with subtractive mixing), light cookies and the screen-space
+// occlusion. The additional lights' shadows and subtractive mixing change nothing without the
+// keyword they refine (only the per-pixel lights read their shadows), so they require it:
+// 1024 · 4 · 2 · (3 + 1) · 2 · 3 · 2 · 2 = 786432 variants. _SHADOWS_SOFT softens the main
+// light's map or cascades and the additional lights' shadows, so it is declared on its own as
+// URP declares it; a pairwise require cannot say
 // "a main-light map, the cascades or additional shadows", and the variants where it changes
 // nothing (no map read) are identical code, which audit's distinct count shows.
 #pragma shader_feature_local _NORMALMAP
@@ -60,6 +61,7 @@
 #pragma multi_compile _ _MIXED_LIGHTING_SUBTRACTIVE
 #pragma multi_compile _ LIGHTMAP_ON
 #pragma multi_compile _ _LIGHT_COOKIES
+#pragma multi_compile _ _SCREEN_SPACE_OCCLUSION
 #pragma require _ADDITIONAL_LIGHT_SHADOWS _ADDITIONAL_LIGHTS
 #pragma require _MIXED_LIGHTING_SUBTRACTIVE LIGHTMAP_ON
 #import universal/lit_forward_pass

@@ -3,15 +3,18 @@
 // in one pass — global illumination (universal/gi), the main directional light with its
 // shadow, the additional point and spot lights per pixel (_ADDITIONAL_LIGHTS, with their
 // shadows under _ADDITIONAL_LIGHT_SHADOWS) or per vertex (_ADDITIONAL_LIGHTS_VERTEX), the main
-// and the per-pixel lights tinted by their cookies under _LIGHT_COOKIES, and the emission —
-// into the HDR camera target.
+// and the per-pixel lights tinted by their cookies under _LIGHT_COOKIES, the screen-space
+// occlusion under _SCREEN_SPACE_OCCLUSION, and the emission — into the HDR camera target.
 //
 //   group 0-2: universal/bindings (camera, lighting, environment; material; object, lightmap)
 //   group 0:   4 forward_lights (ForwardLights; with _ADDITIONAL_LIGHTS,
 //                _ADDITIONAL_LIGHTS_VERTEX or _LIGHT_LAYERS),
 //              10-16 the main light's shadow (universal/main_light_shadow),
 //              17-19 the additional lights' shadows (universal/additional_light_shadow),
-//              20-25 the lights' cookies (universal/light_cookie: _LIGHT_COOKIES)
+//              20-25 the lights' cookies (universal/light_cookie: _LIGHT_COOKIES),
+//              27 the screen-space occlusion (universal/ambient_occlusion:
+//                _SCREEN_SPACE_OCCLUSION; its direct strength is lighting's
+//                ambient_occlusion_params.w)
 //
 // Provides the entry points:
 //   @vertex   vs_main(UrpVertexInput) -> UrpVertexOutput
@@ -25,6 +28,7 @@
 #import universal/main_light_shadow
 #import universal/additional_light_shadow
 #import universal/light_cookie
+#import universal/ambient_occlusion
 
 // URP's limit of additional lights per object in the forward path.
 const URP_MAX_ADDITIONAL_LIGHTS: u32 = 8u;
@@ -98,16 +102,30 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
     let specular_off = false;
 #endif
 
-    // The fragment's pixel: where a _MAIN_LIGHT_SHADOWS_SCREEN variant reads its shadow.
-    let shadow = urp_main_light_shadow(p, camera.position.xyz, vec2i(floor(in.clip_position.xy)));
+    // The fragment's pixel: where a _MAIN_LIGHT_SHADOWS_SCREEN variant reads its shadow and a
+    // _SCREEN_SPACE_OCCLUSION one its occlusion.
+    let pixel = vec2i(floor(in.clip_position.xy));
+    let shadow = urp_main_light_shadow(p, camera.position.xyz, pixel);
 #if defined(_LIGHT_COOKIES)
     // GetMainLight: the main light's colour times its cookie, for the direct light and the
     // subtractive lightmap's estimate of it alike.
-    let main_color = lighting.main_light_color.rgb * urp_main_light_cookie(p);
+    let cookie_color = lighting.main_light_color.rgb * urp_main_light_cookie(p);
 #else
-    let main_color = lighting.main_light_color.rgb;
+    let cookie_color = lighting.main_light_color.rgb;
 #endif
-    var color = urp_global_illumination(b, urp_baked_gi(in, n, main_color, shadow.x, shadow.y), n, v, s.occlusion);
+#if defined(_SCREEN_SPACE_OCCLUSION)
+    // CreateAmbientOcclusionFactor: the global illumination takes the smaller of the SSAO's
+    // indirect part and the surface's occlusion; GetMainLight and GetAdditionalLight multiply
+    // the colours by the direct part (the subtractive estimate reads the main light's too).
+    let ssao = urp_screen_space_ambient_occlusion(pixel);
+    let direct_occlusion = urp_direct_occlusion(ssao, lighting.ambient_occlusion_params.w);
+    let occlusion = min(ssao, s.occlusion);
+    let main_color = cookie_color * direct_occlusion;
+#else
+    let occlusion = s.occlusion;
+    let main_color = cookie_color;
+#endif
+    var color = urp_global_illumination(b, urp_baked_gi(in, n, main_color, shadow.x, shadow.y), n, v, occlusion);
 
 #if defined(_LIGHT_LAYERS)
     let main_layers = forward_lights.params.y;
@@ -127,10 +145,16 @@ fn fs_main(in: UrpVertexOutput) -> @location(0) vec4f {
             // URP's light.distanceAttenuation * light.shadowAttenuation.
             let shadowed = a.w * urp_additional_light_shadow(i, p, a.xyz, camera.position.xyz);
 #if defined(_LIGHT_COOKIES)
-            // GetAdditionalLight (the per-pixel form; the per-vertex lights take no cookie).
-            let light_color = light.color.rgb * urp_additional_light_cookie(i, p);
+            // GetAdditionalLight (the per-pixel form; the per-vertex lights take no cookie and
+            // no occlusion).
+            let cookie_light = light.color.rgb * urp_additional_light_cookie(i, p);
 #else
-            let light_color = light.color.rgb;
+            let cookie_light = light.color.rgb;
+#endif
+#if defined(_SCREEN_SPACE_OCCLUSION)
+            let light_color = cookie_light * direct_occlusion;
+#else
+            let light_color = cookie_light;
 #endif
             color += urp_lighting_physically_based(direct, light_color, shadowed, a.xyz, n, v, specular_off);
         }

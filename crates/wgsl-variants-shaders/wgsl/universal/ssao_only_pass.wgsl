@@ -6,7 +6,7 @@
 // puts the triangle outside the clip volume, so nothing is drawn.
 //
 //   group 0: 1 gbuffer1 (its a: the surface occlusion the G-buffer pass applied),
-//            26-27 the screen-space occlusion (universal/ambient_occlusion)
+//            27 the screen-space occlusion (universal/ambient_occlusion)
 //
 // Provides the entry points:
 //   @vertex   vs_main    a full-screen triangle (_SCREEN_SPACE_OCCLUSION), else one behind the
@@ -31,7 +31,7 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> @builtin(position) vec4f
 @fragment
 fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
     let pixel = fullscreen_pixel(frag_position);
-    let ao = urp_screen_space_ambient_occlusion(pixel);
+    let ssao = urp_screen_space_ambient_occlusion(pixel);
     let surface = textureLoad(gbuffer1, pixel, 0).a;
-    return vec4f(0.0, 0.0, 0.0, urp_deferred_indirect_occlusion(ao.x, surface));
+    return vec4f(0.0, 0.0, 0.0, urp_deferred_indirect_occlusion(ssao, surface));
 }

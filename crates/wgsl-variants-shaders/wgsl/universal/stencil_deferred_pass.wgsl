@@ -21,8 +21,9 @@
 //               _DEFERRED_MAIN_LIGHT),
 //            23-25 the additional lights' cookie atlas (universal/light_cookie: _LIGHT_COOKIES
 //               with _POINT or _SPOT),
-//            26-27 the screen-space occlusion (universal/ambient_occlusion:
-//               _SCREEN_SPACE_OCCLUSION)
+//            26 ambient_occlusion_params (vec4f, URP's _AmbientOcclusionParam: w the SSAO's
+//               direct lighting strength; _SCREEN_SPACE_OCCLUSION),
+//            27 the screen-space occlusion (universal/ambient_occlusion: _SCREEN_SPACE_OCCLUSION)
 // All G-buffer reads are textureLoad at the fragment's pixel.
 //
 // Provides the entry points:
@@ -61,6 +62,9 @@
 #endif
 #if defined(_LIGHT_COOKIES) && !defined(_DEFERRED_MAIN_LIGHT)
 @group(0) @binding(9) var<uniform> cookie_light_index: vec4u;
+#endif
+#if defined(_SCREEN_SPACE_OCCLUSION)
+@group(0) @binding(26) var<uniform> ambient_occlusion_params: vec4f;
 #endif
 
 @vertex
@@ -134,10 +138,14 @@ fn fs_main(@builtin(position) frag_position: vec4f) -> @location(0) vec4f {
 #endif
     // The direct occlusion dims the light; the first directional light also scales what the
     // G-buffer pass left in GBuffer3 (its alpha, blended One SrcAlpha).
-    let ao = urp_screen_space_ambient_occlusion(pixel);
-    let color = cookie_color * ao.y;
+#if defined(_SCREEN_SPACE_OCCLUSION)
+    let ssao = urp_screen_space_ambient_occlusion(pixel);
+    let color = cookie_color * urp_direct_occlusion(ssao, ambient_occlusion_params.w);
+#else
+    let color = cookie_color;
+#endif
 #if defined(_DIRECTIONAL) && defined(_DEFERRED_FIRST_LIGHT) && defined(_SCREEN_SPACE_OCCLUSION)
-    let alpha = urp_deferred_indirect_occlusion(ao.x, g1.a);
+    let alpha = urp_deferred_indirect_occlusion(ssao, g1.a);
 #else
     let alpha = 1.0;
 #endif

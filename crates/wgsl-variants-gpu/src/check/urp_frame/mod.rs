@@ -47,7 +47,7 @@ use super::screen_masks::render_mask;
 use super::urp::urp_targets;
 use super::urp_additional_shadows::AdditionalAtlas;
 use super::urp_lighting::{
-    STENCIL_LIGHT, STENCIL_LIT, STENCIL_MATERIAL_MASK, STENCIL_UNLIT, add_blend,
+    STENCIL_LIGHT, STENCIL_LIT, STENCIL_MATERIAL_MASK, STENCIL_UNLIT, add_blend, light_blend,
 };
 use super::volume_draw::{depth_fill_draw, over_volume, stencil_fill_draw};
 use crate::light_volume::{LightDraw, light_draw};
@@ -61,10 +61,16 @@ use wgsl_variants_shaders::reference::surface::Geometry;
 use wgsl_variants_shaders::reference::tolerance::{
     rg11b10_store_range, urp_texel_within_window, window_offsets, window_range,
 };
-use wgsl_variants_shaders::reference::urp::forward::{
-    CookieTints, MainLightShadow, UrpForwardKeywords, UrpForwardLights, shade_forward,
+use wgsl_variants_shaders::reference::urp::ambient_occlusion::{
+    AmbientOcclusionFactor, deferred_indirect_occlusion,
 };
-use wgsl_variants_shaders::reference::urp::gbuffer::{UrpGBufferOutput, UrpTexel, shade_gbuffer};
+use wgsl_variants_shaders::reference::urp::forward::{
+    CookieTints, ForwardInputs, MainLightShadow, UrpForwardKeywords, UrpForwardLights,
+    shade_forward,
+};
+use wgsl_variants_shaders::reference::urp::gbuffer::{
+    UrpGBufferOutput, UrpTexel, shade_gbuffer, urp_surface,
+};
 use wgsl_variants_shaders::reference::urp::lighting::{
     UrpGBufferTexel, UrpLightKind, UrpLightParams, stencil_deferred_light,
 };
@@ -123,7 +129,8 @@ fn text(
     Ok((variant.label(), Arc::from(lib.wgsl(&variant))))
 }
 
-/// The lights' shadows and cookies as a receiver takes them: their keywords and bindings.
+/// The lights' shadows and cookies and the screen-space occlusion as a receiver takes them:
+/// their keywords and bindings.
 #[derive(Clone, Debug, Default)]
 struct Receiver {
     keywords: Vec<&'static str>,
@@ -132,7 +139,7 @@ struct Receiver {
 
 /// Object `o`'s draw of a `universal_lit` pass: the object's material keywords the pass
 /// declares (as Unity applies a material's keywords to each pass), the pass's own keywords
-/// `extra`, and the lights' shadows and cookies as `receiver` takes them.
+/// `extra`, and the lights' shadows, cookies and occlusion as `receiver` takes them.
 fn object_draw(
     lib: &Library,
     frame: &UrpFrame,
@@ -193,7 +200,9 @@ pub fn render_urp_forward(
     let (mut receiver, mut draws, mut depth) = (Receiver::default(), 0, None);
     receiver.keywords = shadows.forward_keywords();
     receiver.keywords.extend(frame.cookie_keywords());
+    receiver.keywords.extend(frame.occlusion_keywords());
     receiver.resources = frame.cookie_resources();
+    receiver.resources.extend(frame.occlusion_resources());
     if let Some(a) = &shadows.additional {
         receiver.resources.extend(a.resources());
     }
@@ -328,14 +337,22 @@ fn light_draws(
         main_resources.extend(s.resources());
     }
     cookie(0, &mut names, &mut main_resources);
+    // The screen-space occlusion on every light; the main light is the first directional
+    // light, so it also scales GBuffer3 by the indirect part (blended One SrcAlpha).
+    let occlusion = frame.occlusion_keywords();
+    names.extend(&occlusion);
+    if frame.occlusion.is_some() {
+        names.push("_DEFERRED_FIRST_LIGHT");
+    }
+    main_resources.extend(frame.occlusion_resources());
     main_resources.extend(screen);
     let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
-    let mut draws = vec![
-        Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
-            .with_shared(shared)
-            .with_resources(main_resources)
-            .with_stencil(lit),
-    ];
+    let mut main_draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
+        .with_shared(shared)
+        .with_resources(main_resources)
+        .with_stencil(lit);
+    main_draw.blend = Some(light_blend(UrpLightKind::Directional));
+    let mut draws = vec![main_draw];
     let (mark_label, mark_wgsl) = text(lib, "stencil_write", "StencilWrite", &[])?;
     let mut camera = Vec::new();
     push_mat4(&mut camera, frame.geometry.view_proj);
@@ -353,6 +370,8 @@ fn light_draws(
             resources.extend(a.resources());
         }
         cookie(k + 1, &mut names, &mut resources);
+        names.extend(&occlusion);
+        resources.extend(frame.occlusion_resources());
         let (label, wgsl) = text(lib, "stencil_deferred", "PunctualLit", &names)?;
         let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
             .with_shared(shared)
@@ -578,6 +597,9 @@ pub struct UrpFrameReport {
     /// centre lies within 1/64 texel of an edge of the light's cookie (compared within the
     /// range of the texels).
     pub cookie_edges: Vec<usize>,
+    /// With `_SCREEN_SPACE_OCCLUSION`, compared pixels where the main light (the first
+    /// directional light) scales GBuffer3 by less than 1.
+    pub occluded: usize,
     /// The first mismatches, in pixel order (at most 20).
     pub mismatches: Vec<UrpFrameMismatch>,
 }
@@ -657,6 +679,13 @@ impl fmt::Display for UrpFrameReport {
                 self.main_cookie_texels, self.cookie_edges
             )?;
         }
+        if self.occluded > 0 {
+            writeln!(
+                f,
+                "  screen-space occlusion: the main light scales GBuffer3 by less than 1 in {} pixels",
+                self.occluded
+            )?;
+        }
         if self.cascades[0].iter().any(|&n| n > 0) {
             writeln!(
                 f,
@@ -689,7 +718,9 @@ pub fn check_urp_frame(
 
 /// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow`, the
 /// end `end` (0 the lower, 1 the upper) of each additional light's shadow interval in
-/// `shadows` and the cookies' `tints` ([`UrpFrame::cookie_tints`]; black where it discards).
+/// `shadows`, the cookies' `tints` ([`UrpFrame::cookie_tints`]) and the screen-space
+/// `occlusion` at the pixel (black where it discards).
+#[allow(clippy::too_many_arguments)]
 fn forward_reference(
     frame: &UrpFrame,
     lights: &UrpForwardLights,
@@ -697,11 +728,13 @@ fn forward_reference(
     geo: &Geometry,
     shadow: Option<MainLightShadow>,
     (shadows, end): (&UrpFrameShadows, usize),
-    tints: &CookieTints,
+    tints: CookieTints,
+    occlusion: AmbientOcclusionFactor,
 ) -> Vec3 {
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(FORWARD_KEYWORDS);
     names.extend(frame.cookie_keywords());
+    names.extend(frame.occlusion_keywords());
     if shadow.is_some() {
         names.push("_MAIN_LIGHT_SHADOWS");
     }
@@ -716,6 +749,13 @@ fn forward_reference(
         .enumerate()
         .map(|(i, l)| shadows.additional_at(i, p, l.sample(p).0, camera)[end])
         .collect();
+    let inputs = ForwardInputs {
+        shadow: shadow.unwrap_or(MainLightShadow::NONE),
+        additional_shadows: additional,
+        tints,
+        occlusion,
+        ..ForwardInputs::NONE
+    };
     shade_forward(
         &k,
         &frame.objects[o].material,
@@ -723,11 +763,8 @@ fn forward_reference(
         &frame.pixel(o, *geo),
         &frame.lighting,
         frame.environment(),
-        shadow.unwrap_or(MainLightShadow::NONE),
         lights,
-        Vec3::ZERO,
-        &additional,
-        tints,
+        &inputs,
     )
     .unwrap_or(Vec3::ZERO)
 }
@@ -760,7 +797,8 @@ pub fn reference_rgb(
             &h.geometry,
             s,
             (shadows, 1),
-            &tints,
+            tints,
+            frame.occlusion_at(x, y),
         )
     }))
 }
@@ -833,6 +871,7 @@ pub fn compare(
         cascades: [[0; 6]; 2],
         main_cookie_texels: 0,
         cookie_edges: vec![0; frame.lights.len() + 1],
+        occluded: 0,
         mismatches: Vec::new(),
     };
     let mut every_light: Vec<&UrpLightParams> = vec![&frame.main_light];
@@ -896,6 +935,8 @@ pub fn compare(
             .map(|d| world_from_depth(inv_view_proj, x, y, g.width, g.height, d[i]));
         // Each texel the main light's cookie may read is shaded (the outcome need not grow
         // with it), the additional lights' cookies at the ends of their ranges.
+        // The occlusion is the pixel's texel, the same at every window point.
+        let ao = frame.occlusion_at(x, y);
         let mut values = Vec::with_capacity(2 * geos.len());
         for geo in &geos {
             let p = geo.world_position;
@@ -910,7 +951,8 @@ pub fn compare(
                         geo,
                         s.map(|s| s[k]),
                         at,
-                        &tints,
+                        tints,
+                        ao,
                     ));
                 }
             }
@@ -1014,12 +1056,24 @@ pub fn compare(
                 [lo, hi][end]
             });
             let light = UrpLightParams {
-                color: every_light[i].color * tint,
+                color: every_light[i].color * tint * ao.direct,
                 ..*every_light[i]
             };
             stencil_deferred_light(t, p, camera, &light, shadow, Some(layers))
         };
-        let (mut d_lo, mut d_hi) = (stored, stored);
+        // The main light, the first directional light, scales GBuffer3 by the indirect
+        // occlusion's ratio to the surface's (1 where its layers keep it off the texel).
+        let first = |surface: f32| {
+            let lit = frame.main_light.lights_layers(layers);
+            if frame.occlusion.is_some() && lit {
+                deferred_indirect_occlusion(ao.indirect, surface)
+            } else {
+                1.0
+            }
+        };
+        let keep = first(f32::from(word(&deferred.gbuffer[1], i)[3]) / 255.0);
+        report.occluded += usize::from(keep < 1.0);
+        let (mut d_lo, mut d_hi) = (stored * keep, stored * keep);
         let mut decoded_light = Vec3::ZERO;
         for i in 0..every_light.len() {
             let (lo, hi) = (light_at(&texel, p, i, 0), light_at(&texel, p, i, 1));
@@ -1041,14 +1095,20 @@ pub fn compare(
         let exact_light: Vec3 = (0..every_light.len())
             .map(|i| light_at(&exact, q_point, i, 1))
             .sum();
-        let quantization = (centre.gbuffer3 + exact_light - stored - decoded_light).abs();
+        let exact_keep = first(centre.gbuffer1.w);
+        let quantization =
+            (centre.gbuffer3 * exact_keep + exact_light - stored * keep - decoded_light).abs();
         let allowance = quantization + (f_hi - f_lo) + (d_hi - d_lo);
-        if !inside(d_got, f_got - allowance, f_got + allowance) {
+        // URP's deferred path scales the whole of GBuffer3 by the occlusion, the emission with
+        // the global illumination; the forward path leaves the emission whole.
+        let emission = urp_surface(&gk, material, &tex).map_or(Vec3::ZERO, |s| s.emission);
+        let expected = f_got + emission * (exact_keep - 1.0);
+        if !inside(d_got, expected - allowance, expected + allowance) {
             report.fail(
                 [x, y],
                 name,
                 3,
-                interval(f_got - allowance, f_got + allowance),
+                interval(expected - allowance, expected + allowance),
                 format!("{d_got:.4}"),
             );
         }

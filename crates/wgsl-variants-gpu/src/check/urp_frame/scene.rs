@@ -10,13 +10,13 @@ use super::super::urp::{camera_uniform, lighting_uniform, material_uniform, obje
 use super::super::urp_cookies::{
     DrawCookie, additional_light_cookies, atlas_resources, main_light_cookie, main_resources,
 };
+use super::super::urp_occlusion::ScreenOcclusion;
 use super::shadow::{UrpAdditionalShadowSpec, UrpShadowSpec};
 use crate::{BoundResource, CheckError, GpuError, Resource};
 use wgsl_variants_shaders::reference::cube::CubeFaces;
 use wgsl_variants_shaders::reference::light::{Light, LightError};
-use wgsl_variants_shaders::reference::urp::cookie::{
-    AdditionalLightCookies, MainLightCookie, range,
-};
+use wgsl_variants_shaders::reference::urp::ambient_occlusion::AmbientOcclusionFactor;
+use wgsl_variants_shaders::reference::urp::cookie::{AdditionalLightCookies, MainLightCookie};
 use wgsl_variants_shaders::reference::urp::forward::{
     CookieTints, UrpForwardLights, UrpShadowFade,
 };
@@ -83,6 +83,9 @@ pub struct UrpFrame {
     pub additional_shadows: Option<UrpAdditionalShadowSpec>,
     /// The lights' cookies (`_LIGHT_COOKIES`), or none.
     pub cookies: Option<UrpFrameCookies>,
+    /// The screen-space occlusion both paths read (`_SCREEN_SPACE_OCCLUSION`; a stand-in
+    /// pattern until URP's SSAO pass is built), or none.
+    pub occlusion: Option<ScreenOcclusion>,
 }
 
 /// The URP frame's light cookies (`_LIGHT_COOKIES`): the main light's, and the additional
@@ -165,6 +168,7 @@ impl UrpFrame {
     /// // The main light, the cool point light and the spot have cookies.
     /// let cookies = frame.cookies.as_ref().unwrap();
     /// assert_eq!(cookies.additional.lights.iter().flatten().count(), 2);
+    /// assert!(frame.occlusion.is_some());
     /// ```
     pub fn new() -> UrpFrame {
         UrpFrame::sized(
@@ -256,6 +260,7 @@ impl UrpFrame {
             )
             .expect("the URP frame's lights take cookies"),
         });
+        let occlusion = Some(ScreenOcclusion::new(width, height));
         UrpFrame {
             objects: materials(),
             geometry,
@@ -265,7 +270,31 @@ impl UrpFrame {
             main_shadow,
             additional_shadows,
             cookies,
+            occlusion,
         }
+    }
+
+    /// `_SCREEN_SPACE_OCCLUSION` where the frame has an SSAO texture.
+    pub fn occlusion_keywords(&self) -> Vec<&'static str> {
+        match self.occlusion {
+            Some(_) => vec!["_SCREEN_SPACE_OCCLUSION"],
+            None => Vec::new(),
+        }
+    }
+
+    /// The SSAO texture's bindings (26-27), none without one.
+    pub fn occlusion_resources(&self) -> Vec<BoundResource> {
+        self.occlusion
+            .as_ref()
+            .map(ScreenOcclusion::resources)
+            .unwrap_or_default()
+    }
+
+    /// The occlusion factors at pixel `(x, y)` (none without an SSAO texture).
+    pub fn occlusion_at(&self, x: u32, y: u32) -> AmbientOcclusionFactor {
+        self.occlusion
+            .as_ref()
+            .map_or(AmbientOcclusionFactor::NONE, |o| o.factor(x, y))
     }
 
     /// The passes' cookie keyword: `_LIGHT_COOKIES` where the frame's lights have cookies.
@@ -304,23 +333,10 @@ impl UrpFrame {
     /// cookie it may read there, each with the additional lights' cookies at the lower
     /// (`end` 0) or upper (1) end of their ranges; white alone without cookies.
     pub fn cookie_tints(&self, p: Vec3, end: usize) -> Vec<CookieTints> {
-        let Some(c) = &self.cookies else {
-            return vec![CookieTints::WHITE];
-        };
-        let additional: Vec<Vec3> = (0..self.lights.len())
-            .map(|k| {
-                let (lo, hi) = range(&c.additional.candidates(k, p));
-                [lo, hi][end]
-            })
-            .collect();
-        c.main
-            .candidates(p)
-            .into_iter()
-            .map(|main| CookieTints {
-                main,
-                additional: additional.clone(),
-            })
-            .collect()
+        match &self.cookies {
+            Some(c) => CookieTints::candidates(&c.main, &c.additional, self.lights.len(), p, end),
+            None => vec![CookieTints::WHITE],
+        }
     }
 
     /// The additional lights as the forward pass reads them.

@@ -3,8 +3,9 @@
 //! illumination (`GlobalIllumination`, the baked light after `MixRealtimeAndBakedGI`), the
 //! main directional light with its realtime shadow, the additional point and spot lights per
 //! pixel (`_ADDITIONAL_LIGHTS`) or per vertex (`_ADDITIONAL_LIGHTS_VERTEX`, URP's
-//! `VertexLighting`), light layers, and the emission. Facts from URP's `Lighting.hlsl`,
-//! `RealtimeLights.hlsl`, `GlobalIllumination.hlsl` and `LitForwardPass.hlsl`.
+//! `VertexLighting`), light layers, light cookies, the screen-space occlusion and the emission.
+//! Facts from URP's `Lighting.hlsl`, `RealtimeLights.hlsl`, `GlobalIllumination.hlsl`,
+//! `AmbientOcclusion.hlsl` and `LitForwardPass.hlsl`.
 //!
 //! ```
 //! use glam::{Vec3, Vec4};
@@ -20,17 +21,19 @@
 //! let env = CubeFaces::uniform(Vec4::ZERO);
 //! let lights = UrpForwardLights::new(1, vec![]).unwrap();
 //! let lit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &lights, Vec3::ZERO, &[], &CookieTints::WHITE).unwrap();
+//!     &env, &lights, &ForwardInputs::NONE).unwrap();
 //! assert!((lit - Vec3::splat(0.96)).abs().max_element() < 1e-6);
 //! // The main light on another layer than the mesh's lights nothing.
 //! let other = UrpForwardLights::new(2, vec![]).unwrap();
 //! let unlit = shade_forward(&k, &UrpMaterial::default(), &UrpTexels::default(), &pixel, &light,
-//!     &env, MainLightShadow::NONE, &other, Vec3::ZERO, &[], &CookieTints::WHITE).unwrap();
+//!     &env, &other, &ForwardInputs::NONE).unwrap();
 //! assert_eq!(unlit, Vec3::ZERO);
 //! ```
 
 use glam::Vec3;
 
+use super::ambient_occlusion::AmbientOcclusionFactor;
+use super::cookie::{AdditionalLightCookies, MainLightCookie};
 use super::gbuffer::{
     UrpKeywords, UrpLighting, UrpMaterial, UrpPixel, UrpTexels, global_illumination, kw,
     urp_baked_gi, urp_brdf, urp_surface, urp_world_normal,
@@ -149,6 +152,9 @@ pub struct UrpForwardKeywords {
     /// `_LIGHT_COOKIES`: the main light's and the per-pixel additional lights' colours times
     /// their cookies ([`CookieTints`]).
     pub light_cookies: bool,
+    /// `_SCREEN_SPACE_OCCLUSION`: the SSAO's direct part on the main and the per-pixel lights,
+    /// its indirect part on the global illumination ([`ForwardInputs::occlusion`]).
+    pub screen_space_occlusion: bool,
 }
 
 impl UrpForwardKeywords {
@@ -177,6 +183,7 @@ impl UrpForwardKeywords {
                 "_ADDITIONAL_LIGHT_SHADOWS" => k.additional_light_shadows = true,
                 "_LIGHT_LAYERS" => k.light_layers = true,
                 "_LIGHT_COOKIES" => k.light_cookies = true,
+                "_SCREEN_SPACE_OCCLUSION" => k.screen_space_occlusion = true,
                 _ if URP_FORWARD_KEYWORD_NAMES.contains(&name)
                     || (!name.is_empty() && name.bytes().all(|b| b == b'_')) =>
                 {
@@ -432,17 +439,104 @@ impl CookieTints {
         main: Vec3::ONE,
         additional: Vec::new(),
     };
+
+    /// The tints a pixel at `p` may take under `_LIGHT_COOKIES`: one per texel of the `main`
+    /// light's cookie it may read there ([`MainLightCookie::candidates`]), each with the
+    /// first `lights` of the `additional` lights' cookies at the lower (`end` 0) or the upper
+    /// (`end` 1) end of their ranges ([`AdditionalLightCookies::color`]). Shading grows with
+    /// every additional light's tint, so the two ends bound it; the main light's cookie also
+    /// lowers the subtractive lightmap, so each of its texels is kept.
+    ///
+    /// ```
+    /// use glam::{Mat4, Vec3, Vec4};
+    /// use wgsl_variants_shaders::reference::urp::cookie::{
+    ///     AdditionalLightCookie, AdditionalLightCookies, CookieFormat, CookieProjection,
+    ///     CookieTexture, MainLightCookie,
+    /// };
+    /// use wgsl_variants_shaders::reference::urp::forward::CookieTints;
+    /// // The main light's cookie: black on the left, white on the right.
+    /// let texture = CookieTexture::new(
+    ///     vec![[0, 0, 0, 255], [255, 255, 255, 255]], (2, 1), CookieFormat::Rgb,
+    /// ).unwrap();
+    /// let main = MainLightCookie { world_to_light: Mat4::IDENTITY, texture };
+    /// // One point light whose rect is a white texel; the second light has no cookie.
+    /// let atlas = CookieTexture::new(vec![[0; 4], [255; 4]], (2, 1), CookieFormat::Alpha).unwrap();
+    /// let point = AdditionalLightCookie {
+    ///     world_to_light: Mat4::IDENTITY,
+    ///     uv_rect: Vec4::new(0.5, 1.0, 0.5, 0.0),
+    ///     projection: CookieProjection::Point,
+    /// };
+    /// let additional = AdditionalLightCookies::new(atlas, vec![Some(point), None]).unwrap();
+    /// // On the main cookie's edge both of its texels may be read.
+    /// let tints = CookieTints::candidates(&main, &additional, 2, Vec3::new(0.0, 0.0, 1.0), 0);
+    /// assert_eq!(tints.len(), 2);
+    /// assert_eq!((tints[0].main, tints[1].main), (Vec3::ZERO, Vec3::ONE));
+    /// assert_eq!(tints[0].additional, vec![Vec3::ONE, Vec3::ONE]);
+    /// ```
+    pub fn candidates(
+        main: &MainLightCookie,
+        additional: &AdditionalLightCookies,
+        lights: usize,
+        p: Vec3,
+        end: usize,
+    ) -> Vec<CookieTints> {
+        let additional: Vec<Vec3> = (0..lights)
+            .map(|k| {
+                let (lo, hi) = additional.color(k, p);
+                [lo, hi][end]
+            })
+            .collect();
+        main.candidates(p)
+            .into_iter()
+            .map(|main| CookieTints {
+                main,
+                additional: additional.clone(),
+            })
+            .collect()
+    }
+}
+
+/// What the forward pass reads at a pixel besides its surface and the scene's lights: the
+/// lights' shadows there, the interpolated per-vertex lighting, the cookies and the
+/// screen-space occlusion. Each is read only under its keyword; [`ForwardInputs::NONE`] is
+/// what a pixel without any of them reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForwardInputs {
+    /// The main light's shadow at the pixel's position (read where
+    /// [`UrpForwardKeywords::reads_main_light_shadow`]).
+    pub shadow: MainLightShadow,
+    /// The interpolated [`vertex_lighting`] (`_ADDITIONAL_LIGHTS_VERTEX`).
+    pub vertex_lighting: Vec3,
+    /// Each additional light's shadow attenuation at the pixel, in the order of
+    /// [`UrpForwardLights::additional`] (URP's `AdditionalLightShadow`, read where
+    /// [`UrpForwardKeywords::reads_additional_light_shadows`]; missing entries are 1).
+    pub additional_shadows: Vec<f32>,
+    /// The lights' cookie colours (`_LIGHT_COOKIES`).
+    pub tints: CookieTints,
+    /// The screen-space occlusion at the pixel (`_SCREEN_SPACE_OCCLUSION`).
+    pub occlusion: AmbientOcclusionFactor,
+}
+
+impl ForwardInputs {
+    /// No shadow, no per-vertex light, white cookies, no occlusion.
+    pub const NONE: ForwardInputs = ForwardInputs {
+        shadow: MainLightShadow::NONE,
+        vertex_lighting: Vec3::ZERO,
+        additional_shadows: Vec::new(),
+        tints: CookieTints::WHITE,
+        occlusion: AmbientOcclusionFactor::NONE,
+    };
+}
+
+impl Default for ForwardInputs {
+    fn default() -> Self {
+        ForwardInputs::NONE
+    }
 }
 
 /// The `UniversalForward` fragment at one pixel (rgb; the pass writes alpha 1): `None` where
-/// `_ALPHATEST_ON` discards. `shadow` is the main light's shadow at the pixel's position
-/// (used where [`UrpForwardKeywords::reads_main_light_shadow`]; [`MainLightShadow::NONE`] elsewhere),
-/// `vertex_lighting` the interpolated [`vertex_lighting`] (used with
-/// `_ADDITIONAL_LIGHTS_VERTEX`), `additional_shadows` each additional light's shadow
-/// attenuation at the pixel in the order of [`UrpForwardLights::additional`] (URP's
-/// `AdditionalLightShadow`, used where
-/// [`UrpForwardKeywords::reads_additional_light_shadows`]; missing entries are 1), `tints` the
-/// lights' cookie colours (used with `_LIGHT_COOKIES`).
+/// `_ALPHATEST_ON` discards. `inputs` holds what the pixel reads besides its surface: the
+/// lights' shadows, the per-vertex lighting, the cookies and the screen-space occlusion.
 #[allow(clippy::too_many_arguments)]
 pub fn shade_forward(
     k: &UrpForwardKeywords,
@@ -451,12 +545,10 @@ pub fn shade_forward(
     pixel: &UrpPixel,
     light: &UrpLighting,
     env: &CubeFaces,
-    shadow: MainLightShadow,
     lights: &UrpForwardLights,
-    vertex_lighting: Vec3,
-    additional_shadows: &[f32],
-    tints: &CookieTints,
+    inputs: &ForwardInputs,
 ) -> Option<Vec3> {
+    let (shadow, tints) = (inputs.shadow, &inputs.tints);
     let sk = &k.surface;
     let s = urp_surface(sk, mat, tex)?;
     let b = urp_brdf(sk, &s);
@@ -479,14 +571,25 @@ pub fn shade_forward(
     } else {
         MainLightShadow::NONE
     };
-    // GetMainLight's colour times its cookie: the direct light and the subtractive
-    // lightmap's estimate of it both read it.
+    // CreateAmbientOcclusionFactor: the SSAO's indirect part, no larger than the surface's
+    // occlusion, on the global illumination; its direct part on the main and the per-pixel
+    // lights.
+    let (occlusion, direct_occlusion) = if k.screen_space_occlusion {
+        (
+            inputs.occlusion.indirect.min(s.occlusion),
+            inputs.occlusion.direct,
+        )
+    } else {
+        (s.occlusion, 1.0)
+    };
+    // GetMainLight's colour times its cookie and the direct occlusion: the direct light and
+    // the subtractive lightmap's estimate of it both read it.
     let light = &UrpLighting {
-        main_light_color: light.main_light_color * tint(k, tints.main),
+        main_light_color: light.main_light_color * tint(k, tints.main) * direct_occlusion,
         ..*light
     };
     let baked = urp_baked_gi(sk, tex, light, n, shadow.attenuation, shadow.strength);
-    let mut color = global_illumination(sk, &b, baked, n, v, s.occlusion, light, env);
+    let mut color = global_illumination(sk, &b, baked, n, v, occlusion, light, env);
     let layers = pixel.rendering_layers;
     if !k.light_layers || lights.main_layer_mask & layers != 0 {
         color += super::lighting::lighting_physically_based(
@@ -505,14 +608,14 @@ pub fn shade_forward(
             let reads_shadows = k.reads_additional_light_shadows();
             for (i, l) in lights.lighting(k.light_layers, layers) {
                 let (dir, attenuation) = l.sample(p);
-                let shadow = match additional_shadows.get(i) {
+                let shadow = match inputs.additional_shadows.get(i) {
                     Some(&s) if reads_shadows => s,
                     _ => 1.0,
                 };
                 let cookie = tint(k, tints.additional.get(i).copied().unwrap_or(Vec3::ONE));
                 color += super::lighting::lighting_physically_based(
                     &direct,
-                    l.color * cookie,
+                    l.color * cookie * direct_occlusion,
                     attenuation * shadow,
                     dir,
                     n,
@@ -521,7 +624,7 @@ pub fn shade_forward(
                 );
             }
         }
-        AdditionalLights::PerVertex => color += vertex_lighting * b.diffuse,
+        AdditionalLights::PerVertex => color += inputs.vertex_lighting * b.diffuse,
     }
     Some(color + s.emission)
 }
@@ -562,26 +665,46 @@ mod tests {
         }
     }
 
+    /// The pixel at the origin facing +Z (layer 1) of the default material and texels `tex`,
+    /// shaded under `light`, `lights` and `inputs` with a black environment.
+    fn on_paper(
+        k: &UrpForwardKeywords,
+        tex: &UrpTexels,
+        light: &UrpLighting,
+        lights: &UrpForwardLights,
+        inputs: &ForwardInputs,
+    ) -> Vec3 {
+        let env = CubeFaces::uniform(Vec4::ZERO);
+        shade_forward(
+            k,
+            &UrpMaterial::default(),
+            tex,
+            &pixel(1),
+            light,
+            &env,
+            lights,
+            inputs,
+        )
+        .unwrap()
+    }
+
     fn shade(names: &[&str], lights: &UrpForwardLights, shadow: MainLightShadow, vl: Vec3) -> Vec3 {
         let k = UrpForwardKeywords::from_names(names).unwrap();
         let light = UrpLighting {
             main_light_dir: Vec3::Z,
             ..UrpLighting::default()
         };
-        shade_forward(
+        on_paper(
             &k,
-            &UrpMaterial::default(),
             &UrpTexels::default(),
-            &pixel(1),
             &light,
-            &CubeFaces::uniform(Vec4::ZERO),
-            shadow,
             lights,
-            vl,
-            &[],
-            &CookieTints::WHITE,
+            &ForwardInputs {
+                shadow,
+                vertex_lighting: vl,
+                ..ForwardInputs::NONE
+            },
         )
-        .unwrap()
     }
 
     #[test]
@@ -593,20 +716,16 @@ mod tests {
         let lights = UrpForwardLights::new(0, vec![point, point]).unwrap();
         let run = |names: &[&str]| {
             let k = UrpForwardKeywords::from_names(names).unwrap();
-            shade_forward(
+            on_paper(
                 &k,
-                &UrpMaterial::default(),
                 &UrpTexels::default(),
-                &pixel(1),
                 &UrpLighting::default(),
-                &CubeFaces::uniform(Vec4::ZERO),
-                MainLightShadow::NONE,
                 &lights,
-                Vec3::ZERO,
-                &[0.25],
-                &CookieTints::WHITE,
+                &ForwardInputs {
+                    additional_shadows: vec![0.25],
+                    ..ForwardInputs::NONE
+                },
             )
-            .unwrap()
         };
         let one = 0.210_937_5;
         let lit = run(&["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS"]);
@@ -688,20 +807,17 @@ mod tests {
         };
         let run = |names: &[&str], lights: &UrpForwardLights, tints: &CookieTints| {
             let k = UrpForwardKeywords::from_names(names).unwrap();
-            shade_forward(
+            on_paper(
                 &k,
-                &UrpMaterial::default(),
                 &UrpTexels::default(),
-                &pixel(1),
                 &light,
-                &CubeFaces::uniform(Vec4::ZERO),
-                MainLightShadow::NONE,
                 lights,
-                Vec3::splat(0.1),
-                &[],
-                tints,
+                &ForwardInputs {
+                    vertex_lighting: Vec3::splat(0.1),
+                    tints: tints.clone(),
+                    ..ForwardInputs::NONE
+                },
             )
-            .unwrap()
         };
         let pixel_lights = [
             "_SPECULARHIGHLIGHTS_OFF",
@@ -752,20 +868,16 @@ mod tests {
             strength: 0.8,
         };
         let run = |k: &UrpForwardKeywords| {
-            shade_forward(
+            on_paper(
                 k,
-                &UrpMaterial::default(),
                 &UrpTexels::default(),
-                &pixel(1),
                 &light,
-                &CubeFaces::uniform(Vec4::ZERO),
-                shadow,
                 &lights,
-                Vec3::ZERO,
-                &[],
-                &CookieTints::WHITE,
+                &ForwardInputs {
+                    shadow,
+                    ..ForwardInputs::NONE
+                },
             )
-            .unwrap()
         };
         assert!((run(&k) - Vec3::splat(0.384)).abs().max_element() < 1e-6);
         // Receiving no shadows ignores the map.
@@ -786,20 +898,17 @@ mod tests {
             ..UrpTexels::default()
         };
         let subtractive = |k: &UrpForwardKeywords, tints: &CookieTints| {
-            shade_forward(
+            on_paper(
                 k,
-                &UrpMaterial::default(),
                 &tex,
-                &pixel(1),
                 &light,
-                &CubeFaces::uniform(Vec4::ZERO),
-                shadow,
                 &lights,
-                Vec3::ZERO,
-                &[],
-                tints,
+                &ForwardInputs {
+                    shadow,
+                    tints: tints.clone(),
+                    ..ForwardInputs::NONE
+                },
             )
-            .unwrap()
         };
         let got = subtractive(&sub, &CookieTints::WHITE);
         assert!(
@@ -820,6 +929,56 @@ mod tests {
             (got - Vec3::splat(0.7296 + 0.192)).abs().max_element() < 1e-6,
             "{got}"
         );
+    }
+
+    #[test]
+    fn the_screen_space_occlusion_on_paper() {
+        // The white dielectric (specular off, occlusion 1) under a white main light from +Z
+        // (0.96), a point light 2 above (0.2109375) and a uniform white environment (SH
+        // ambient 1 · diffuse 0.96, no reflection with a black cube): SSAO 0.5 with direct
+        // strength 0.25 gives indirect 0.5 and direct 0.875.
+        let point = point_above(1);
+        let lights = UrpForwardLights::new(1, vec![point]).unwrap();
+        let light = UrpLighting {
+            main_light_dir: Vec3::Z,
+            main_light_color: Vec3::ONE,
+            sh_r: Vec4::new(0.0, 0.0, 0.0, 1.0),
+            sh_g: Vec4::new(0.0, 0.0, 0.0, 1.0),
+            sh_b: Vec4::new(0.0, 0.0, 0.0, 1.0),
+            ..UrpLighting::default()
+        };
+        let inputs = ForwardInputs {
+            occlusion: AmbientOcclusionFactor::screen_space(0.5, 0.25),
+            ..ForwardInputs::NONE
+        };
+        let run = |names: &[&str], inputs: &ForwardInputs| {
+            let k = UrpForwardKeywords::from_names(names).unwrap();
+            on_paper(&k, &UrpTexels::default(), &light, &lights, inputs)
+        };
+        let names = ["_SPECULARHIGHLIGHTS_OFF", "_ADDITIONAL_LIGHTS"];
+        let open = run(&names, &ForwardInputs::NONE);
+        let ambient = open - Vec3::splat(0.96 + 0.210_937_5);
+        let with = [
+            "_SPECULARHIGHLIGHTS_OFF",
+            "_ADDITIONAL_LIGHTS",
+            "_SCREEN_SPACE_OCCLUSION",
+        ];
+        let occluded = run(&with, &inputs);
+        let want = ambient * 0.5 + Vec3::splat((0.96 + 0.210_937_5) * 0.875);
+        assert!(ambient.min_element() > 0.1, "{ambient}");
+        assert!(
+            (occluded - want).abs().max_element() < 1e-5,
+            "{occluded} {want}"
+        );
+        // Without the keyword the occlusion is not read.
+        assert_eq!(run(&names, &inputs), open);
+        // The smaller of the SSAO and the surface's occlusion darkens the ambient light: an
+        // SSAO of 1 (direct part 1) leaves the surface's own.
+        let clear = ForwardInputs {
+            occlusion: AmbientOcclusionFactor::screen_space(1.0, 0.25),
+            ..ForwardInputs::NONE
+        };
+        assert_eq!(run(&with, &clear), open);
     }
 
     #[test]
