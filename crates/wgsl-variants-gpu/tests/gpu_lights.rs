@@ -2,7 +2,10 @@
 //! of `standard/ForwardAdd` (18432; in CI a 3-wise covering set with keyword partners, every
 //! variant with `-- --ignored`), shadowed ones over maps `standard/ShadowCaster` rendered, rendered on lavapipe (or any GPU) and compared pixel by pixel
 //! with the CPU reference (`wgsl_variants_shaders::reference::light`), each keyword proven to change at
-//! least one pixel; and a library with a wrong falloff is caught.
+//! least one pixel; and libraries with planted bugs (a wrong falloff, PCF weight, BRDF term,
+//! shadowmask mix or fade distance) are caught where they show, each over the lighting pass's
+//! pairwise covering set ([`PLANT_COVER`]: every plant needs at most two keywords on together
+//! to show, and a mutated library compiles anew).
 //!
 //! Adapter policy as in `gpu_passes.rs` (`tests/common/gpu.rs`): without an adapter the tests
 //! print SKIPPED and pass, unless `CI=true` or `WGSL_VARIANTS_REQUIRE_GPU=1`.
@@ -23,6 +26,9 @@ fn run(lib: &Library, shader: &str, pass: &str, sample: usize) -> Option<CheckRe
     options.sample = sample;
     common::gpu::or_skip(check::run(lib, &options), "the GPU check")
 }
+
+/// The covering strength a planted bug's run of `deferred_shading/Lighting` uses.
+const PLANT_COVER: usize = 2;
 
 fn sample() -> usize {
     std::env::var("WGSL_VARIANTS_GPU_SAMPLE")
@@ -119,8 +125,18 @@ fn forward_add_every_variant_matches_the_reference() {
 /// Runs the lighting pass's check on a mutated `lib` and asserts that it fails, every listed
 /// mismatch passing `expected`; returns how many mismatches there were (`None`: skipped).
 fn lighting_check_fails(lib: &Library, expected: impl Fn(&str) -> bool) -> Option<usize> {
-    let report = run(lib, "deferred_shading", "Lighting", 1)?;
+    let mut options = CheckOptions::default();
+    options.shader = Some("deferred_shading".to_owned());
+    options.pass = Some("Lighting".to_owned());
+    options.adapter = common::gpu::adapter_filter();
+    options.cover = Some(PLANT_COVER);
+    let report = common::gpu::or_skip(check::run(lib, &options), "the GPU check")?;
     let p = &report.passes[0];
+    let note = format!(
+        "{PLANT_COVER}-wise covering set of {} of the",
+        p.variants_run
+    );
+    assert!(p.notes.iter().any(|n| n.starts_with(&note)), "{report}");
     assert!(p.mismatches > 0 && !report.passed());
     let caught = common::mutate::caught_in(&report);
     assert!(caught.iter().all(|k| expected(k)), "{report}");
