@@ -31,8 +31,11 @@
 //! for or an error saying why — unknown shader, pass or keyword, or a combination that is not in
 //! the build set), `variants()` and `passes()`. The texts and words live next to it in
 //! `OUT_DIR/wgsl_variants/` (one file per distinct output, named by content hash) and are
-//! pulled in with `include_str!`/`include_bytes!`; SPIR-V bytes become words at compile time,
-//! without `unsafe`.
+//! pulled in with `include_str!`/`include_bytes!`. SPIR-V files are kept 4-aligned and read as
+//! words in place on little-endian targets: one `unsafe` block in the generated file (it allows
+//! the `unsafe_code` lint for itself; a crate that forbids it includes the file from a crate of
+//! its own), because assembling the words in a `const fn` cost the compiler minutes on a large
+//! build set. Big-endian targets assemble the words at compile time.
 //!
 //! `write_to` prints `cargo:rerun-if-changed` for the library root, every module file and the
 //! materials file, so edits to any shader rebuild the crate.
@@ -496,7 +499,7 @@ fn generate(
             let words = bytes.len() / 4;
             let _ = writeln!(
                 items,
-                "#[allow(dead_code)]\nstatic {ident}: [u32; {words}] = spirv_words::<{words}>(include_bytes!({path_lit}));"
+                "#[allow(dead_code)]\nstatic {ident}: &[u32] = spirv_words!({words}, {path_lit});"
             );
         } else {
             let _ = writeln!(
@@ -518,7 +521,7 @@ fn generate(
             None => "None".into(),
         };
         let spirv = match &b.spirv {
-            Some(bytes) => format!("Some(&{})", blob_for(bytes, "spv", &mut items)?),
+            Some(bytes) => format!("Some({})", blob_for(bytes, "spv", &mut items)?),
             None => "None".into(),
         };
         let eps: Vec<String> = b

@@ -183,9 +183,44 @@ pub fn passes() -> &'static [Pass] {
     PASSES
 }
 
-/// Little-endian SPIR-V bytes to words, at compile time.
+/// SPIR-V bytes kept 4-aligned, so that they can be read as words where they are.
 #[allow(dead_code)]
-const fn spirv_words<const N: usize>(bytes: &[u8]) -> [u32; N] {
+#[repr(C, align(4))]
+struct SpirvBytes<const N: usize>([u8; N]);
+
+/// `spirv_words!(WORDS, "file.spv")`: a SPIR-V file (little-endian words, as the bake writes
+/// it) as `&'static [u32]`. On little-endian targets the 4-aligned bytes are the words: read in
+/// place, which costs the compiler nothing (assembling millions of words one by one in a
+/// `const fn` took it minutes on a large build set).
+#[cfg(target_endian = "little")]
+#[allow(unused_macros)]
+macro_rules! spirv_words {
+    ($words:literal, $path:expr) => {{
+        static BYTES: SpirvBytes<{ $words * 4 }> = SpirvBytes(*include_bytes!($path));
+        // SAFETY: `BYTES` is 4-aligned, holds exactly `$words` words, lives for the whole
+        // program and is never written; any four bytes are a `u32`, and on a little-endian
+        // target these are the file's words.
+        #[allow(unsafe_code)]
+        let words = unsafe { ::core::slice::from_raw_parts(BYTES.0.as_ptr().cast::<u32>(), $words) };
+        words
+    }};
+}
+
+/// `spirv_words!(WORDS, "file.spv")` on big-endian targets: each word assembled at compile
+/// time.
+#[cfg(target_endian = "big")]
+#[allow(unused_macros)]
+macro_rules! spirv_words {
+    ($words:literal, $path:expr) => {{
+        static WORDS: [u32; $words] = spirv_words_swapped::<$words>(include_bytes!($path));
+        &WORDS
+    }};
+}
+
+/// Little-endian SPIR-V bytes to words, at compile time (big-endian targets).
+#[cfg(target_endian = "big")]
+#[allow(dead_code)]
+const fn spirv_words_swapped<const N: usize>(bytes: &[u8]) -> [u32; N] {
     let mut words = [0u32; N];
     let mut i = 0;
     while i < N {

@@ -1,6 +1,10 @@
 //! The `wgsl-variants` command line: argument parsing and dispatch. Each command lives in its
 //! own file and turns its flags into the library's options.
 
+// mimalloc: naga allocates per token and expression (Cargo.toml has the figure).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod audit;
 mod audit_profiles;
 mod bindings;

@@ -322,12 +322,16 @@ fn light_draws(
         )]
     };
     let cookies = frame.draw_cookies();
-    // A light with a cookie: `_LIGHT_COOKIES` and its bindings.
-    let cookie = |k: usize, names: &mut Vec<&'static str>, resources: &mut Vec<BoundResource>| {
+    let occlusion = frame.occlusion_keywords();
+    // What every light draw receives: its cookie (`_LIGHT_COOKIES` and its bindings) where the
+    // light has one, and the screen-space occlusion.
+    let receive = |k: usize, names: &mut Vec<&'static str>, resources: &mut Vec<BoundResource>| {
         if let Some(c) = cookies[k] {
             names.push("_LIGHT_COOKIES");
             resources.extend(c.resources());
         }
+        names.extend(&occlusion);
+        resources.extend(frame.occlusion_resources());
     };
     let mut names = vec!["_DIRECTIONAL", "_DEFERRED_MAIN_LIGHT"];
     names.extend(common);
@@ -336,15 +340,12 @@ fn light_draws(
         names.extend(s.receiver_keywords());
         main_resources.extend(s.resources());
     }
-    cookie(0, &mut names, &mut main_resources);
-    // The screen-space occlusion on every light; the main light is the first directional
-    // light, so it also scales GBuffer3 by the indirect part (blended One SrcAlpha).
-    let occlusion = frame.occlusion_keywords();
-    names.extend(&occlusion);
+    receive(0, &mut names, &mut main_resources);
+    // The main light is the first directional light: with the screen-space occlusion it also
+    // scales GBuffer3 by the indirect part (blended One SrcAlpha).
     if frame.occlusion.is_some() {
         names.push("_DEFERRED_FIRST_LIGHT");
     }
-    main_resources.extend(frame.occlusion_resources());
     main_resources.extend(screen);
     let (label, wgsl) = text(lib, "stencil_deferred", "DirectionalLit", &names)?;
     let mut main_draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
@@ -369,9 +370,7 @@ fn light_draws(
             resources.push(AdditionalAtlas::shadow_light_index(k as u32));
             resources.extend(a.resources());
         }
-        cookie(k + 1, &mut names, &mut resources);
-        names.extend(&occlusion);
-        resources.extend(frame.occlusion_resources());
+        receive(k + 1, &mut names, &mut resources);
         let (label, wgsl) = text(lib, "stencil_deferred", "PunctualLit", &names)?;
         let draw = Draw::fullscreen(&label, &wgsl, "vs_main", "fs_main")
             .with_shared(shared)
@@ -716,21 +715,33 @@ pub fn check_urp_frame(
     compare(frame, &shadows, &forward, &deferred)
 }
 
-/// What `UniversalForward` writes for object `o` at `geo` with the main light's `shadow`, the
-/// end `end` (0 the lower, 1 the upper) of each additional light's shadow interval in
-/// `shadows`, the cookies' `tints` ([`UrpFrame::cookie_tints`]) and the screen-space
-/// `occlusion` at the pixel (black where it discards).
-#[allow(clippy::too_many_arguments)]
-fn forward_reference(
-    frame: &UrpFrame,
-    lights: &UrpForwardLights,
-    o: usize,
-    geo: &Geometry,
+/// One point the forward reference shades: what varies between the candidates of a pixel.
+struct ForwardSample<'a> {
+    /// The object hit.
+    object: usize,
+    /// Where it is hit.
+    geometry: &'a Geometry,
+    /// The main light's shadow there (`None`: the frame has no main-light shadows).
     shadow: Option<MainLightShadow>,
-    (shadows, end): (&UrpFrameShadows, usize),
+    /// The additional lights' shadows and which end (0 the lower, 1 the upper) of each light's
+    /// shadow interval.
+    additional: (&'a UrpFrameShadows, usize),
+    /// The cookies' tints ([`UrpFrame::cookie_tints`]).
     tints: CookieTints,
+    /// The screen-space occlusion at the pixel.
     occlusion: AmbientOcclusionFactor,
-) -> Vec3 {
+}
+
+/// What `UniversalForward` writes at `at` (black where it discards).
+fn forward_reference(frame: &UrpFrame, lights: &UrpForwardLights, at: ForwardSample) -> Vec3 {
+    let ForwardSample {
+        object: o,
+        geometry: geo,
+        shadow,
+        additional: (shadows, end),
+        tints,
+        occlusion,
+    } = at;
     let mut names = frame.objects[o].keywords.to_vec();
     names.extend(FORWARD_KEYWORDS);
     names.extend(frame.cookie_keywords());
@@ -790,16 +801,15 @@ pub fn reference_rgb(
             .map(|s| s.at(h.geometry.world_position)[1]);
         let p = h.geometry.world_position;
         let tints = frame.cookie_tints(p, 1).swap_remove(0);
-        forward_reference(
-            frame,
-            &lights,
-            h.object,
-            &h.geometry,
-            s,
-            (shadows, 1),
+        let at = ForwardSample {
+            object: h.object,
+            geometry: &h.geometry,
+            shadow: s,
+            additional: (shadows, 1),
             tints,
-            frame.occlusion_at(x, y),
-        )
+            occlusion: frame.occlusion_at(x, y),
+        };
+        forward_reference(frame, &lights, at)
     }))
 }
 
@@ -943,17 +953,15 @@ pub fn compare(
             let s = shadow.map(|s| s.received(prepass.unwrap_or(p), p));
             for k in [0, 1] {
                 for tints in frame.cookie_tints(p, k) {
-                    let at = (shadows, k);
-                    values.push(forward_reference(
-                        frame,
-                        &lights,
-                        o,
-                        geo,
-                        s.map(|s| s[k]),
-                        at,
+                    let at = ForwardSample {
+                        object: o,
+                        geometry: geo,
+                        shadow: s.map(|s| s[k]),
+                        additional: (shadows, k),
                         tints,
-                        ao,
-                    ));
+                        occlusion: ao,
+                    };
+                    values.push(forward_reference(frame, &lights, at));
                 }
             }
         }
