@@ -126,24 +126,29 @@ impl<'t> Splitter<'t> {
 
     /// Reads line number `n`.
     pub fn line(&mut self, n: u32, line: &'t str) {
+        // Byte by byte: this runs over every line of every variant. Comments start with `/`;
+        // every non-ASCII character is taken as a letter, so identifiers end at ASCII bytes
+        // (char boundaries).
         let bytes = line.as_bytes();
         let mut i = 0;
         while i < bytes.len() {
-            if let Some(skip) = comment_step(&line[i..], &mut self.state.comment) {
+            let b = bytes[i];
+            if (self.state.comment > 0 || b == b'/')
+                && let Some(skip) = comment_step(&line[i..], &mut self.state.comment)
+            {
                 i += skip;
                 continue;
             }
-            let c = line[i..].chars().next().unwrap_or(' ');
-            if is_ident_start(c) {
+            if is_ident_start(b) {
                 let start = i;
-                i += c.len_utf8();
-                while let Some(c) = line[i..].chars().next().filter(|&c| is_ident_continue(c)) {
-                    i += c.len_utf8();
+                i += 1;
+                while i < bytes.len() && is_ident_continue(bytes[i]) {
+                    i += 1;
                 }
                 self.ident(n, &line[start..i]);
                 continue;
             }
-            if c.is_ascii_digit() {
+            if b.is_ascii_digit() {
                 // A number with its suffix or exponent letters: not an identifier.
                 while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'.') {
                     i += 1;
@@ -151,10 +156,11 @@ impl<'t> Splitter<'t> {
                 self.state.prev = '0';
                 continue;
             }
-            if !crate::preprocess::lines::is_blank(c) {
-                self.punct(n, c);
+            // ASCII here: non-ASCII bytes start identifiers.
+            if !crate::preprocess::lines::is_blank(char::from(b)) {
+                self.punct(n, char::from(b));
             }
-            i += c.len_utf8();
+            i += 1;
         }
         let s = &mut self.state;
         if let Some(i) = s.extend {
@@ -281,14 +287,14 @@ impl<'t> Splitter<'t> {
     }
 }
 
-/// WGSL identifiers start with a letter (XID_Start) or `_`; anything non-ASCII is taken as a
-/// letter, so an identifier is never split.
-fn is_ident_start(c: char) -> bool {
-    c.is_alphabetic() || c == '_' || !c.is_ascii()
+/// WGSL identifiers start with a letter (XID_Start) or `_`; anything non-ASCII (any byte of
+/// it) is taken as a letter, so an identifier is never split.
+fn is_ident_start(b: u8) -> bool {
+    b.is_ascii_alphabetic() || b == b'_' || !b.is_ascii()
 }
 
-fn is_ident_continue(c: char) -> bool {
-    is_ident_start(c) || c.is_ascii_digit()
+fn is_ident_continue(b: u8) -> bool {
+    is_ident_start(b) || b.is_ascii_digit()
 }
 
 #[cfg(test)]
