@@ -127,23 +127,24 @@ impl<'l> SmallPass<'l> {
         let pass = lib
             .pass(shader, pass)
             .map_err(|e| CheckError::lookup(&what, e))?;
-        let full = wgsl_variants::Space::full(pass).enumerate(1000);
-        let full = full.map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
+        let every = wgsl_variants::Space::full(pass).enumerate(1000);
+        let every = every.map_err(|source| GpuError::from(CheckError::Budget { what, source }))?;
+        let full = every.len();
         // A strength of at least the pass's keyword sets covers its whole space.
         let cover = options
-            .cover_for(full.len() as u64)
+            .cover_for(full as u64)
             .filter(|&t| t < pass.sets.len());
         let choices = match cover {
             Some(t) => wgsl_variants::Space::full(pass)
                 .covering(t)
                 .map_err(CheckError::from)?,
-            None => full.clone(),
+            None => every,
         };
         Ok(SmallPass {
             pass,
             choices,
             cover,
-            full: full.len(),
+            full,
         })
     }
 

@@ -236,8 +236,9 @@ impl LightingKeywords {
 }
 
 /// Checks every variant of `stencil_deferred`'s `pass` (`PunctualLit` or `DirectionalLit`), or
-/// the covering set `options` ask for ([`CheckOptions::cover_for`]). `rig` must have its screen shadows rendered ([`LightRig::render_screen_shadows`]): the
-/// main light's map is the `DIRECTIONAL` light's.
+/// the covering set `options` ask for ([`CheckOptions::cover_for`]). `rig` must have its
+/// screen shadows rendered ([`LightRig::render_screen_shadows`]): the main light's map is the
+/// `DIRECTIONAL` light's.
 pub fn check_stencil_deferred(
     ctx: &GpuContext,
     lib: &Library,
